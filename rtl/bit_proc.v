@@ -1,0 +1,260 @@
+`default_nettype none
+`include "bit_isa.vh"
+// Bit processor: one bit instruction per clock, sustained.
+//
+// Three stages:
+//   fetch   the program RAM is addressed with fetch_addr
+//   decode  the word comes out of the RAM (d_instr); an M operand's address goes to
+//           the marker RAM, whose read data arrives with the instruction in execute
+//   execute the operand is selected, the RLO, the parenthesis stack and the targets
+//           are updated, jumps are taken
+// A taken jump squashes the one instruction in decode (2 clocks). END is recognised
+// in decode, so address 0 is fetched while END executes and the next scan starts
+// with a full pipeline. The processor idles (fetch held at address 0) whenever the
+// scan controller does not latch or execute.
+module bit_proc #(
+  parameter integer ProgWords   = 4096,  // program memory, instructions
+  parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
+  parameter integer OutBits     = 128,   // binary outputs (Q, PQ)
+  parameter integer MarkerBits  = 2048,  // marker bits (M)
+  parameter integer StatusBits  = 64,    // timers and counters each (T, C)
+  parameter integer Channels    = 4,     // exchange channels (FBI, FBY)
+  parameter integer NestDepth   = 8      // parenthesis levels
+) (
+  input  wire                         clk_i,
+  input  wire                         rst_ni,
+  // program load port (the byte processor / test bench writes the image)
+  input  wire                         prog_we_i,
+  input  wire [$clog2(ProgWords)-1:0] prog_waddr_i,
+  input  wire [31:0]                  prog_wdata_i,
+  // scan control
+  input  wire                         latch_i,     // scan start clock
+  input  wire                         exec_i,      // instructions execute
+  output wire                         mem_ready_o, // marker memory cleared
+  output wire                         end_o,       // END executes in this clock
+  output wire                         refresh_o,   // REFRESH executes in this clock
+  // operand sources
+  input  wire [InBits-1:0]            pii_i,
+  input  wire [InBits-1:0]            pins_i,
+  input  wire [InBits-1:0]            rise_i,
+  input  wire [InBits-1:0]            fall_i,
+  input  wire [OutBits-1:0]           pio_i,
+  input  wire [StatusBits-1:0]        timer_status_i,
+  input  wire [StatusBits-1:0]        counter_status_i,
+  input  wire [Channels-1:0]          fbi_i,
+  // output unit write port (Q, PQ)
+  output wire                         out_wr_en_o,
+  output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
+  output wire                         out_wr_val_o,
+  output wire                         out_wr_direct_o,
+  // observation (waveforms, test benches)
+  output reg                          rlo_o,
+  output wire [$clog2(ProgWords)-1:0] exec_pc_o,
+  output wire                         exec_valid_o
+);
+  localparam integer PcW   = $clog2(ProgWords);
+  localparam integer MW    = $clog2(MarkerBits);
+  localparam integer SpW   = $clog2(NestDepth + 1);  // 0..NestDepth levels
+  localparam integer IdxW  = $clog2(NestDepth);      // a level's index
+
+  // ---------------------------------------------------------------- fetch / decode
+  reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM
+  wire [31:0]    d_instr;       // that word (decode stage)
+  reg  [PcW-1:0] fetch_addr;
+  reg  [31:0]    e_instr_q;     // execute stage
+  reg  [PcW-1:0] e_pc_q;
+  reg            e_valid_q;
+
+  sync_ram #(.Words(ProgWords), .Width(32)) u_prog_ram (
+    .clk_i  (clk_i),
+    .we_i   (prog_we_i),
+    .waddr_i(prog_waddr_i),
+    .wdata_i(prog_wdata_i),
+    .raddr_i(fetch_addr),
+    .rdata_o(d_instr)
+  );
+
+  // ---------------------------------------------------------------- execute decode
+  wire [7:0]  e_op     = e_instr_q[`ISA_OPCODE];
+  wire [3:0]  e_area   = e_instr_q[`ISA_AREA];
+  wire [11:0] e_index  = e_instr_q[`ISA_INDEX];
+  wire [PcW-1:0] e_target = e_instr_q[PcW-1:0];
+  wire        e_go     = e_valid_q && exec_i;
+
+  wire is_logic  = (e_op & `OP_LOGIC_MASK) == `OP_LOGIC;
+  wire is_open   = (e_op & `OP_LOGIC_MASK) == `OP_OPEN;
+  wire is_close  = e_op == `OP_CLOSE;
+  wire is_assign = e_op == `OP_ASSIGN;
+  wire is_setbit = e_op == `OP_SETBIT;
+  wire is_rstbit = e_op == `OP_RESETBIT;
+  wire is_fp     = e_op == `OP_FP;
+  wire is_fn     = e_op == `OP_FN;
+  wire is_edge   = is_fp || is_fn;
+
+  wire jump_taken = e_go && ((e_op == `OP_JU) ||
+                             (e_op == `OP_JC  &&  rlo_o) ||
+                             (e_op == `OP_JCN && !rlo_o));
+  assign end_o     = e_go && (e_op == `OP_END);
+  assign refresh_o = e_go && (e_op == `OP_REFRESH);
+  wire   d_is_end  = d_instr[`ISA_OPCODE] == `OP_END;
+
+  // ---------------------------------------------------------------- marker memory
+  // Cleared after reset (one bit per clock) so that every marker starts at 0.
+  reg  [MW:0]   clear_addr_q;           // MarkerBits when done
+  wire          clearing = !clear_addr_q[MW];
+  assign mem_ready_o = !clearing;
+
+  wire          m_rdata;
+  reg           m_bypass_q;             // last clock wrote the address decode read
+  reg           m_bypass_val_q;
+  wire          m_target_we;            // execute writes an M bit
+  wire          m_we    = clearing || m_target_we;
+  wire [MW-1:0] m_waddr = clearing ? clear_addr_q[MW-1:0] : e_index[MW-1:0];
+  wire          target_val;
+  wire          m_wdata = clearing ? 1'b0 : target_val;
+  wire [MW-1:0] m_raddr = d_instr[MW-1:0];
+
+  sync_ram #(.Words(MarkerBits), .Width(1)) u_marker_ram (
+    .clk_i  (clk_i),
+    .we_i   (m_we),
+    .waddr_i(m_waddr),
+    .wdata_i(m_wdata),
+    .raddr_i(m_raddr),
+    .rdata_o(m_rdata)
+  );
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      clear_addr_q   <= {(MW+1){1'b0}};
+      m_bypass_q     <= 1'b0;
+      m_bypass_val_q <= 1'b0;
+    end else begin
+      if (clearing) clear_addr_q <= clear_addr_q + 1'b1;
+      // The RAM returns the old bit when decode reads what execute writes.
+      m_bypass_q     <= m_we && (m_waddr == m_raddr);
+      m_bypass_val_q <= m_wdata;
+    end
+  end
+
+  // ---------------------------------------------------------------- operand select
+  reg operand;
+  always @(*) begin
+    case (e_area)
+      `AREA_I:  operand = pii_i[e_index[$clog2(InBits)-1:0]];
+      `AREA_PI: operand = pins_i[e_index[$clog2(InBits)-1:0]];
+      `AREA_IR: operand = rise_i[e_index[$clog2(InBits)-1:0]];
+      `AREA_IF: operand = fall_i[e_index[$clog2(InBits)-1:0]];
+      `AREA_Q,
+      `AREA_PQ: operand = pio_i[e_index[$clog2(OutBits)-1:0]];
+      `AREA_M:  operand = m_bypass_q ? m_bypass_val_q : m_rdata;
+      `AREA_T:  operand = timer_status_i[e_index[$clog2(StatusBits)-1:0]];
+      `AREA_C:  operand = counter_status_i[e_index[$clog2(StatusBits)-1:0]];
+      `AREA_FB: operand = fbi_i[e_index[$clog2(Channels)-1:0]];
+      default:  operand = 1'b0;
+    endcase
+  end
+
+  // ---------------------------------------------------------------- RLO and stack
+  // RLO := RLO f (x xor n), the one combiner shared by the eight loads/combines and
+  // by ")" (which combines the saved RLO with the parenthesis' result).
+  function automatic combine(input [1:0] f, input acc, input x);
+    case (f)
+      `FN_LOAD: combine = x;
+      `FN_AND:  combine = acc & x;
+      `FN_OR:   combine = acc | x;
+      default:  combine = acc ^ x;
+    endcase
+  endfunction
+
+  reg [NestDepth-1:0] stack_rlo_q;        // saved RLO per level
+  reg [NestDepth*3-1:0] stack_op_q;       // saved {f, n} per level
+  reg [SpW-1:0] sp_q;                     // levels in use
+  wire [SpW-1:0] sp_top = sp_q - 1'b1;
+  wire [IdxW-1:0] top_idx  = sp_top[IdxW-1:0];
+  wire [IdxW-1:0] push_idx = sp_q[IdxW-1:0];
+  wire          top_rlo = stack_rlo_q[top_idx];
+  wire [2:0]    top_op  = stack_op_q[top_idx*3 +: 3];
+
+  reg rlo_d;
+  always @(*) begin
+    rlo_d = rlo_o;
+    if (is_logic)        rlo_d = combine(e_op[2:1], rlo_o, operand ^ e_op[0]);
+    else if (is_close)   rlo_d = combine(top_op[2:1], top_rlo, rlo_o ^ top_op[0]);
+    else if (is_fp)      rlo_d = rlo_o & ~operand;
+    else if (is_fn)      rlo_d = ~rlo_o & operand;
+    else if (e_op == `OP_NOT) rlo_d = ~rlo_o;
+    else if (e_op == `OP_SET) rlo_d = 1'b1;
+    else if (e_op == `OP_CLR) rlo_d = 1'b0;
+  end
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rlo_o       <= 1'b0;
+      sp_q        <= {SpW{1'b0}};
+      stack_rlo_q <= {NestDepth{1'b0}};
+      stack_op_q  <= {(NestDepth*3){1'b0}};
+    end else if (latch_i) begin
+      rlo_o <= 1'b0;                      // every scan starts with RLO = 0
+      sp_q  <= {SpW{1'b0}};
+    end else if (e_go) begin
+      rlo_o <= rlo_d;
+      // The assembler bounds the nesting; the stack saturates rather than wraps.
+      if (is_open && sp_q != NestDepth[SpW-1:0]) begin
+        stack_rlo_q[push_idx]       <= rlo_o;
+        stack_op_q[push_idx*3 +: 3] <= e_op[2:0];
+        sp_q                     <= sp_q + 1'b1;
+      end else if (is_close && sp_q != {SpW{1'b0}}) begin
+        sp_q <= sp_top;
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------- targets
+  // =, S, R write a target; FP/FN write their edge memory with the old RLO.
+  wire target_we = e_go && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_o));
+  assign target_val = is_setbit ? 1'b1 : is_rstbit ? 1'b0 : rlo_o;
+  assign m_target_we = target_we && (e_area == `AREA_M);
+
+  assign out_wr_en_o     = target_we && (e_area == `AREA_Q || e_area == `AREA_PQ);
+  assign out_wr_idx_o    = e_index[$clog2(OutBits)-1:0];
+  assign out_wr_val_o    = target_val;
+  assign out_wr_direct_o = (e_area == `AREA_PQ);
+
+  // ---------------------------------------------------------------- pipeline flow
+  // END in execute: hold address 0 in decode for the latch clock that follows.
+  // Taken jump: squash decode, fetch the target. END in decode: fetch address 0.
+  wire advance = latch_i || (exec_i && !end_o);
+  always @(*) begin
+    if (!advance)        fetch_addr = d_pc_q;
+    else if (jump_taken) fetch_addr = e_target;
+    else if (d_is_end)   fetch_addr = {PcW{1'b0}};
+    else                 fetch_addr = d_pc_q + 1'b1;
+  end
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      d_pc_q    <= {PcW{1'b0}};
+      e_instr_q <= 32'd0;
+      e_pc_q    <= {PcW{1'b0}};
+      e_valid_q <= 1'b0;
+    end else begin
+      d_pc_q <= fetch_addr;
+      if (advance) begin
+        e_instr_q <= d_instr;
+        e_pc_q    <= d_pc_q;
+        e_valid_q <= !jump_taken;
+      end else begin
+        e_valid_q <= 1'b0;
+      end
+    end
+  end
+
+  assign exec_pc_o    = e_pc_q;
+  assign exec_valid_o = e_go;
+
+  // Reserved instruction bits and the upper index bits of narrow areas are unused.
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_bits = ^{e_instr_q[23:16], e_index, sp_top};
+  // verilator lint_on UNUSEDSIGNAL
+endmodule
+`default_nettype wire

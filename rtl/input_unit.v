@@ -1,0 +1,52 @@
+`default_nettype none
+// Binary input unit (paper Fig. 1): the process-image input (PII) lives here, in the
+// unit, not in the processor. A latch (scan start or REFRESH) copies the pins into the
+// PII and publishes the edges seen since the previous latch; between latches the
+// edge accumulators keep every rising and falling edge, so a pulse shorter than a
+// scan still shows up in IR/IF. Direct reads (PI) take pins_i as it is.
+//
+// pins_i must already be synchronous to clk_i (an FPGA top puts a synchroniser in
+// front); one pin sample per clock.
+module input_unit #(
+  parameter integer InBits = 128  // number of binary inputs (InBytes * 8)
+) (
+  input  wire              clk_i,
+  input  wire              rst_ni,
+  input  wire [InBits-1:0] pins_i,
+  input  wire              latch_i,  // take the image in this clock
+  output reg  [InBits-1:0] pii_o,    // I b.n
+  output reg  [InBits-1:0] rise_o,   // IR b.n: rose since the previous latch
+  output reg  [InBits-1:0] fall_o    // IF b.n: fell since the previous latch
+);
+  // Pin value one clock ago. Reset to 0: before the first scan every input counts as
+  // having been 0, so an input that is 1 at the first latch shows a rising edge.
+  reg  [InBits-1:0] pins_prev_q;
+  reg  [InBits-1:0] rise_acc_q, fall_acc_q;  // edges since the last latch
+  wire [InBits-1:0] rise_now = pins_i & ~pins_prev_q;
+  wire [InBits-1:0] fall_now = ~pins_i & pins_prev_q;
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pins_prev_q <= {InBits{1'b0}};
+      rise_acc_q  <= {InBits{1'b0}};
+      fall_acc_q  <= {InBits{1'b0}};
+      pii_o       <= {InBits{1'b0}};
+      rise_o      <= {InBits{1'b0}};
+      fall_o      <= {InBits{1'b0}};
+    end else begin
+      pins_prev_q <= pins_i;
+      if (latch_i) begin
+        // The latch clock's own edge belongs to this latch ("up to and including").
+        pii_o      <= pins_i;
+        rise_o     <= rise_acc_q | rise_now;
+        fall_o     <= fall_acc_q | fall_now;
+        rise_acc_q <= {InBits{1'b0}};
+        fall_acc_q <= {InBits{1'b0}};
+      end else begin
+        rise_acc_q <= rise_acc_q | rise_now;
+        fall_acc_q <= fall_acc_q | fall_now;
+      end
+    end
+  end
+endmodule
+`default_nettype wire

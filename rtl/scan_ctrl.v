@@ -1,0 +1,83 @@
+`default_nettype none
+// Scan controller: the PLC's cycle. After reset it waits for the bit processor to
+// clear its memories (INIT), then for the RUN switch (IDLE). A scan is one LATCH
+// clock (PII and edge flags taken), the program's clocks (EXEC) and the clock in which
+// END executes (PIO -> pins); the next scan latches in the clock right after END.
+// The watchdog turns a scan longer than watchdog_limit_i clocks into a FAULT that
+// holds the outputs at 0 until reset, so an endless loop cannot hang a simulation.
+module scan_ctrl (
+  input  wire        clk_i,
+  input  wire        rst_ni,
+  input  wire        mem_ready_i,       // bit processor finished clearing its memories
+  input  wire        run_i,             // RUN/STOP switch; STOP takes effect at END
+  input  wire        end_i,             // END executes in this clock
+  input  wire [31:0] watchdog_limit_i,  // longest legal scan, in clocks
+  output wire        latch_o,           // this clock latches the PII (scan start)
+  output wire        exec_o,            // program instructions execute in this clock
+  output wire        ready_o,           // initialised; a RUN request starts scan 0
+  output wire        fault_o,           // watchdog fired (sticky until reset)
+  output reg         scan_done_o,       // a scan ended at the last clock edge
+  output reg  [31:0] scan_count_o,      // scans completed since reset
+  output reg  [31:0] scan_cycles_o,     // clocks of the last completed scan
+  output reg  [31:0] scan_cycles_max_o, // longest completed scan
+  output reg  [31:0] cycle_q_o          // clocks of the current scan so far
+);
+  localparam [2:0] StInit  = 3'd0;
+  localparam [2:0] StIdle  = 3'd1;
+  localparam [2:0] StLatch = 3'd2;
+  localparam [2:0] StExec  = 3'd3;
+  localparam [2:0] StFault = 3'd4;
+
+  reg [2:0] state_q, state_d;
+
+  assign latch_o = (state_q == StLatch);
+  assign exec_o  = (state_q == StExec);
+  assign ready_o = (state_q == StIdle);
+  assign fault_o = (state_q == StFault);
+
+  // Clocks this scan will have used once the current clock ends.
+  wire [31:0] cycles_now = cycle_q_o + 32'd1;
+  // Without END in this clock the scan needs at least one clock more: past the limit?
+  wire watchdog_fire = exec_o && !end_i && (cycles_now >= watchdog_limit_i);
+
+  always @(*) begin
+    state_d = state_q;
+    case (state_q)
+      StInit:  if (mem_ready_i) state_d = StIdle;
+      StIdle:  if (run_i) state_d = StLatch;
+      StLatch: state_d = StExec;
+      StExec: begin
+        if (watchdog_fire) state_d = StFault;
+        else if (end_i) state_d = run_i ? StLatch : StIdle;
+      end
+      StFault: state_d = StFault;
+      default: state_d = StFault;
+    endcase
+  end
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q           <= StInit;
+      scan_done_o       <= 1'b0;
+      scan_count_o      <= 32'd0;
+      scan_cycles_o     <= 32'd0;
+      scan_cycles_max_o <= 32'd0;
+      cycle_q_o         <= 32'd0;
+    end else begin
+      state_q     <= state_d;
+      scan_done_o <= 1'b0;
+      if (latch_o) begin
+        cycle_q_o <= 32'd1;
+      end else if (exec_o) begin
+        cycle_q_o <= cycles_now;
+        if (end_i && !watchdog_fire) begin
+          scan_done_o   <= 1'b1;
+          scan_count_o  <= scan_count_o + 32'd1;
+          scan_cycles_o <= cycles_now;
+          if (cycles_now > scan_cycles_max_o) scan_cycles_max_o <= cycles_now;
+        end
+      end
+    end
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,24 @@
+`default_nettype none
+// One write port and one synchronous read port: the shape of an FPGA block RAM, so
+// that Yosys maps program and marker memory onto BRAM instead of flip-flops.
+// A read of the address written in the same clock returns the old word; the bit
+// processor forwards around that itself.
+module sync_ram #(
+  parameter integer Words = 4096,  // number of words (a power of two)
+  parameter integer Width = 32     // bits per word
+) (
+  input  wire                     clk_i,
+  input  wire                     we_i,
+  input  wire [$clog2(Words)-1:0] waddr_i,
+  input  wire [Width-1:0]         wdata_i,
+  input  wire [$clog2(Words)-1:0] raddr_i,
+  output reg  [Width-1:0]         rdata_o
+);
+  reg [Width-1:0] mem [0:Words-1];
+
+  always @(posedge clk_i) begin
+    if (we_i) mem[waddr_i] <= wdata_i;
+    rdata_o <= mem[raddr_i];
+  end
+endmodule
+`default_nettype wire
