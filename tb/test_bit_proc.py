@@ -1,0 +1,194 @@
+"""Bit processor pipeline: one instruction per clock, marker forwarding, jumps, END,
+the parenthesis stack. The scan controller is played by the test; instruction words
+are written by hand from docs/isa.md (not produced by the assembler)."""
+from __future__ import annotations
+
+import cocotb
+import pytest
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
+
+from simrun import SIMULATORS, run_cocotb
+
+MARKER_BITS = 64
+# Opcodes (docs/isa.md) and area codes, spelled out independently of bitbyte/isa.py
+END, NOT, SET, CLR, CLOSE, NOP = 0x01, 0x02, 0x03, 0x04, 0x05, 0x00
+LD, LDN, A, AN, O, ON, X, XN = range(0x08, 0x10)
+A_OPEN, AN_OPEN, O_OPEN, ON_OPEN, X_OPEN, XN_OPEN = range(0x12, 0x18)
+ASSIGN, S, R, FP, FN = 0x18, 0x19, 0x1A, 0x1B, 0x1C
+JU, JC, JCN = 0x20, 0x21, 0x22
+AREA = {"I": 0, "PI": 1, "IR": 2, "IF": 3, "Q": 4, "PQ": 5, "M": 6, "T": 7, "C": 8}
+
+
+def w(op, area=None, index=0):
+    return (op << 24) | ((AREA[area] << 12 | index) if area else index)
+
+
+class Bench:
+    """Plays the scan controller and the I/O units around bit_proc."""
+
+    def __init__(self, dut):
+        self.dut = dut
+        self.pio = 0
+        self.writes = []        # (clock, index, value, direct)
+
+    async def start(self, prog, pii=0):
+        d = self.dut
+        cocotb.start_soon(Clock(d.clk_i, 10, unit="ns").start())
+        for sig in (d.rst_ni, d.latch_i, d.exec_i, d.prog_we_i, d.pins_i, d.rise_i,
+                    d.fall_i, d.pio_i, d.timer_status_i, d.counter_status_i, d.fbi_i):
+            sig.value = 0
+        d.pii_i.value = pii
+        for addr, word in enumerate(prog):
+            await FallingEdge(d.clk_i)
+            d.prog_we_i.value, d.prog_waddr_i.value, d.prog_wdata_i.value = 1, addr, word
+        await FallingEdge(d.clk_i)
+        d.prog_we_i.value = 0
+        d.rst_ni.value = 1
+        await Timer(MARKER_BITS * 10, unit="ns")
+        while not int(d.mem_ready_o.value):
+            await FallingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+
+    async def scan(self, limit=1000):
+        """One scan: latch clock, then execute until END. Returns (cycles, pcs, rlos):
+        cycles counted like the scan controller (latch + executed clocks incl. END),
+        pcs/rlos = executed address and RLO after it, per clock (None = bubble)."""
+        d = self.dut
+        d.latch_i.value, d.exec_i.value = 1, 0
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        d.latch_i.value, d.exec_i.value = 0, 1
+        cycles, pcs, rlos = 1, [], []
+        for clock in range(limit):
+            await Timer(1, unit="ns")      # let the new exec_i settle before sampling
+            valid = int(d.exec_valid_o.value)
+            pc = int(d.exec_pc_o.value) if valid else None
+            ended = int(d.end_o.value)
+            if int(d.out_wr_en_o.value):
+                idx, val = int(d.out_wr_idx_o.value), int(d.out_wr_val_o.value)
+                self.writes.append((cycles, idx, val, int(d.out_wr_direct_o.value)))
+                self.pio = (self.pio & ~(1 << idx)) | (val << idx)
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            d.pio_i.value = self.pio
+            cycles += 1
+            pcs.append(pc)
+            rlos.append(int(d.rlo_o.value))
+            if ended:
+                d.exec_i.value = 0
+                return cycles, pcs, rlos
+        raise AssertionError("no END")
+
+
+@cocotb.test()
+async def one_instruction_per_clock(dut):
+    """Straight-line code: N instructions + END take N + 2 clocks, no bubble."""
+    pattern = [w(LD, "I", 0), w(A, "I", 1), w(O, "I", 2), w(X, "I", 3),
+               w(AN, "I", 4), w(ON, "I", 5), w(XN, "I", 6), w(LDN, "I", 7)]
+    for n in (1, 8, 100):
+        bench = Bench(dut)
+        prog = [pattern[i % 8] for i in range(n)] + [w(END)]
+        await bench.start(prog, pii=0b10100110)
+        cycles, pcs, _ = await bench.scan()
+        assert cycles == n + 2, f"N={n}: {cycles} clocks"
+        assert pcs == list(range(n + 1)), "a bubble or a skipped instruction"
+        dut._log.info("N=%d: %d clocks per scan, CPI %.2f", n, cycles, (cycles - 2) / n)
+        cycles2, pcs2, _ = await bench.scan()      # the next scan: same, no refill
+        assert (cycles2, pcs2) == (cycles, pcs)
+
+
+@cocotb.test()
+async def logic_ops_in_sequence(dut):
+    """RLO after each combine, against hand-computed values (no AND-before-OR)."""
+    bench = Bench(dut)
+    # I0.0=0 I0.1=1 I0.2=1 I0.3=0
+    prog = [w(LD, "I", 1), w(O, "I", 0), w(A, "I", 3), w(ON, "I", 3), w(X, "I", 2),
+            w(XN, "I", 3), w(AN, "I", 1), w(LDN, "I", 0), w(NOT), w(SET), w(CLR), w(END)]
+    await bench.start(prog, pii=0b0110)
+    _, _, rlos = await bench.scan()
+    assert rlos[:11] == [1, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0]
+
+
+@cocotb.test()
+async def marker_write_then_read(dut):
+    """A marker written by one instruction is read by the very next (forwarding)."""
+    bench = Bench(dut)
+    prog = [w(SET), w(ASSIGN, "M", 5), w(LD, "M", 5), w(ASSIGN, "Q", 0),
+            w(CLR), w(ASSIGN, "M", 5), w(LDN, "M", 5), w(ASSIGN, "Q", 1),
+            w(LD, "M", 5), w(ASSIGN, "Q", 2), w(SET), w(S, "M", 9), w(NOP),
+            w(LD, "M", 9), w(ASSIGN, "Q", 3), w(END)]
+    await bench.start(prog)
+    await bench.scan()
+    assert bench.pio & 0b1111 == 0b1011
+
+
+@cocotb.test()
+async def markers_survive_scans(dut):
+    """M keeps its value across scans; FP fires once per rising edge of the RLO."""
+    bench = Bench(dut)
+    prog = [w(SET), w(FP, "M", 3), w(ASSIGN, "Q", 0), w(END)]
+    await bench.start(prog)
+    await bench.scan()
+    assert bench.pio & 1 == 1
+    await bench.scan()
+    assert bench.pio & 1 == 0
+
+
+@cocotb.test()
+async def jumps_cost_two_clocks(dut):
+    """Taken jump: 2 clocks (one squashed fetch); not taken: 1."""
+    bench = Bench(dut)
+    prog = [w(CLR),               # 0
+            w(JC, None, 5),       # 1 not taken
+            w(JU, None, 5),       # 2 taken
+            w(SET), w(SET),       # 3, 4 skipped
+            w(JCN, None, 7),      # 5 taken (RLO 0)
+            w(SET),               # 6 skipped
+            w(END)]               # 7
+    await bench.start(prog)
+    cycles, pcs, _ = await bench.scan()
+    assert [p for p in pcs if p is not None] == [0, 1, 2, 5, 7]
+    assert cycles == 1 + 1 + 1 + 2 + 2 + 1
+
+
+@cocotb.test()
+async def backward_jump_loop(dut):
+    """A loop over an M counter bit: l: LD M0.0; NOT; = M0.0; JC l; END."""
+    bench = Bench(dut)
+    prog = [w(LD, "M", 0), w(NOT), w(ASSIGN, "M", 0), w(JC, None, 0), w(END)]
+    await bench.start(prog)
+    cycles, pcs, _ = await bench.scan()
+    # first pass: M0.0 0 -> 1, RLO 1, jump; second: 1 -> 0, fall through
+    assert [p for p in pcs if p is not None] == [0, 1, 2, 3, 0, 1, 2, 3, 4]
+    assert cycles == 1 + 3 + 2 + 4 + 1
+
+
+@cocotb.test()
+async def parentheses_eight_deep(dut):
+    """A( A( ... 8 levels: each level pushes, `)` combines with the saved RLO."""
+    bench = Bench(dut)
+    # RLO = I0.0 AND (I0.1 OR (I0.0 XOR (...))) built by hand for I0.0=1, I0.1=0
+    prog = [w(LD, "I", 0)]
+    opens = [A_OPEN, O_OPEN, X_OPEN, AN_OPEN, ON_OPEN, XN_OPEN, A_OPEN, O_OPEN]
+    for op in opens:
+        prog += [w(op), w(LD, "I", 1)]
+    prog += [w(CLOSE)] * 8 + [w(ASSIGN, "Q", 0), w(END)]
+    await bench.start(prog, pii=0b01)
+    _, _, rlos = await bench.scan()
+    # innermost result 0 (I0.1); fold outward with saved RLOs (all 0 inside, 1 outside)
+    expect = 0
+    saved = [1] + [0] * 7
+    for op, acc in reversed(list(zip(opens, saved))):
+        f, n = (op >> 1) & 3, op & 1
+        x = expect ^ n
+        expect = {1: acc & x, 2: acc | x, 3: acc ^ x}[f]
+    assert rlos[-3] == expect
+    assert bench.pio & 1 == expect
+
+
+@pytest.mark.parametrize("sim", SIMULATORS)
+def test_bit_proc(sim):
+    run_cocotb(sim, "bit_proc", "test_bit_proc",
+               parameters={"ProgWords": 256, "InBits": 16, "OutBits": 16,
+                           "MarkerBits": MARKER_BITS})

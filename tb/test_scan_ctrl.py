@@ -1,0 +1,112 @@
+"""Scan controller: INIT -> IDLE -> LATCH/EXEC cycle, scan counting, watchdog."""
+from __future__ import annotations
+
+import cocotb
+import pytest
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge
+
+from simrun import SIMULATORS, run_cocotb
+
+
+async def reset(dut, limit=100):
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.rst_ni.value = 0
+    dut.mem_ready_i.value = 0
+    dut.run_i.value = 0
+    dut.end_i.value = 0
+    dut.watchdog_limit_i.value = limit
+    await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.rst_ni.value = 1
+
+
+async def clock(dut, end=False):
+    dut.end_i.value = int(end)
+    await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+
+
+def flags(dut):
+    return int(dut.latch_o.value), int(dut.exec_o.value)
+
+
+@cocotb.test()
+async def waits_for_memory_then_run(dut):
+    await reset(dut)
+    for _ in range(5):
+        await clock(dut)
+        assert int(dut.ready_o.value) == 0 and flags(dut) == (0, 0)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    assert int(dut.ready_o.value) == 1
+    await clock(dut)
+    assert flags(dut) == (0, 0)          # stays stopped without RUN
+    dut.run_i.value = 1
+    await clock(dut)
+    assert flags(dut) == (1, 0)          # the latch clock of scan 0
+
+
+@cocotb.test()
+async def counts_cycles_of_each_scan(dut):
+    """A scan = latch clock + execute clocks + END clock; the next latches right after."""
+    await reset(dut)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+    for scan, body in enumerate([0, 3, 10]):
+        assert flags(dut) == (1, 0)
+        await clock(dut)                 # latch
+        for _ in range(body):
+            assert flags(dut) == (0, 1)
+            await clock(dut)
+        assert int(dut.scan_done_o.value) == 0
+        await clock(dut, end=True)       # END
+        assert int(dut.scan_done_o.value) == 1
+        assert int(dut.scan_cycles_o.value) == body + 2
+        assert int(dut.scan_count_o.value) == scan + 1
+    assert int(dut.scan_cycles_max_o.value) == 12
+
+
+@cocotb.test()
+async def stop_at_end_of_scan(dut):
+    await reset(dut)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+    await clock(dut)                     # latch
+    dut.run_i.value = 0                  # STOP mid-scan: the scan completes
+    await clock(dut)
+    await clock(dut, end=True)
+    assert int(dut.scan_done_o.value) == 1
+    assert int(dut.ready_o.value) == 1 and flags(dut) == (0, 0)
+
+
+@cocotb.test()
+async def watchdog_exactly_at_limit(dut):
+    """A scan of exactly `limit` clocks passes; one clock more is a fault."""
+    limit = 6
+    await reset(dut, limit)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+    await clock(dut)                     # latch: 1
+    for _ in range(limit - 2):
+        await clock(dut)                 # 2 .. limit-1
+    await clock(dut, end=True)           # clock `limit` is END: legal
+    assert int(dut.scan_done_o.value) == 1 and int(dut.fault_o.value) == 0
+    await clock(dut)                     # latch
+    for _ in range(limit - 1):
+        await clock(dut)                 # no END by clock `limit`
+    assert int(dut.fault_o.value) == 1
+    assert int(dut.scan_count_o.value) == 1
+    await clock(dut, end=True)           # too late: stays in fault
+    assert int(dut.fault_o.value) == 1 and int(dut.scan_count_o.value) == 1
+
+
+@pytest.mark.parametrize("sim", SIMULATORS)
+def test_scan_ctrl(sim):
+    run_cocotb(sim, "scan_ctrl", "test_scan_ctrl")
