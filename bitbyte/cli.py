@@ -1,12 +1,237 @@
-"""`bitbyte` command line (spec §4)."""
+"""`bitbyte` command line (spec §4): `asm` and `run`.
+
+Every user error ends as `file:line:col: message` (or a one-line message for command
+line mistakes) and a non-zero exit status, never a traceback:
+  1  the program or the stimulus is malformed
+  2  command-line usage error
+  3  scan watchdog (the run stopped; completed scans are still traced)
+  4  simulator failure (build or run)
+"""
 from __future__ import annotations
 
+import argparse
+import fcntl
+import math
+import subprocess
 import sys
+import tempfile
+from fractions import Fraction
+from pathlib import Path
+
+from .config import Config
+from .errors import SourceError, format_error
+
+EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
+ROOT = Path(__file__).resolve().parents[1]
+HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
+DEFAULT_SCANS = 10
+
+
+class UsageError(Exception):
+    """A command-line mistake: printed as `bitbyte: message`, exit 2."""
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="bitbyte", description="bit-byte PLC CPU toolchain")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    a = sub.add_parser("asm", help="assemble PROG.il: image (.hex), listing (.lst), .json")
+    a.add_argument("program")
+    a.add_argument("--mode", choices=["serial", "parallel"], default="serial")
+    a.add_argument("-o", "--outdir", default=None)
+
+    r = sub.add_parser("run", help="assemble and simulate PROG.il, write a trace")
+    r.add_argument("program")
+    r.add_argument("--mode", choices=["serial", "parallel", "free"], default="serial")
+    r.add_argument("--exchange", choices=["handshake", "queue", "queue-free", "marker"])
+    r.add_argument("--stimulus")
+    stop = r.add_mutually_exclusive_group()
+    stop.add_argument("--scans", type=int)
+    stop.add_argument("--until-us", type=str)
+    r.add_argument("--watchdog", type=int, default=100_000)
+    r.add_argument("--trace")
+    r.add_argument("--watch", default="")
+    r.add_argument("--waves")
+    r.add_argument("--sim", choices=["verilator", "icarus"], default="verilator")
+    r.add_argument("--clock-mhz", type=str, default="100")
+    return p
+
+
+def _clock_mhz(text: str) -> Fraction:
+    try:
+        f = Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        raise UsageError(f"--clock-mhz: not a number: {text!r}") from None
+    if f <= 0 or (f * 1_000_000).denominator != 1:
+        raise UsageError("--clock-mhz must be positive and a whole number of Hz")
+    return f
+
+
+def _require_bit_mode(mode: str) -> None:
+    if mode != "serial":
+        raise UsageError(f"--mode {mode} needs the byte processor (not in this release);"
+                         " bit-only programs run in serial mode")
+
+
+def _assemble(path: str, config: Config, outdir: str | None):
+    from .asm import assemble
+    return assemble(path, outdir=outdir, config=config)
+
+
+def cmd_asm(args) -> int:
+    _require_bit_mode(args.mode)
+    result = _assemble(args.program, Config(), args.outdir)
+    for kind in ("hex", "lst", "json"):
+        if kind in result:
+            print(f"wrote {result[kind]}")
+    return 0
+
+
+def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
+                scans: int | None = None, until_us: str | None = None,
+                watchdog: int = 100_000, clock_mhz: str = "100"):
+    """Everything `run` does before the simulator: parse, encode, stimulus, columns.
+
+    Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
+    The differential tests call this too, so they exercise the same path."""
+    from . import trace as tr
+    from .encoder import encode_words
+    from .parser import parse_file
+    from .runjob import RunJob, hw_column
+    from .stimulus import load_stimulus, no_stimulus
+
+    f = _clock_mhz(clock_mhz)
+    config = Config(clock_mhz=float(f))
+    if scans is not None and scans < 1:
+        raise UsageError("--scans must be at least 1")
+    if watchdog < 2:
+        raise UsageError("--watchdog must be at least 2 clocks")
+    until_clock = None
+    if until_us is not None:
+        try:
+            t = Fraction(until_us)
+        except (ValueError, ZeroDivisionError):
+            raise UsageError(f"--until-us: not a number: {until_us!r}") from None
+        if t < 0:
+            raise UsageError("--until-us must not be negative")
+        until_clock = math.ceil(t * f)
+    if scans is None and until_clock is None:
+        scans = DEFAULT_SCANS
+
+    program = parse_file(program_path, config)
+    words = encode_words(program, config)
+    stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
+            else no_stimulus(config))
+    watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
+    try:
+        columns = tr.trace_columns(program, watch_list, program.symbols, config)
+    except ValueError as e:
+        raise UsageError(f"--watch: {e}") from None
+    events = stim.events_for_harness(f)
+    job = RunJob(prog=words, clock_hz=int(f * 1_000_000), watchdog=watchdog,
+                 scans=scans, until_clock=until_clock,
+                 stim_kind=events[0][0] if events else "none",
+                 stim=[(key, pins) for _, key, pins in events],
+                 cols=[(c.header, *hw_column(c.operand)) for c in columns])
+    return program, columns, job, f
+
+
+def cmd_run(args) -> int:
+    from . import trace as tr
+
+    _require_bit_mode(args.mode)
+    _, columns, job, f = prepare_run(
+        args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
+        until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz)
+
+    if args.sim == "verilator":
+        records, fault, summary = _run_harness(job, columns, args)
+    else:
+        records, fault, summary = _run_cocotb(job, columns, args, f)
+    if args.trace and args.sim != "verilator":
+        tr.write_trace(args.trace, columns, records, f)
+    print(summary, end="")
+    if fault:
+        print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
+              "outputs forced to 0", file=sys.stderr)
+        return EXIT_WATCHDOG
+    return 0
+
+
+def _records_from_rows(columns, rows):
+    from .trace import ScanRecord
+    return [ScanRecord(scan=s, end_clock=e, cycles=c,
+                       values={col.header: v for col, v in zip(columns, vals)})
+            for s, e, c, vals in rows]
+
+
+def _run_cocotb(job, columns, args, f):
+    from .sim_cocotb import run_jobs
+    from .summary import summary_text
+    if args.waves:
+        raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
+    try:
+        (result,) = run_jobs([job], args.sim)
+    except (SystemExit, RuntimeError, OSError) as e:
+        raise SimError(f"cocotb on {args.sim} failed: {e}") from None
+    records = _records_from_rows(columns, result.rows)
+    return records, result.fault, summary_text(records, f, args.trace)
+
+
+class SimError(Exception):
+    """The simulator could not be built or run: exit 4."""
+
+
+def ensure_harness() -> Path:
+    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale."""
+    HARNESS.parent.mkdir(parents=True, exist_ok=True)
+    with open(HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "harness"],
+                              capture_output=True, text=True)
+    if proc.returncode != 0 or not HARNESS.exists():
+        raise SimError("building the Verilator harness failed:\n" + proc.stdout + proc.stderr)
+    return HARNESS
+
+
+def _run_harness(job, columns, args):
+    from .trace import read_trace_rows
+    harness = ensure_harness()
+    with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
+        hex_path = Path(tmp) / "prog.hex"
+        hex_path.write_text("".join(f"{w:08x}\n" for w in job.prog))
+        trace_path = Path(args.trace).resolve() if args.trace else Path(tmp) / "trace.csv"
+        waves = str(Path(args.waves).resolve()) if args.waves else None
+        if waves:
+            Path(waves).parent.mkdir(parents=True, exist_ok=True)
+        run_file = Path(tmp) / "run.txt"
+        text = job.to_harness_text(str(hex_path), str(trace_path), waves)
+        run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
+        proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
+        if proc.returncode not in (0, EXIT_WATCHDOG):
+            raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
+        records = read_trace_rows(trace_path, columns)
+    return records, proc.returncode == EXIT_WATCHDOG, proc.stdout
 
 
 def main(argv: list[str] | None = None) -> int:
-    print("bitbyte: toolchain under construction", file=sys.stderr)
-    return 2
+    try:
+        args = _parser().parse_args(argv)
+        return cmd_asm(args) if args.command == "asm" else cmd_run(args)
+    except SourceError as e:
+        print(format_error(e), file=sys.stderr)
+        return EXIT_SOURCE
+    except UsageError as e:
+        print(f"bitbyte: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    except SimError as e:
+        print(f"bitbyte: {e}", file=sys.stderr)
+        return EXIT_SIM
+    except OSError as e:
+        print(f"bitbyte: {e.filename or ''}: {e.strerror or e}", file=sys.stderr)
+        return EXIT_SOURCE
+    except KeyboardInterrupt:
+        return 130
 
 
 if __name__ == "__main__":

@@ -20,5 +20,15 @@ class Config:
     data_words: int = 256     # MW n
     clock_mhz: float = 100.0  # bit-processor clock
 
+    def area_size(self, area: str) -> int:
+        """Bytes (byte.bit areas) or elements (numbered areas) this build holds."""
+        return {
+            "I": self.in_bytes, "PI": self.in_bytes, "IR": self.in_bytes,
+            "IF": self.in_bytes, "Q": self.out_bytes, "PQ": self.out_bytes,
+            "M": self.marker_bytes, "T": self.timers, "C": self.counters,
+            "FBI": self.channels, "FBY": self.channels, "IW": self.in_words,
+            "QW": self.out_words, "MW": self.data_words,
+        }[area]
+
 
 DEFAULT = Config()

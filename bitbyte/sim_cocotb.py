@@ -7,6 +7,7 @@ without paying the simulator start-up each time.
 """
 from __future__ import annotations
 
+import fcntl
 import json
 import logging
 import os
@@ -68,10 +69,13 @@ def run_jobs(jobs, sim: str = "icarus"):
         jobs_path = Path(tmp) / "jobs.json"
         results_path = Path(tmp) / "results.json"
         jobs_path.write_text(json.dumps([job.to_json() for job in jobs]))
-        build_and_test(sim, "bitbyte_cpu", "bitbyte.cocotb_driver", build_dir,
-                       extra_env={"BITBYTE_JOBS": str(jobs_path),
-                                  "BITBYTE_RESULTS": str(results_path)},
-                       quiet=True)
+        # One build directory per simulator, shared by concurrent runs: serialise.
+        with open(build_dir / ".lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            build_and_test(sim, "bitbyte_cpu", "bitbyte.cocotb_driver", build_dir,
+                           extra_env={"BITBYTE_JOBS": str(jobs_path),
+                                      "BITBYTE_RESULTS": str(results_path)},
+                           quiet=True)
         data = json.loads(results_path.read_text())
     return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
                       clocks=d["clocks"]) for d in data]

@@ -1,0 +1,145 @@
+"""Program -> 32-bit program-memory words (docs/isa.md) and a listing.
+
+This stage encodes bit instructions only.  A byte instruction (L, T, arithmetic,
+compares, timers, counters, READ/WRITE, `S C n`, `R C n`, `R T n`) and any bit
+instruction on an exchange channel (FBI/FBY) is rejected at its line:col with
+"... needs the byte processor ...": the serial/parallel byte side comes with the
+next release, and an image that silently dropped those instructions would run a
+different program than the one written.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict
+from typing import NamedTuple
+
+from . import isa
+from .config import DEFAULT, Config
+from .errors import SourceError
+from .program import Instr, Program
+
+BYTE_PROCESSOR = "needs the byte processor (serial/parallel mode, next release)"
+
+
+class Encoded(NamedTuple):
+    words: list[int]
+    listing: str
+
+
+def encode(program: Program, config: Config = DEFAULT) -> Encoded:
+    """The words of `program` (address 0 first) and its listing text."""
+    words = encode_words(program, config)
+    return Encoded(words, listing(program, words, config))
+
+
+def encode_words(program: Program, config: Config = DEFAULT) -> list[int]:
+    """One 32-bit word per instruction; SourceError at the first that cannot be."""
+    return [encode_instr(program, instr) for instr in program.instrs]
+
+
+def encode_instr(program: Program, instr: Instr) -> int:
+    m, op = instr.mnemonic, instr.operand
+    opcode = isa.OPCODES.get(m)
+    if opcode is None:
+        raise _error(program, instr, f"`{m}` {BYTE_PROCESSOR}")
+    if m in isa.JUMP_OPS:
+        return isa.jump_word(opcode, _jump_target(program, instr))
+    if op is None:
+        return isa.plain_word(opcode)
+    if op.area not in isa.allowed_areas(m):
+        raise _error(program, instr, _not_bit_message(m, op.area, op.address()))
+    index = op.bit_number if op.area in isa.BYTE_DOT_BIT_AREAS else op.index
+    if index >= 1 << isa.INDEX_BITS:
+        raise _error(program, instr, f"operand `{op.address()}` does not fit the "
+                                     f"{isa.INDEX_BITS}-bit index field")
+    return isa.operand_word(opcode, op.area, index)
+
+
+def _jump_target(program: Program, instr: Instr) -> int:
+    target = program.labels.get(instr.operand.label)
+    if target is None:
+        raise _error(program, instr, f"unknown label `{instr.operand.text}`")
+    if target >= 1 << isa.TARGET_BITS:
+        raise _error(program, instr, f"jump target {target} does not fit the "
+                                     f"{isa.TARGET_BITS}-bit address field")
+    return target
+
+
+def _not_bit_message(mnemonic: str, area: str, address: str) -> str:
+    """Why a parsed (so well-formed) instruction is not for the bit processor."""
+    what = f"`{mnemonic} {address}`"
+    if area in isa.EXCHANGE_AREAS:
+        return f"{what} needs the byte processor (exchange channels: serial/parallel " \
+               "mode, next release)"
+    if area in ("T", "C"):
+        return f"{what} {BYTE_PROCESSOR}"
+    return f"{what} cannot be encoded: the bit processor has no such operand"
+
+
+def _error(program: Program, instr: Instr, message: str) -> SourceError:
+    return SourceError(program.path, instr.line, instr.col, message, instr.source)
+
+
+# --------------------------------------------------------------------------------------
+# Listing
+# --------------------------------------------------------------------------------------
+
+def listing(program: Program, words: list[int], config: Config = DEFAULT) -> str:
+    """Human-readable image: header, symbols, labels, then one line per word:
+
+        AAAA  WWWWWWWW  <line>: <source text>        ; <resolved operand>
+
+    AAAA is the hex address, WWWWWWWW the word.  Each labelled instruction is
+    preceded by a blank line and `<label>:` lines, so that jump targets stand out;
+    an END is followed by a blank line (one scan's code per group).
+    """
+    out = _header(program, words, config)
+    out += ["", "addr  word      line: source"]
+    for address, (instr, word) in enumerate(zip(program.instrs, words)):
+        if instr.labels and address > 0:
+            out.append("")
+        out += [f"{'':16}{label}:" for label in _labels_on_own_line(instr)]
+        out.append(_instr_line(program, address, instr, word))
+        if instr.mnemonic == "END" and address + 1 < len(words):
+            out.append("")
+    return "\n".join(out) + "\n"
+
+
+def _header(program: Program, words: list[int], config: Config) -> list[str]:
+    sizes = " ".join(f"{k}={v}" for k, v in asdict(config).items())
+    lines = [f"; bitbyte listing of {program.path}",
+             f"; program memory: {len(words)} of {config.prog_words} words",
+             f"; config: {sizes}"]
+    if program.symbols:
+        lines += ["", "symbols:"]
+        lines += [f"  {name:<16} {op.address()}" for name, op in program.symbols.items()]
+    if program.labels:
+        lines += ["", "labels:"]
+        lines += [f"  {name:<16} {addr:04X}" for name, addr in program.labels.items()]
+    return lines
+
+
+def _labels_on_own_line(instr: Instr) -> list[str]:
+    """The labels of instr not already visible in its source line (they stood on
+    lines of their own before it)."""
+    before = instr.source[: max(instr.col - 1, 0)].replace(" ", "").replace("\t", "")
+    written_here = {name.upper() for name in before.split(":") if name}
+    return [label for label in instr.labels if label.upper() not in written_here]
+
+
+def _instr_line(program: Program, address: int, instr: Instr, word: int) -> str:
+    text = instr.source.strip().expandtabs(4) if instr.source else "(appended END)"
+    line = f"{address:04X}  {word:08X}  {instr.line:>4}: {text}"
+    note = _resolved(program, instr)
+    return f"{line:<60} ; {note}" if note else line
+
+
+def _resolved(program: Program, instr: Instr) -> str:
+    """What the encoder used where the source text does not show it directly."""
+    op = instr.operand
+    if op is None:
+        return ""
+    if op.kind == "label":
+        return f"-> {program.labels[op.label]:04X}"
+    if op.text.upper().replace(" ", "") != op.address():
+        return op.address()
+    return ""

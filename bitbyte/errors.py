@@ -1,0 +1,56 @@
+"""Errors that point into a source file.
+
+Every problem the toolchain finds in a user's program is a `SourceError`: the CLI
+prints it and exits non-zero, never with a traceback.  The text looks like a C
+compiler's so that editors and people read it the same way:
+
+    prog.il:3:4: unknown mnemonic `LDX`
+    LDX I0.0
+    ^
+
+Columns count characters from 1; a tab counts as one column, and the caret line
+repeats the tabs of the source line so that the caret lands under the right character
+in any terminal.
+"""
+from __future__ import annotations
+
+
+class SourceError(Exception):
+    """A problem at path:line:col.
+
+    line and col are 1-based.  line 0 means "the file as a whole" (for instance a
+    file that cannot be read); such an error prints without a position.
+    source_line is the text of the offending line (without its newline), shown
+    under the message with a caret.
+    """
+
+    def __init__(self, path: str, line: int, col: int, message: str,
+                 source_line: str = ""):
+        super().__init__(message)
+        self.path = path
+        self.line = line
+        self.col = col
+        self.message = message
+        self.source_line = source_line
+
+    def __str__(self) -> str:
+        return format_error(self)
+
+
+def caret_line(source_line: str, col: int) -> str:
+    """Blanks up to column col (tabs kept as tabs), then `^`."""
+    prefix = source_line[: max(col - 1, 0)]
+    pad = "".join("\t" if ch == "\t" else " " for ch in prefix)
+    pad += " " * (col - 1 - len(prefix)) if col - 1 > len(prefix) else ""
+    return pad + "^"
+
+
+def format_error(err: SourceError) -> str:
+    """`path:line:col: message`, then the source line and a caret under col.
+
+    No trailing newline.  Without a position (line 0) only `path: message`.
+    """
+    if err.line <= 0:
+        return f"{err.path}: {err.message}"
+    head = f"{err.path}:{err.line}:{err.col}: {err.message}"
+    return "\n".join((head, err.source_line, caret_line(err.source_line, err.col)))

@@ -1,0 +1,488 @@
+// Verilator harness for bitbyte_cpu: runs one scan-by-scan simulation described by a
+// run file (written by `bitbyte run`, or by hand) and writes TRACE.csv, an optional
+// waveform and a summary.  No Python in the loop: the whole run is C++, so a
+// simulation costs microseconds per scan instead of a Python call per clock.
+//
+//   Vbitbyte_cpu RUNFILE
+//
+// The run file and the drive protocol are described in sim/README.md.  The protocol
+// must match the Python reference model clock for clock (docs/isa.md "Timing model"):
+// clock 0 is the PII latch of scan 0, pins for clock n are set before the rising edge
+// that ends clock n, and a scan's end_clock is the number of clocks since clock 0
+// when scan_done_o shows it.
+#include "Vbitbyte_cpu.h"
+#include "Vbitbyte_cpu___024root.h"  // internal signals, made public by harness.vlt
+#include "verilated.h"
+// Waves: the build picks one format (Verilator allows one --trace-* per model).
+#if VM_TRACE_FST
+#include "verilated_fst_c.h"
+typedef VerilatedFstC WaveWriter;
+static const char* const kWaveExt = ".fst";
+#elif VM_TRACE_VCD
+#include "verilated_vcd_c.h"
+typedef VerilatedVcdC WaveWriter;
+static const char* const kWaveExt = ".vcd";
+#else  // TRACE=none: a stand-in that is never opened
+struct WaveWriter { void dump(uint64_t) {} void close() {} };
+static const char* const kWaveExt = "";
+#endif
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+typedef unsigned __int128 u128;
+static const char* g_where = "harness";  // prefix of error messages
+
+[[noreturn]] static void die(const char* fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  std::fprintf(stderr, "%s: ", g_where);
+  std::vfprintf(stderr, fmt, ap);
+  std::fputc('\n', stderr);
+  va_end(ap);
+  std::exit(2);
+}
+
+// ------------------------------------------------------------------ decimal output
+// num/den as a decimal: exact when it terminates within `places` digits, otherwise
+// rounded half-up to `places`; trailing zeros and a trailing '.' removed (0.62, 12,
+// 0.333333).  Integer arithmetic only: no float can turn 0.62 into 0.6199999.
+static std::string fmt_ratio(u128 num, u128 den, unsigned places) {
+  u128 scale = 1;
+  for (unsigned i = 0; i < places; ++i) scale *= 10;
+  const u128 scaled = num * scale;  // callers keep this below 2^128
+  u128 v = scaled / den;
+  if (2 * (scaled % den) >= den) ++v;
+  std::string text;  // digits of v, least significant first, then reversed
+  for (unsigned i = 0; i < places || v; ++i, v /= 10) {
+    if (i == places && places) text += '.';
+    text += char('0' + unsigned(v % 10));
+  }
+  if (text.size() == places) text += places ? ".0" : "0";  // v < 1: a leading "0."
+  std::reverse(text.begin(), text.end());
+  if (places) {
+    while (text.back() == '0') text.pop_back();
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+// The same rule for the per-scan t_us = end_clock * 10^6 / clock_hz at 6 places,
+// in 64-bit arithmetic while end_clock * 10^12 fits (1.8e7 clocks), which is
+// cheaper than fmt_ratio's 128-bit divisions and std::string.
+static char* put_t_us(char* p, uint64_t end_clock, uint64_t clock_hz) {
+  const uint64_t kE12 = 1000000000000ULL;
+  uint64_t v;  // t in units of 10^-6 us
+  if (end_clock <= UINT64_MAX / kE12) {
+    uint64_t scaled = end_clock * kE12;
+    v = scaled / clock_hz;
+    if (2 * (scaled % clock_hz) >= clock_hz) ++v;  // clock_hz < 2^63, checked
+  } else {
+    std::string s = fmt_ratio(u128(end_clock) * 1000000u, clock_hz, 6);
+    std::memcpy(p, s.data(), s.size());
+    return p + s.size();
+  }
+  p = std::to_chars(p, p + 24, v / 1000000).ptr;
+  uint64_t f = v % 1000000;
+  if (f) {
+    *p++ = '.';
+    char d[6];
+    for (int i = 5; i >= 0; --i, f /= 10) d[i] = char('0' + f % 10);
+    int n = 6;
+    while (d[n - 1] == '0') --n;
+    std::memcpy(p, d, n);
+    p += n;
+  }
+  return p;
+}
+
+// ------------------------------------------------------------------ run file
+struct Stim { uint64_t key; uint32_t pins[4]; };                 // 128 pins, word 0 = I0.0..I3.7
+struct Col  { std::string header, kind; uint32_t index; };
+
+struct RunFile {
+  std::string prog, trace, waves, gtkw = "sim/bitbyte.gtkw";
+  uint64_t clock_hz = 100000000, watchdog = 100000;
+  int64_t scans = -1, until_clock = -1;                          // -1: not given
+  std::string stim_kind = "none";
+  std::vector<Stim> stim;
+  std::vector<Col> cols;
+};
+
+static int hex_digit(char c) {  // -1 if c is no hex digit
+  if (c >= '0' && c <= '9') return c - '0';
+  c = char(std::tolower((unsigned char)c));
+  return (c >= 'a' && c <= 'f') ? c - 'a' + 10 : -1;
+}
+
+static uint64_t parse_u64(const std::string& s, const char* what) {
+  uint64_t v = 0;
+  auto r = std::from_chars(s.data(), s.data() + s.size(), v, 10);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) die("bad %s '%s'", what, s.c_str());
+  return v;
+}
+
+// Hex pin vector, most significant digit first, any length (leading digits beyond bit
+// 127 must be 0).
+static void parse_pins(const std::string& s, uint32_t pins[4]) {
+  std::memset(pins, 0, 16);
+  unsigned bit = 0;
+  for (auto it = s.rbegin(); it != s.rend(); ++it) {
+    if (*it == '_') continue;
+    const int d = hex_digit(*it);
+    if (d < 0) die("bad hex pin vector '%s'", s.c_str());
+    if (bit >= 128) { if (d) die("pin vector '%s' wider than 128 bits", s.c_str()); continue; }
+    pins[bit / 32] |= uint32_t(d) << (bit % 32);
+    bit += 4;
+  }
+}
+
+static RunFile read_run_file(const char* path) {
+  std::ifstream in(path);
+  if (!in) die("cannot open run file %s", path);
+  RunFile rf;
+  std::string line, where_buf;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    where_buf = std::string(path) + ":" + std::to_string(lineno);
+    g_where = where_buf.c_str();
+    // '#' starts a comment at the line start or after a blank (not inside a header).
+    for (size_t h = line.find('#'); h != std::string::npos; h = line.find('#', h + 1))
+      if (h == 0 || std::isspace((unsigned char)line[h - 1])) { line.erase(h); break; }
+    std::vector<std::string> w;     // the words of the line
+    std::vector<size_t> at;         // where each starts
+    for (size_t i = 0; i < line.size();) {
+      if (std::isspace((unsigned char)line[i])) { ++i; continue; }
+      const size_t j = std::min(line.size(), line.find_first_of(" \t\r", i));
+      at.push_back(i);
+      w.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    if (w.empty()) continue;
+    const std::string& k = w[0];
+    auto want = [&](size_t n) { if (w.size() != n + 1) die("'%s' takes %zu value(s)", k.c_str(), n); };
+    if (k == "prog")             { want(1); rf.prog = w[1]; }
+    else if (k == "trace")       { want(1); rf.trace = w[1]; }
+    else if (k == "waves")       { want(1); rf.waves = w[1]; }
+    else if (k == "gtkw")        { want(1); rf.gtkw = w[1]; }
+    else if (k == "clock_hz")    { want(1); rf.clock_hz = parse_u64(w[1], "clock_hz"); }
+    else if (k == "watchdog")    { want(1); rf.watchdog = parse_u64(w[1], "watchdog"); }
+    else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
+    else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
+    else if (k == "stim_kind") {
+      want(1);
+      if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");
+      rf.stim_kind = w[1];
+    } else if (k == "stim") {
+      want(2);
+      Stim s;
+      s.key = parse_u64(w[1], "stim key");
+      if (!rf.stim.empty() && s.key < rf.stim.back().key) die("stim keys must be ascending");
+      parse_pins(w[2], s.pins);
+      rf.stim.push_back(s);
+    } else if (k == "col") {
+      // The header is all the text between `col` and the last two words: `--watch`
+      // operands are named exactly as typed, and "I 0.1" is a valid one.
+      if (w.size() < 4) die("'col' takes HEADER KIND INDEX");
+      const size_t nw = w.size();
+      std::string header = line.substr(at[1], at[nw - 2] - at[1]);
+      header.erase(header.find_last_not_of(" \t") + 1);
+      static const char* kinds[] = {"q", "i", "pi", "ir", "if", "m", "t", "c", "zero"};
+      bool ok = false;
+      for (const char* kk : kinds) ok |= (w[nw - 2] == kk);
+      if (!ok) die("unknown column kind '%s'", w[nw - 2].c_str());
+      rf.cols.push_back({header, w[nw - 2], uint32_t(parse_u64(w[nw - 1], "column index"))});
+    } else {
+      die("unknown key '%s'", k.c_str());
+    }
+  }
+  g_where = path;
+  if (rf.prog.empty()) die("no 'prog'");
+  if (rf.scans < 0 && rf.until_clock < 0) die("need 'scans' or 'until_clock'");
+  if (rf.clock_hz == 0 || rf.clock_hz >= (1ULL << 62)) die("clock_hz out of range");
+  if (rf.watchdog > 0xFFFFFFFFULL) die("watchdog exceeds 32 bits");
+  if (rf.stim_kind == "none" && !rf.stim.empty()) die("stim rows with stim_kind none");
+  return rf;
+}
+
+// $readmemh subset: hex words separated by white space, // comments, @ADDR jumps.
+static std::vector<std::pair<uint32_t, uint32_t>> read_hex(const std::string& path, uint32_t words) {
+  std::ifstream in(path);
+  if (!in) die("cannot open program %s", path.c_str());
+  std::vector<std::pair<uint32_t, uint32_t>> image;  // (address, word), in file order
+  uint32_t addr = 0;
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (auto c = line.find("//"); c != std::string::npos) line.erase(c);
+    std::istringstream ls(line);
+    for (std::string t; ls >> t;) {
+      bool jump = (t[0] == '@');
+      uint64_t v = 0;
+      unsigned digits = 0;
+      for (size_t i = jump; i < t.size(); ++i) {
+        if (t[i] == '_') continue;
+        const int d = hex_digit(t[i]);
+        if (d < 0) die("%s:%d: bad hex '%s'", path.c_str(), lineno, t.c_str());
+        v = v * 16 + unsigned(d);
+        if (++digits > 8) die("%s:%d: '%s' wider than 32 bits", path.c_str(), lineno, t.c_str());
+      }
+      if (jump) { addr = uint32_t(v); continue; }
+      if (addr >= words) die("%s:%d: program longer than %u words", path.c_str(), lineno, words);
+      image.push_back({addr++, uint32_t(v)});
+    }
+  }
+  return image;
+}
+
+// ------------------------------------------------------------------ the DUT
+// Verilator's eval() wraps the model's evaluation in runtime housekeeping (deferred
+// deletes, the cross-thread message queue) that takes two mutexes per call: measured
+// at ~45 % of the run time of this small design, which uses neither.  So once the
+// model is initialised and when no waves are written (the wrapper also flags activity
+// for the tracer) the hot loop calls the generated evaluation function directly.
+// Build with -DHARNESS_PLAIN_EVAL to always use eval().
+void Vbitbyte_cpu___024root___eval(Vbitbyte_cpu___024root* vlSelf);
+
+// One clock = falling half, rising half.  Waves get both halves.
+struct Dut {
+  std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
+  std::unique_ptr<Vbitbyte_cpu> top;
+  std::unique_ptr<WaveWriter> wave;
+  uint64_t t_ps = 0, half_ps = 5000, period_ps = 10000;  // waveform time, 1 ps units
+  bool direct = false;                                    // bypass eval()'s housekeeping
+
+  void eval() {
+#ifndef HARNESS_PLAIN_EVAL
+    if (direct) { Vbitbyte_cpu___024root___eval(top->rootp); return; }
+#endif
+    top->eval();
+  }
+  void tick() {
+    top->clk_i = 0;
+    eval();
+    if (wave) wave->dump(t_ps + half_ps);
+    top->clk_i = 1;
+    eval();
+    t_ps += period_ps;
+    if (wave) wave->dump(t_ps);
+  }
+};
+
+// TRACE.csv rows are formatted straight into a large buffer that is written in big
+// blocks, instead of one (locking) stdio call per row.
+struct TraceOut {
+  std::FILE* f = nullptr;
+  std::string path;
+  std::vector<char> buf;
+  size_t used = 0, row_max = 0;  // row_max: longest possible row
+
+  char* row() {
+    if (used + row_max > buf.size()) flush();
+    return buf.data() + used;
+  }
+  void commit(const char* end) { used = size_t(end - buf.data()); }
+  void flush() {
+    if (used && std::fwrite(buf.data(), 1, used, f) != used) die("error writing %s", path.c_str());
+    used = 0;
+  }
+};
+
+// Where a trace column reads its bit: a word of a packed vector, or a marker RAM byte.
+struct ColSrc { const uint32_t* word; const uint8_t* byte; uint32_t mask; };
+
+template <class W> static ColSrc wide_bit(const W& v, uint32_t idx, const Col& c) {
+  const uint32_t bits = sizeof(W) * 8;
+  if (idx >= bits) die("column %s: index %u out of range (0..%u)", c.header.c_str(), idx, bits - 1);
+  return {reinterpret_cast<const uint32_t*>(&v) + idx / 32, nullptr, 1u << (idx % 32)};
+}
+
+int main(int argc, char** argv) {
+  if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }
+  const RunFile rf = read_run_file(argv[1]);
+  Dut d;
+  if (!rf.waves.empty()) d.ctx->traceEverOn(true);  // before the model is built
+  d.top.reset(new Vbitbyte_cpu{d.ctx.get(), "TOP"});
+  Vbitbyte_cpu& top = *d.top;
+  auto* rp = top.rootp;
+  auto& marker = rp->bitbyte_cpu__DOT__u_bit_proc__DOT__u_marker_ram__DOT__mem;
+  const uint32_t prog_words = sizeof(rp->bitbyte_cpu__DOT__u_bit_proc__DOT__u_prog_ram__DOT__mem) / 4;
+  static_assert(sizeof(top.in_pins_i) == 16, "harness assumes 128 input pins (InBytes = 16)");
+
+  // Trace columns resolved once to (pointer, mask): the per-scan cost is a load each.
+  std::vector<ColSrc> srcs;
+  for (const Col& c : rf.cols) {
+    if (c.kind == "q") srcs.push_back(wide_bit(top.out_pins_o, c.index, c));
+    else if (c.kind == "pi") srcs.push_back(wide_bit(top.in_pins_i, c.index, c));
+    else if (c.kind == "i") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__pii_o, c.index, c));
+    else if (c.kind == "ir") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__rise_o, c.index, c));
+    else if (c.kind == "if") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__fall_o, c.index, c));
+    else if (c.kind == "m") {
+      const uint32_t n = sizeof(marker) / sizeof(marker[0]);
+      if (c.index >= n) die("column %s: marker %u out of range (0..%u)", c.header.c_str(), c.index, n - 1);
+      srcs.push_back({nullptr, &marker[c.index], 1});
+    } else srcs.push_back({nullptr, nullptr, 0});  // t, c (no timers yet), zero: always 0
+  }
+
+  // Waveform: 1 ps resolution, real clock period, time 0 = start of reset.
+  std::string wave_file = rf.waves;
+  bool convert_vcd = false;
+  if (!rf.waves.empty()) {
+    d.period_ps = std::max<uint64_t>(2, (1000000000000ULL + rf.clock_hz / 2) / rf.clock_hz);
+    d.half_ps = d.period_ps / 2;
+#if VM_TRACE
+    const bool want_vcd = rf.waves.size() > 4 && rf.waves.compare(rf.waves.size() - 4, 4, ".vcd") == 0;
+    if (want_vcd != (std::strcmp(kWaveExt, ".vcd") == 0)) {
+      // An FST build asked for VCD writes FST and converts with gtkwave's fst2vcd.
+      if (want_vcd) { convert_vcd = true; wave_file = rf.waves + ".tmp.fst"; }
+      else die("this harness was built for %s waves; rebuild with TRACE=fst", kWaveExt);
+    }
+    d.wave.reset(new WaveWriter);
+    top.trace(d.wave.get(), 99);
+    d.wave->set_time_unit("1ps");
+    d.wave->set_time_resolution("1ps");
+    d.wave->open(wave_file.c_str());
+#else
+    die("this harness was built without waves (TRACE=none)");
+#endif
+  }
+
+  TraceOut out;
+  if (!rf.trace.empty()) {
+    out.path = rf.trace;
+    out.f = std::fopen(rf.trace.c_str(), "w");
+    if (!out.f) die("cannot write trace %s", rf.trace.c_str());
+    out.row_max = 3 * 24 + 2 * rf.cols.size() + 8;
+    out.buf.resize(std::max<size_t>(1 << 20, 4 * out.row_max));
+    std::fputs("scan,t_us,cycles", out.f);
+    for (const Col& c : rf.cols) std::fprintf(out.f, ",%s", c.header.c_str());
+    std::fputc('\n', out.f);
+  }
+
+  // ---- reset, program load, memory clear, RUN (the protocol the Python model assumes)
+  const auto image = read_hex(rf.prog, prog_words);
+  top.rst_ni = 0;
+  top.run_i = 0;
+  top.watchdog_limit_i = uint32_t(rf.watchdog);
+  std::memset(&top.in_pins_i, 0, sizeof top.in_pins_i);  // inputs count as 0 before clock 0
+  top.clk_i = 1;
+  top.eval();
+  if (d.wave) d.wave->dump(0);
+  d.tick();
+  for (auto [a, w] : image) {  // one word per clock, under reset
+    top.prog_we_i = 1;
+    top.prog_waddr_i = a;
+    top.prog_wdata_i = w;
+    d.tick();
+  }
+  top.prog_we_i = 0;
+  d.tick();
+  top.rst_ni = 1;
+  for (int i = 0; !top.ready_o; ++i) {  // the marker RAM clears itself, one bit a clock
+    if (i > 1000000) die("ready_o never rose after reset");
+    d.tick();
+  }
+  top.run_i = 1;
+  d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
+
+  // ---- the scans
+  const bool by_scan = rf.stim_kind == "scan", by_clock = rf.stim_kind == "clock";
+  size_t next_stim = 0;
+  auto apply_stim = [&](uint64_t key) {  // last row with KEY <= key, if any is due
+    const Stim* s = nullptr;
+    while (next_stim < rf.stim.size() && rf.stim[next_stim].key <= key) s = &rf.stim[next_stim++];
+    if (s) std::memcpy(&top.in_pins_i, s->pins, 16);
+  };
+  uint64_t next_stim_clock = (by_clock && !rf.stim.empty()) ? rf.stim[0].key : UINT64_MAX;
+
+  uint64_t n = 0, scans = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
+  const uint64_t want_scans = rf.scans < 0 ? UINT64_MAX : uint64_t(rf.scans);
+  const uint64_t until = rf.until_clock < 0 ? UINT64_MAX : uint64_t(rf.until_clock);
+  bool fault = false;
+  if (by_scan) apply_stim(0);
+  d.direct = !d.wave;  // the model is initialised by now (first eval() done)
+  const auto wall0 = std::chrono::steady_clock::now();
+
+  while (scans < want_scans) {
+    if (n == next_stim_clock) {  // clock stimulus: pins for clock n, before its edge
+      apply_stim(n);
+      next_stim_clock = next_stim < rf.stim.size() ? rf.stim[next_stim].key : UINT64_MAX;
+    }
+    d.tick();  // the rising edge that ends clock n
+    ++n;
+    if (top.fault_o) { fault = true; break; }
+    if (!top.scan_done_o) continue;
+
+    // A scan ended with clock n-1: record it with the register values after its END.
+    const uint64_t cycles = top.scan_cycles_o;
+    cyc_min = std::min(cyc_min, cycles);
+    cyc_max = std::max(cyc_max, cycles);
+    cyc_sum += cycles;
+    if (out.f) {
+      char* p = out.row();
+      p = std::to_chars(p, p + 24, scans).ptr;
+      *p++ = ',';
+      p = put_t_us(p, n, rf.clock_hz);
+      *p++ = ',';
+      p = std::to_chars(p, p + 24, cycles).ptr;
+      for (const ColSrc& s : srcs) {
+        *p++ = ',';
+        *p++ = (s.word ? (*s.word & s.mask) : s.byte ? (*s.byte & 1) : 0) ? '1' : '0';
+      }
+      *p++ = '\n';
+      out.commit(p);
+    }
+    ++scans;
+    if (n >= until) break;
+    if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+  if (fault) {
+    std::fprintf(stderr, "scan watchdog: scan %llu exceeded %llu clocks\n",
+                 (unsigned long long)scans, (unsigned long long)rf.watchdog);
+    if (d.wave) { d.tick(); d.tick(); }  // show the outputs dropping to 0
+  }
+  if (out.f) {
+    out.flush();
+    if (std::fclose(out.f) != 0) die("error writing %s", rf.trace.c_str());
+  }
+  if (d.wave) d.wave->close();
+  top.final();
+  if (convert_vcd) {
+    const std::string cmd = "fst2vcd -f '" + wave_file + "' -o '" + rf.waves + "' >/dev/null";
+    if (std::system(cmd.c_str()) != 0) die("fst2vcd failed (is gtkwave installed?): %s", cmd.c_str());
+    std::remove(wave_file.c_str());
+  }
+
+  // ---- summary
+  const std::string mhz = fmt_ratio(rf.clock_hz, 1000000, 6);
+  auto us = [&](u128 clocks_num, u128 den) { return fmt_ratio(clocks_num * 1000000u, u128(den) * rf.clock_hz, 6); };
+  std::printf("scans            %llu\n", (unsigned long long)scans);
+  if (scans) {
+    std::printf("cycles/scan      min %llu  mean %s  max %llu\n", (unsigned long long)cyc_min,
+                fmt_ratio(cyc_sum, scans, 3).c_str(), (unsigned long long)cyc_max);
+    std::printf("scan time [us]   min %s  mean %s  max %s  (clock %s MHz)\n", us(cyc_min, 1).c_str(),
+                us(cyc_sum, scans).c_str(), us(cyc_max, 1).c_str(), mhz.c_str());
+  } else {
+    std::printf("cycles/scan      -\nscan time [us]   -  (clock %s MHz)\n", mhz.c_str());
+  }
+  std::printf("stalls           bit side 0, byte side 0\n");  // no byte processor yet
+  const double rate = wall > 0 ? double(n) / wall / 1e6 : 0;
+  std::printf("simulated        %s us, %llu clocks, %.*f M clocks/s wall\n", us(n, 1).c_str(),
+              (unsigned long long)n, rate >= 1 ? 1 : 3, rate);
+  if (!rf.trace.empty()) std::printf("trace            %s\n", rf.trace.c_str());
+  if (!rf.waves.empty())
+    std::printf("waves            %s   (gtkwave %s %s)\n", rf.waves.c_str(), rf.waves.c_str(), rf.gtkw.c_str());
+  return fault ? 3 : 0;
+}

@@ -1,0 +1,138 @@
+"""Random bit-only IL programs and stimuli for the differential tests.
+
+Programs are made of top-level blocks (logic chains with nested parentheses,
+assignments, edge detection, jumps, REFRESH); jumps and labels sit between blocks, so
+a jump never enters or leaves a parenthesis. A few backward jumps loop for a while
+(or forever: then both the hardware and the reference must report the watchdog).
+"""
+from __future__ import annotations
+
+import random
+
+READ_AREAS = ["I", "I", "I", "PI", "IR", "IF", "Q", "PQ", "M", "M", "M", "T", "C"]
+WRITE_AREAS = ["Q", "Q", "PQ", "M", "M"]
+COMBINE = ["A", "AN", "O", "ON", "X", "XN"]
+OPENS = ["A(", "AN(", "O(", "ON(", "X(", "XN("]
+IN_BYTES = 2
+
+
+def _bit(rng: random.Random, area: str) -> str:
+    if area in ("T", "C"):
+        return f"{area}{rng.randrange(64)}"
+    if area == "M":
+        byte = rng.choice([0, 0, 1, 2, 3, 255])
+    elif area in ("I", "PI", "IR", "IF"):
+        byte = rng.randrange(IN_BYTES)
+    else:
+        byte = rng.randrange(2)
+    sep = " " if rng.random() < 0.1 else ""
+    return f"{area}{sep}{byte}.{rng.randrange(8)}"
+
+
+class Gen:
+    def __init__(self, rng: random.Random):
+        self.rng = rng
+        self.symbols: dict[str, str] = {}
+        self.lines: list[str] = []
+        self.pending: list[tuple[int, str]] = []   # (block index to land on, label)
+        self.nlabels = 0
+
+    def operand(self, areas=READ_AREAS) -> str:
+        rng = self.rng
+        addr = _bit(rng, rng.choice(areas))
+        if rng.random() < 0.15 and not addr.startswith(("T", "C")):
+            name = f"Sym{len(self.symbols)}"
+            self.symbols[name] = addr.replace(" ", "")
+            return f'"{name}"' if rng.random() < 0.5 else name
+        return addr
+
+    def chain(self, depth: int) -> None:
+        rng = self.rng
+        self.lines.append(f"  {rng.choice(['LD', 'LDN'])} {self.operand()}")
+        for _ in range(rng.randrange(0, 5)):
+            r = rng.random()
+            if r < 0.15 and depth < 7:
+                self.lines.append(f"  {rng.choice(OPENS)}")
+                self.chain(depth + 1)
+                self.lines.append("  )")
+            elif r < 0.22:
+                self.lines.append(f"  {rng.choice(['NOT', 'SET', 'CLR', 'NOP'])}")
+            else:
+                self.lines.append(f"  {rng.choice(COMBINE)} {self.operand()}")
+
+    def block(self, index: int, nblocks: int) -> None:
+        rng = self.rng
+        for target, label in [p for p in self.pending if p[0] == index]:
+            self.lines.append(f"{label}:")
+            self.pending.remove((target, label))
+        r = rng.random()
+        if r < 0.55:
+            self.chain(0)
+            for _ in range(rng.randrange(1, 3)):
+                op = rng.choice(["=", "=", "S", "R"])
+                self.lines.append(f"  {op} {self.operand(WRITE_AREAS)}")
+        elif r < 0.65:
+            self.chain(0)
+            mem = _bit(rng, rng.choice(["M", "M", "Q"]))
+            self.lines.append(f"  {rng.choice(['FP', 'FN'])} {mem}")
+            self.lines.append(f"  = {self.operand(WRITE_AREAS)}")
+        elif r < 0.80 and index + 1 < nblocks:
+            self.chain(0)
+            label = f"L{self.nlabels}"
+            self.nlabels += 1
+            self.pending.append((rng.randrange(index + 1, nblocks + 1), label))
+            self.lines.append(f"  {rng.choice(['JU', 'JC', 'JCN'])} {label}")
+        elif r < 0.84:
+            # a loop that runs twice: toggles a marker, jumps back while it is 1
+            label = f"L{self.nlabels}"
+            self.nlabels += 1
+            m = f"M{rng.randrange(4, 8)}.{rng.randrange(8)}"
+            self.lines += [f"{label}: LD {m}", "  NOT", f"  = {m}", f"  JC {label}"]
+        elif r < 0.85:
+            # a backward jump on an input: may loop until the watchdog fires
+            label = f"L{self.nlabels}"
+            self.nlabels += 1
+            self.lines += [f"{label}:", f"  LD {_bit(rng, 'I')}", f"  JC {label}"]
+        elif r < 0.92:
+            self.lines.append("  REFRESH")
+        else:
+            self.chain(0)
+            self.lines.append(f"  = {_bit(rng, 'PQ')}")
+
+    def program(self) -> str:
+        nblocks = self.rng.randrange(3, 25)
+        for i in range(nblocks):
+            self.block(i, nblocks)
+        for _, label in sorted(self.pending):
+            self.lines.append(f"{label}:")
+        body = self.lines
+        if self.rng.random() < 0.7:
+            body = body + ["  END"]
+        decl = ["VAR"] + [f"  {n} AT {a};" for n, a in self.symbols.items()] + ["END_VAR"]
+        return "\n".join((decl if self.symbols else []) + body) + "\n"
+
+
+def random_program(seed: int) -> str:
+    return Gen(random.Random(seed)).program()
+
+
+def random_stimulus(seed: int, scans: int) -> str:
+    """Scan rows or time rows (µs, a scan lasts roughly 0.1–0.6 µs at 100 MHz)."""
+    rng = random.Random(seed ^ 0x5EED)
+    cols = [f"I{b}.{n}" for b in range(IN_BYTES) for n in range(8)]
+    if rng.random() < 0.5:
+        rows = ["scan," + ",".join(cols)]
+        for s in sorted(rng.sample(range(scans), rng.randrange(1, scans))):
+            rows.append(f"{s}," + ",".join(str(rng.randrange(2)) for _ in cols))
+    else:
+        rows = ["t_us," + ",".join(cols)]
+        times = sorted(rng.randrange(0, scans * 40) / 100 for _ in range(rng.randrange(1, 40)))
+        for t in times:
+            rows.append(f"{t}," + ",".join(str(rng.randrange(2)) for _ in cols))
+    return "\n".join(rows) + "\n"
+
+
+def random_watch(seed: int) -> list[str]:
+    rng = random.Random(seed ^ 0xAA)
+    return [_bit(rng, rng.choice(["M", "I", "IR", "IF", "PI"])).replace(" ", "")
+            for _ in range(rng.randrange(0, 5))]

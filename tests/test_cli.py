@@ -1,0 +1,148 @@
+"""`bitbyte` as a user runs it: a subprocess, exit codes, messages, files."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "interlock.il"
+EXAMPLE_STIM = ROOT / "examples" / "interlock.stim.csv"
+
+
+def bitbyte(*args, cwd=None):
+    proc = subprocess.run([sys.executable, "-m", "bitbyte.cli", *map(str, args)],
+                          capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert "Traceback" not in proc.stderr, proc.stderr
+    return proc
+
+
+def test_asm_writes_image_listing_json(tmp_path):
+    proc = bitbyte("asm", EXAMPLE, "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    words = (tmp_path / "interlock.hex").read_text().split()
+    assert words[0] == "08001004"            # LD PI0.4
+    assert words[-1] == "01000000"           # END
+    listing = (tmp_path / "interlock.lst").read_text()
+    assert "0000  08001004" in listing and "no_jog" in listing.lower()
+
+
+@pytest.mark.parametrize("text,where,what", [
+    ("  LD I0.0\n  FOO Q0.0\n", ":2:3:", "unknown mnemonic"),
+    ("  LD I16.0\n", ":1:6:", "operand out of range"),
+    ("  LD Nope\n", ":1:6:", "undeclared symbol"),
+    ("  A(\n  A I0.0\n  )\n", ":2:3:", "not followed by LD/LDN"),
+    ("  LD I0.0\n  A(\n  LD I0.1\n", ":2:3:", "unbalanced parentheses"),
+    ("  JU nowhere\n", ":1:6:", "unknown label"),
+    ("  = I0.0\n", ":1:5:", "wrong kind"),
+    ("VAR\n  X1 AT I0.0;\n", ":1:1:", "missing END_VAR"),
+    ("  LD I0.0\n  NOT I0.1\n", ":2:", "extra operand"),
+    ("  LD I0.0 \x01\n", ":1:11:", "invalid byte"),
+])
+def test_errors_have_position_and_exit_1(tmp_path, text, where, what):
+    src = tmp_path / "bad.il"
+    src.write_bytes(text.encode("latin-1"))
+    for cmd in (["asm", src], ["run", src, "--sim", "icarus"]):
+        proc = bitbyte(*cmd)
+        assert proc.returncode == 1
+        first = proc.stderr.splitlines()[0]
+        assert first.startswith(f"{src}{where}") and what in first, proc.stderr
+
+
+def test_binary_garbage(tmp_path):
+    src = tmp_path / "garbage.il"
+    src.write_bytes(bytes(range(256)) * 4)
+    proc = bitbyte("asm", src)
+    assert proc.returncode == 1 and proc.stderr.startswith(f"{src}:1:1:")
+
+
+def test_byte_instruction_needs_byte_processor(tmp_path):
+    src = tmp_path / "byte.il"
+    src.write_text("  L 10\n  T MW0\n")
+    proc = bitbyte("run", src)
+    assert proc.returncode == 1 and "needs the byte processor" in proc.stderr
+    assert proc.stderr.startswith(f"{src}:1:3:")
+
+
+def test_usage_errors_exit_2(tmp_path):
+    assert bitbyte("run", EXAMPLE, "--scans", "0").returncode == 2
+    assert bitbyte("run", EXAMPLE, "--clock-mhz", "fast").returncode == 2
+    assert bitbyte("run", EXAMPLE, "--watch", "Q99.0").returncode == 2
+    assert bitbyte("run", EXAMPLE, "--mode", "parallel").returncode == 2
+    assert bitbyte("frobnicate").returncode == 2
+
+
+def test_missing_file(tmp_path):
+    proc = bitbyte("run", tmp_path / "nope.il")
+    assert proc.returncode == 1 and "nope.il" in proc.stderr
+
+
+def test_icarus_and_verilator_traces_identical(tmp_path):
+    traces, summaries = {}, {}
+    for sim in ("icarus", "verilator"):
+        trace = tmp_path / f"{sim}.csv"
+        proc = bitbyte("run", EXAMPLE, "--stimulus", EXAMPLE_STIM, "--scans", 25,
+                       "--sim", sim, "--trace", trace, "--watch", "Running,IF0.2,M0.1")
+        assert proc.returncode == 0, proc.stderr
+        assert "scans            25" in proc.stdout
+        traces[sim] = trace.read_text()
+        summaries[sim] = proc.stdout.splitlines()[:4]     # scans .. stalls
+    assert traces["icarus"] == traces["verilator"]
+    assert summaries["icarus"] == summaries["verilator"]
+    lines = traces["icarus"].splitlines()
+    assert lines[0] == "scan,t_us,cycles,Q0.0,Q0.1,Q0.2,Running,IF0.2,M0.1"
+    assert len(lines) == 26
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_fp_fn_worked_example(tmp_path, sim):
+    """Spec §3 worked example: I0.0 = 1 in scans 0-2, 0 from scan 3:
+    Q0.0 = 1 in scan 0 only, Q0.1 = 1 in scan 3 only."""
+    src = tmp_path / "edges.il"
+    src.write_text("LD I0.0\nFP M0.0\n= Q0.0\nLD I0.0\nFN M0.1\n= Q0.1\n")
+    stim = tmp_path / "edges.csv"
+    stim.write_text("scan,I0.0\n0,1\n3,0\n")
+    trace = tmp_path / "t.csv"
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 6, "--sim", sim,
+                   "--trace", trace)
+    assert proc.returncode == 0, proc.stderr
+    rows = [line.split(",") for line in trace.read_text().splitlines()]
+    assert rows[0] == ["scan", "t_us", "cycles", "Q0.0", "Q0.1"]
+    assert [r[3:] for r in rows[1:]] == [["1", "0"], ["0", "0"], ["0", "0"],
+                                         ["0", "1"], ["0", "0"], ["0", "0"]]
+    assert [r[2] for r in rows[1:]] == ["8"] * 6          # 6 instructions + 2
+    assert rows[1][1] == "0.08" and rows[6][1] == "0.48"
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_watchdog(tmp_path, sim):
+    src = tmp_path / "loop.il"
+    src.write_text("SET\n= Q0.0\nLD I0.0\nspin: JC spin\n")
+    stim = tmp_path / "s.csv"
+    stim.write_text("scan,I0.0\n0,0\n2,1\n")
+    trace = tmp_path / "t.csv"
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 5, "--watchdog", 50,
+                   "--sim", sim, "--trace", trace)
+    assert proc.returncode == 3
+    assert "scan watchdog" in proc.stderr
+    assert trace.read_text().splitlines()[1:] == ["0,0.06,6,1", "1,0.12,6,1"]
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_until_us_and_time_stimulus(tmp_path, sim):
+    """t_us rows: I sees a change at the first latch at or after it; PI at once."""
+    src = tmp_path / "t.il"
+    src.write_text("LD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\nNOP\nNOP\nNOP\nNOP\n")
+    stim = tmp_path / "s.csv"
+    # scans are 10 clocks = 0.1 us; the pin rises at 0.25 us (clock 25: mid scan 2)
+    stim.write_text("t_us,I0.0\n0.25,1\n")
+    trace = tmp_path / "t.csv"
+    proc = bitbyte("run", src, "--stimulus", stim, "--until-us", "0.4", "--sim", sim,
+                   "--trace", trace)
+    assert proc.returncode == 0, proc.stderr
+    assert trace.read_text().splitlines()[1:] == [
+        "0,0.1,10,0,0", "1,0.2,10,0,0", "2,0.3,10,0,0", "3,0.4,10,1,1"]

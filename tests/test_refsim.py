@@ -1,0 +1,464 @@
+"""The reference interpreter against results worked out by hand from spec §3 and the
+timing model of docs/isa.md.  Every expected value below is written down, never
+computed by the code under test.
+
+Programs are built with a tiny test-only assembler (`prog`) so these tests do not
+depend on bitbyte.parser.
+"""
+import re
+
+import pytest
+
+from bitbyte.config import Config
+from bitbyte.program import Instr, Operand, Program
+from bitbyte.refsim import RefSim, RefSimError, refsim_trace
+from bitbyte.stimulus import parse_stimulus
+from bitbyte.trace import trace_columns, trace_text
+
+# --- helpers --------------------------------------------------------------------------
+
+_BIT = re.compile(r"^(PI|IR|IF|PQ|I|Q|M)\s*(\d+)\.(\d)$", re.I)
+_IDX = re.compile(r"^(FBI|FBY|IW|QW|MW|T|C)\s*(\d+)$", re.I)
+_JUMPS = ("JU", "JC", "JCN")
+
+
+def _operand(mnemonic, text):
+    if text is None:
+        return None
+    if mnemonic in _JUMPS:
+        return Operand("label", label=text.upper(), text=text)
+    m = _BIT.match(text)
+    if m:
+        return Operand("bit", m[1].upper(), byte=int(m[2]), bit=int(m[3]), text=text)
+    m = _IDX.match(text)
+    assert m, f"test helper cannot read operand {text!r}"
+    return Operand("index", m[1].upper(), index=int(m[2]), text=text)
+
+
+def prog(src, symbols=None):
+    """One instruction per line, optional `label:` in front; END appended if missing."""
+    instrs, labels = [], {}
+    for n, line in enumerate(src.strip().splitlines(), start=1):
+        line = line.split("//")[0].strip()
+        m = re.match(r"^(\w+):\s*(.*)$", line)
+        if m:
+            labels[m[1].upper()] = len(instrs)
+            line = m[2].strip()
+        if not line:
+            continue
+        parts = line.split(None, 1)
+        mn = parts[0].upper()
+        arg = parts[1].strip() if len(parts) > 1 else None
+        instrs.append(Instr(mn, _operand(mn, arg), n, 1, line))
+    if not instrs or instrs[-1].mnemonic != "END":
+        instrs.append(Instr("END", None, 0, 0))
+    return Program("test.il", instrs, labels, symbols or {})
+
+
+def stim(text, config=Config()):
+    return parse_stimulus(text, "stim.csv", None, config)
+
+
+def column(records, header):
+    return [r.values[header] for r in records]
+
+
+def run(src, stimulus=None, scans=4, watch=(), **kw):
+    columns, records, fault = refsim_trace(prog(src), Config(), stimulus, watch,
+                                           scans=scans, **kw)
+    assert not fault
+    return records
+
+
+# Scan k of this stimulus has (I0.0, I0.1) = (0,0), (0,1), (1,0), (1,1).
+TWO_INPUTS = "scan,I0.0,I0.1\n0,0,0\n1,0,1\n2,1,0\n3,1,1\n"
+
+
+# --- loads and combines -------------------------------------------------------------
+
+
+@pytest.mark.parametrize("mnemonic, expected", [
+    # a = I0.0 (loaded first), b = I0.1; scans (a,b) = 00, 01, 10, 11
+    ("LD", [0, 1, 0, 1]),     # b
+    ("LDN", [1, 0, 1, 0]),    # not b
+    ("A", [0, 0, 0, 1]),      # a and b
+    ("AN", [0, 0, 1, 0]),     # a and not b
+    ("O", [0, 1, 1, 1]),      # a or b
+    ("ON", [1, 0, 1, 1]),     # a or not b
+    ("X", [0, 1, 1, 0]),      # a xor b
+    ("XN", [1, 0, 0, 1]),     # a xor not b
+])
+def test_load_and_combine(mnemonic, expected):
+    recs = run(f"LD I0.0\n{mnemonic} I0.1\n= Q0.0", stim(TWO_INPUTS))
+    assert column(recs, "Q0.0") == expected
+
+
+def test_not_set_clr():
+    recs = run("LD I0.0\nNOT\n= Q0.0\nSET\n= Q0.1\nCLR\n= Q0.2",
+               stim("scan,I0.0\n0,0\n1,1\n"), scans=2)
+    assert column(recs, "Q0.0") == [1, 0]
+    assert column(recs, "Q0.1") == [1, 1]
+    assert column(recs, "Q0.2") == [0, 0]
+
+
+def test_combines_strictly_in_sequence():
+    # a=1, b=0, c=0: (a or b) and c = 0; AND-before-OR would give 1
+    recs = run("LD I0.0\nO I0.1\nA I0.2\n= Q0.0", stim("scan,I0.0\n0,1\n"), scans=1)
+    assert column(recs, "Q0.0") == [0]
+
+
+def test_rlo_is_0_at_every_scan_start():
+    recs = run("= Q0.0\nSET\n= Q0.1", scans=3)
+    assert column(recs, "Q0.0") == [0, 0, 0]
+    assert column(recs, "Q0.1") == [1, 1, 1]
+
+
+def test_assign_set_reset_and_markers():
+    src = "LD I0.0\nS Q0.0\nLD I0.1\nR Q0.0\nLD I0.0\n= M0.0\nLD M0.0\n= Q0.1"
+    # (I0.0, I0.1) per scan: 00, 10, 00, 01, 11, 00
+    s = stim("scan,I0.0,I0.1\n0,0,0\n1,1,0\n2,0,0\n3,0,1\n4,1,1\n5,0,0\n")
+    recs = run(src, s, scans=6, watch=["M0.0"])
+    assert column(recs, "Q0.0") == [0, 1, 1, 0, 0, 0]   # S holds, R wins when last
+    assert column(recs, "Q0.1") == [0, 1, 0, 0, 1, 0]
+    assert column(recs, "M0.0") == [0, 1, 0, 0, 1, 0]
+
+
+def test_set_reset_do_nothing_when_rlo_is_0():
+    recs = run("SET\n= Q0.0\n= Q0.1\nCLR\nR Q0.0\nS Q0.2", scans=1)
+    assert column(recs, "Q0.0") == [1]
+    assert column(recs, "Q0.1") == [1]
+    assert column(recs, "Q0.2") == [0]
+
+
+# --- edges ----------------------------------------------------------------------------
+
+FP_FN_STIM = "scan,I0.0\n0,1\n3,0\n"   # I0.0 = 1 in scans 0-2, 0 from scan 3
+
+
+def test_fp_fn_worked_example_of_spec():
+    src = "LD I0.0\nFP M0.0\n= Q0.0\nLD I0.0\nFN M0.1\n= Q0.1"
+    recs = run(src, stim(FP_FN_STIM), scans=5, watch=["M0.0", "M0.1"])
+    assert column(recs, "Q0.0") == [1, 0, 0, 0, 0]
+    assert column(recs, "Q0.1") == [0, 0, 0, 1, 0]
+    assert column(recs, "M0.0") == [1, 1, 1, 0, 0]   # m := old RLO
+    assert column(recs, "M0.1") == [1, 1, 1, 0, 0]
+
+
+def test_fp_fn_with_q_memory():
+    src = "LD I0.0\nFP Q1.0\n= Q0.0\nLD I0.0\nFN Q1.1\n= Q0.1"
+    recs = run(src, stim(FP_FN_STIM), scans=5)
+    assert column(recs, "Q0.0") == [1, 0, 0, 0, 0]
+    assert column(recs, "Q0.1") == [0, 0, 0, 1, 0]
+    assert column(recs, "Q1.0") == [1, 1, 1, 0, 0]
+    assert column(recs, "Q1.1") == [1, 1, 1, 0, 0]
+
+
+# --- parentheses ----------------------------------------------------------------------
+
+NEST7 = """
+SET
+A(
+LD I0.0
+O(
+LD I0.1
+A(
+LDN I0.2
+X(
+LD I0.3
+AN(
+LD I0.4
+ON(
+LD I0.5
+XN(
+LD I0.6
+)
+)
+)
+)
+)
+)
+)
+= Q0.0
+"""
+
+
+def nest7_by_hand(i):
+    """The expression of NEST7, innermost first."""
+    l6 = i[5] ^ (1 - i[6])          # XN(: I5 xor not I6
+    l5 = i[4] | (1 - l6)            # ON(
+    l4 = i[3] & (1 - l5)            # AN(
+    l3 = (1 - i[2]) ^ l4            # X(  after LDN I0.2
+    l2 = i[1] & l3                  # A(
+    l1 = i[0] | l2                  # O(
+    return 1 & l1                   # A( after SET
+
+
+def test_nested_parentheses_7_deep():
+    lines = ["scan,I0.0,I0.1,I0.2,I0.3,I0.4,I0.5,I0.6"]
+    inputs = [[(k >> b) & 1 for b in range(7)] for k in range(128)]
+    lines += [f"{k}," + ",".join(map(str, v)) for k, v in enumerate(inputs)]
+    recs = run(NEST7, stim("\n".join(lines)), scans=128)
+    assert column(recs, "Q0.0") == [nest7_by_hand(v) for v in inputs]
+    # two spot checks worked fully by hand
+    assert recs[0].values["Q0.0"] == 0          # all inputs 0
+    assert recs[0b0000001].values["Q0.0"] == 1  # I0.0 = 1 alone
+    assert all(r.cycles == 1 + 23 + 1 for r in recs)
+
+
+def test_parenthesis_versus_sequence():
+    # a=0, b=0, c=1: a and (b or c) = 0, while a and b or c = 1
+    recs = run("LD I0.0\nA(\nLD I0.1\nO I0.2\n)\n= Q0.0",
+               stim("scan,I0.2\n0,1\n"), scans=1)
+    assert column(recs, "Q0.0") == [0]
+
+
+def test_paren_stack_is_empty_at_every_scan_start():
+    # jumps out of an open parenthesis every scan: 20 scans > nest_depth 8 pushes
+    recs = run("A(\nLD I0.0\nJU out\n)\nout: = Q0.0", stim("scan,I0.0\n0,1\n"), scans=20)
+    assert column(recs, "Q0.0") == [1] * 20
+
+
+def test_paren_stack_overflow_within_a_scan_is_an_error():
+    sim = RefSim(prog("l: A(\nLD I0.0\nJU l"), Config())
+    with pytest.raises(RefSimError, match="overflow"):
+        sim.run(scans=1)
+
+
+# --- jumps and cycles -----------------------------------------------------------------
+
+
+def test_forward_jc_taken_and_not_taken():
+    src = "LD I0.0\nJC skip\nSET\n= Q0.0\nskip: LD I0.1\n= Q0.1"
+    recs = run(src, stim("scan,I0.0,I0.1\n0,1,1\n1,0,0\n"), scans=2)
+    assert column(recs, "Q0.0") == [0, 1]
+    assert column(recs, "Q0.1") == [1, 0]
+    # taken: latch + LD + JC(2) + LD + = + END = 7; not taken: 1 + 6 + 1 = 8
+    assert [r.cycles for r in recs] == [7, 8]
+    assert [r.end_clock for r in recs] == [7, 15]
+
+
+def test_jcn_and_ju():
+    src = "LD I0.0\nJCN skip\nSET\n= Q0.0\nskip: JU over\nSET\n= Q0.1\nover: NOP"
+    recs = run(src, stim("scan,I0.0\n0,0\n1,1\n"), scans=2)
+    assert column(recs, "Q0.0") == [0, 1]
+    assert column(recs, "Q0.1") == [0, 0]
+    # scan 0: LD, JCN(2), JU(2), NOP = 6 + 2; scan 1: LD, JCN, SET, =, JU(2), NOP = 7 + 2
+    assert [r.cycles for r in recs] == [8, 9]
+
+
+def test_backward_loop():
+    src = """
+          CLR
+          = M0.0
+    loop: LD M0.0
+          NOT
+          = M0.0
+          JC loop      // taken once (M0.0 became 1), then falls through
+          SET
+          = Q0.0
+    """
+    recs = run(src, scans=2, watch=["M0.0"])
+    assert column(recs, "Q0.0") == [1, 1]
+    assert column(recs, "M0.0") == [0, 0]
+    # CLR, =, (LD NOT = JC:2), (LD NOT = JC:1), SET, = -> 13, + latch + END
+    assert [r.cycles for r in recs] == [15, 15]
+
+
+@pytest.mark.parametrize("n", [0, 1, 5, 100])
+def test_straight_line_takes_n_plus_2(n):
+    recs = run("NOP\n" * n, scans=3)
+    assert [r.cycles for r in recs] == [n + 2] * 3
+    assert [r.end_clock for r in recs] == [(n + 2), 2 * (n + 2), 3 * (n + 2)]
+
+
+def test_t_us_of_62_cycle_scans():
+    columns, recs, fault = refsim_trace(prog("NOP\n" * 60), Config(), scans=3)
+    assert trace_text(columns, recs, 100) == (
+        "scan,t_us,cycles\n0,0.62,62\n1,1.24,62\n2,1.86,62\n")
+
+
+def test_until_us_stops_after_first_scan_ending_at_or_after_t():
+    p = prog("NOP\n" * 60)                       # 0.62 us per scan
+    for until, count in [(0, 1), (1.24, 2), ("1.24", 2), (1.25, 3), (0.62, 1)]:
+        _, recs, _ = refsim_trace(p, Config(), until_us=until)
+        assert len(recs) == count, until
+
+
+def test_label_on_final_end_and_end_mid_program():
+    src = "SET\nJC done\n= Q0.0\ndone: END\nSET\n= Q0.1"
+    recs = run(src, scans=1)
+    assert column(recs, "Q0.0") == [0]
+    assert column(recs, "Q0.1") == [0]
+    assert recs[0].cycles == 1 + 1 + 2 + 1
+
+
+# --- inputs, edges and REFRESH ----------------------------------------------------------
+
+EDGE_PROG = "LD IR0.0\n= Q0.0\nLD IF0.0\n= Q0.1\nLD I0.0\n= Q0.2"   # 8 clocks a scan
+
+
+def test_ir_in_scan_0_for_input_high_from_t0():
+    for s in (stim("t_us,I0.0\n0,1\n"), stim("scan,I0.0\n0,1\n")):
+        recs = run(EDGE_PROG, s, scans=3)
+        assert column(recs, "Q0.0") == [1, 0, 0]
+        assert column(recs, "Q0.1") == [0, 0, 0]
+        assert column(recs, "Q0.2") == [1, 1, 1]
+
+
+def test_if_with_scan_stimulus():
+    recs = run(EDGE_PROG, stim("scan,I0.0\n1,1\n2,0\n"), scans=4)
+    assert column(recs, "Q0.0") == [0, 1, 0, 0]
+    assert column(recs, "Q0.1") == [0, 0, 1, 0]
+
+
+def test_pulse_shorter_than_a_scan_is_seen_by_ir_and_if():
+    # latches at clocks 0, 8, 16 (100 MHz); the pin is 1 in clocks 3 and 4 only
+    recs = run(EDGE_PROG, stim("t_us,I0.0\n0.03,1\n0.05,0\n"), scans=3)
+    assert column(recs, "Q0.0") == [0, 1, 0]
+    assert column(recs, "Q0.1") == [0, 1, 0]
+    assert column(recs, "Q0.2") == [0, 0, 0]
+
+
+def test_change_exactly_at_a_latch_clock_and_just_after():
+    at_latch = run(EDGE_PROG, stim("t_us,I0.0\n0.08,1\n"), scans=3)      # clock 8
+    assert column(at_latch, "Q0.2") == [0, 1, 1]
+    assert column(at_latch, "Q0.0") == [0, 1, 0]
+    after = run(EDGE_PROG, stim("t_us,I0.0\n0.0801,1\n"), scans=3)      # clock 9
+    assert column(after, "Q0.2") == [0, 0, 1]
+    assert column(after, "Q0.0") == [0, 0, 1]
+
+
+def test_changes_within_one_clock_collapse_to_the_last():
+    # 0.031 and 0.039 us both land in clock 4: the pin never rises
+    recs = run(EDGE_PROG, stim("t_us,I0.0\n0.031,1\n0.039,0\n"), scans=3)
+    assert column(recs, "Q0.0") == [0, 0, 0]
+    assert column(recs, "Q0.1") == [0, 0, 0]
+
+
+def test_pi_reads_the_pin_in_the_clock_of_the_instruction():
+    # LD@1 = @2 LD@3 = @4 END@5; pin rises at clock 2
+    recs = run("LD PI0.0\n= Q0.0\nLD PI0.0\n= Q0.1", stim("t_us,I0.0\n0.02,1\n"),
+               scans=2, watch=["I0.0", "PI0.0"])
+    assert column(recs, "Q0.0") == [0, 1]
+    assert column(recs, "Q0.1") == [1, 1]
+    assert column(recs, "I0.0") == [0, 1]    # PII latched at clock 0, then at 6
+    assert column(recs, "PI0.0") == [1, 1]
+
+
+def refresh_prog():
+    # latch@0 LD@1 =@2 NOP@3 NOP@4 REFRESH@5 LD@6 =@7 LD@8 =@9 END@10 -> 11 cycles
+    return "LD I0.0\n= Q0.0\nNOP\nNOP\nREFRESH\nLD I0.0\n= Q0.1\nLD IR0.0\n= Q0.2"
+
+
+def test_refresh_relatches_pii_and_edges():
+    recs = run(refresh_prog(), stim("t_us,I0.0\n0.04,1\n"), scans=2)
+    assert column(recs, "Q0.0") == [0, 1]
+    assert column(recs, "Q0.1") == [1, 1]
+    assert column(recs, "Q0.2") == [1, 0]    # the rise was taken by the REFRESH
+    assert [r.cycles for r in recs] == [11, 11]
+
+
+def test_refresh_sees_a_change_in_its_own_clock_only():
+    in_clock = run(refresh_prog(), stim("t_us,I0.0\n0.05,1\n"), scans=1)
+    assert column(in_clock, "Q0.1") == [1]
+    later = run(refresh_prog(), stim("t_us,I0.0\n0.051,1\n"), scans=2)
+    assert column(later, "Q0.1") == [0, 1]
+    assert column(later, "Q0.0") == [0, 1]   # scan 1's latch took the rise ...
+    assert column(later, "Q0.2") == [0, 0]   # ... so its REFRESH sees no new edge
+
+
+def test_refresh_with_scan_stimulus_sees_no_new_edge():
+    recs = run(refresh_prog(), stim("scan,I0.0\n1,1\n"), scans=3)
+    assert column(recs, "Q0.1") == [0, 1, 1]
+    assert column(recs, "Q0.2") == [0, 0, 0]   # scan 1's rise was taken by its latch
+
+
+def test_scan_stimulus_values_hold():
+    recs = run("LD I0.0\n= Q0.0", stim("scan,I0.0\n2,1\n"), scans=4)
+    assert column(recs, "Q0.0") == [0, 0, 1, 1]
+
+
+# --- outputs ----------------------------------------------------------------------------
+
+
+def test_pq_changes_the_pin_at_once_q_at_end():
+    # SET@1 =PQ0.0@2 =Q0.1@3 NOP@4 NOP@5 END@6
+    sim = RefSim(prog("SET\n= PQ0.0\n= Q0.1\nNOP\nNOP"), Config())
+    recs = sim.run(scans=2)
+    assert sim.output_events == [(2, 0b01), (6, 0b11)]
+    assert column(recs, "Q0.0") == [1, 1]
+    assert column(recs, "Q0.1") == [1, 1]
+
+
+def test_pq_read_sees_the_pio():
+    # SET@1 =Q0.0@2 LD PQ0.0@3 =PQ0.1@4 LD Q0.1@5 =Q0.2@6 END@7
+    sim = RefSim(prog("SET\n= Q0.0\nLD PQ0.0\n= PQ0.1\nLD Q0.1\n= Q0.2"), Config())
+    recs = sim.run(scans=1)
+    assert sim.output_events == [(4, 0b010), (7, 0b111)]
+    assert column(recs, "Q0.2") == [1]
+
+
+# --- hooks and watched words ------------------------------------------------------------
+
+
+def test_timer_and_counter_status_are_0_without_byte_processor():
+    recs = run("LD T1\n= Q0.0\nLDN C2\n= Q0.1", scans=1, watch=["T1", "C2"])
+    assert column(recs, "Q0.0") == [0]
+    assert column(recs, "Q0.1") == [1]
+    assert column(recs, "T1") == [0]
+    assert column(recs, "C2") == [0]
+
+
+def test_watched_words():
+    recs = run("NOP", stim("scan,IW0\n0,-5\n1,16#7FFF\n"), scans=2, watch=["IW0", "MW0", "QW1"])
+    assert column(recs, "IW0") == [-5, 32767]
+    assert column(recs, "MW0") == [0, 0]
+    assert column(recs, "QW1") == [0, 0]
+
+
+def test_byte_instruction_is_reported():
+    p = prog("NOP")
+    p.instrs.insert(0, Instr("L", Operand("const", "INT", value=3), 1, 1, "L 3"))
+    with pytest.raises(RefSimError, match="byte"):
+        RefSim(p, Config()).run(scans=1)
+
+
+# --- watchdog ---------------------------------------------------------------------------
+
+
+def test_watchdog_on_endless_loop():
+    columns, recs, fault = refsim_trace(prog("l: JU l"), Config(), watchdog=100, scans=5)
+    assert fault
+    assert recs == []
+
+
+def test_watchdog_after_good_scans_drops_the_outputs():
+    # SET = LD JC(not taken) -> 6 cycles while I0.0 = 0; from scan 2 an endless loop
+    src = "SET\n= Q0.0\nLD I0.0\nl: JC l"
+    sim = RefSim(prog(src), Config(), stim("scan,I0.0\n0,0\n2,1\n"), watchdog=1000)
+    recs = sim.run(scans=10)
+    assert [r.scan for r in recs] == [0, 1]
+    assert column(recs, "Q0.0") == [1, 1]
+    assert sim.watchdog_fault and sim.fault_scan == 2
+    assert sim.fault_clock == 12 + 1000
+    assert sim.outputs == 0
+    assert sim.output_events[-1] == (1012, 0)
+    assert sim.run(scans=1) == []
+
+
+def test_watchdog_limit_is_inclusive():
+    p = prog("NOP\nNOP")                            # 4 cycles a scan
+    assert refsim_trace(p, Config(), scans=3, watchdog=4)[2] is False
+    _, recs, fault = refsim_trace(p, Config(), scans=3, watchdog=3)
+    assert fault and recs == []
+
+
+def test_run_needs_a_limit():
+    with pytest.raises(ValueError):
+        RefSim(prog("NOP"), Config()).run()
+
+
+def test_default_columns_are_the_written_outputs():
+    p = prog("SET\n= Q0.1\nS PQ0.0")
+    assert [c.header for c in RefSim(p, Config()).columns] == ["Q0.0", "Q0.1"]
+    assert [c.header for c in trace_columns(p)] == ["Q0.0", "Q0.1"]
