@@ -48,7 +48,7 @@ $(VENV_STAMP): requirements.txt pyproject.toml
 	@touch $@
 
 lint: $(VENV_STAMP)   ## verilator --lint-only -Wall over rtl/ (must print nothing)
-	@verilator --lint-only -Wall -Irtl --top-module bitbyte_cpu $(RTL)
+	@verilator --lint-only -Wall --quiet -Irtl --top-module bitbyte_cpu $(RTL)
 
 harness: $(HARNESS)   ## build the Verilator C++ harness (sim/build/)
 
@@ -66,7 +66,9 @@ sim: $(HARNESS)       ## run the example on Verilator, write a waveform, print t
 test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
 	@$(MAKE) --no-print-directory lint
 	@$(MAKE) --no-print-directory -C sim check
-	pytest -q -n $(JOBS) -p no:cacheprovider
+	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
+	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \
+	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider
 
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache
