@@ -35,9 +35,11 @@ def _reader(dut, kind: str, index: int):
         cell = dut.u_bit_proc.u_marker_ram.mem[index]
         return lambda: int(cell.value) & 1
     if kind == "t":
-        return lambda: (int(dut.timer_status_i.value) >> index) & 1
+        sig = dut.u_tc_status.timer_status_o
+        return lambda: (int(sig.value) >> index) & 1
     if kind == "c":
-        return lambda: (int(dut.counter_status_i.value) >> index) & 1
+        sig = dut.u_tc_status.counter_status_o
+        return lambda: (int(sig.value) >> index) & 1
     return lambda: 0
 
 
@@ -97,8 +99,8 @@ async def run_jobs(dut):
     """Execute every job of $BITBYTE_JOBS in order."""
     jobs = [RunJob.from_json(d) for d in json.load(open(os.environ["BITBYTE_JOBS"]))]
     cocotb.start_soon(Clock(dut.clk_i, PERIOD_NS, unit="ns").start())
-    for sig in (dut.prog_we_i, dut.prog_waddr_i, dut.prog_wdata_i, dut.timer_status_i,
-                dut.counter_status_i, dut.fbi_i):
+    for sig in (dut.prog_we_i, dut.prog_waddr_i, dut.prog_wdata_i, dut.in_words_i,
+                dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i):
         sig.value = 0
     results = [await run_job(dut, job) for job in jobs]
     with open(os.environ["BITBYTE_RESULTS"], "w") as f:

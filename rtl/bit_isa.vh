@@ -50,4 +50,15 @@
 `define AREA_C          4'd8
 `define AREA_FB         4'd9    // FBI k (read) / FBY k (write)
 
+
+// Byte instructions (bit 7 set): dispatched to the byte processor in serial mode.
+`define OP_BYTE_BIT     7
+`define OP_B_SD         8'hB0
+`define OP_B_RT         8'hB4   // R T n
+`define OP_B_CU         8'hB8
+`define OP_B_RC         8'hBB   // R C n
+`define AREA_IW         4'd10
+`define AREA_QW         4'd11
+`define AREA_MW         4'd12
+
 `endif

@@ -41,7 +41,20 @@ module bit_proc #(
   input  wire [OutBits-1:0]           pio_i,
   input  wire [StatusBits-1:0]        timer_status_i,
   input  wire [StatusBits-1:0]        counter_status_i,
-  input  wire [Channels-1:0]          fbi_i,
+  // exchange channels: F_Bb k read by bit instructions, F_bB k written by `= FBY k`
+  output wire [Channels-1:0]          fbi_rd_req_o,
+  input  wire [Channels-1:0]          fbi_rd_data_i,
+  input  wire [Channels-1:0]          fbi_rd_ready_i,
+  output wire [Channels-1:0]          fby_wr_req_o,
+  output wire                         fby_wr_data_o,
+  input  wire [Channels-1:0]          fby_wr_ready_i,
+  // serial dispatch of byte instructions (dispatch.v)
+  output wire                         byte_req_o,     // a byte instruction waits in execute
+  output wire [31:0]                  byte_instr_o,
+  input  wire                         byte_done_i,    // ... and completes this clock
+  input  wire                         byte_rlo_i,
+  input  wire                         byte_rlo_we_i,
+  output wire                         stall_o,        // execute waits this clock
   // output unit write port (Q, PQ)
   output wire                         out_wr_en_o,
   output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
@@ -90,6 +103,28 @@ module bit_proc #(
   wire is_fp     = e_op == `OP_FP;
   wire is_fn     = e_op == `OP_FN;
   wire is_edge   = is_fp || is_fn;
+  wire is_byte   = e_op[`OP_BYTE_BIT];
+
+  // ---------------------------------------------------------------- waiting
+  // Execute holds its instruction while a channel is empty/full (the buffered
+  // condition flip-flops' handshake) or the byte processor works on a dispatched
+  // instruction; nothing of the instruction takes effect until the clock it completes.
+  wire [Channels-1:0] chan_sel = ({20'd0, e_index} < Channels)
+      ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[$clog2(Channels)-1:0]) : {Channels{1'b0}};
+  wire on_channel = e_area == `AREA_FB;
+  wire fbi_read   = e_go && on_channel && is_logic;
+  wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_o));
+  wire e_stall    = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
+                    (fby_write && !(|(fby_wr_ready_i & chan_sel))) ||
+                    (e_go && is_byte && !byte_done_i);
+  wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
+  assign stall_o  = e_stall;
+
+  assign fbi_rd_req_o  = fbi_read  ? chan_sel : {Channels{1'b0}};
+  assign fby_wr_req_o  = fby_write ? chan_sel : {Channels{1'b0}};
+  assign fby_wr_data_o = !is_rstbit && rlo_o;          // =: RLO; S: 1; R: 0
+  assign byte_req_o    = e_go && is_byte;
+  assign byte_instr_o  = e_instr_q;
 
   wire jump_taken = e_go && ((e_op == `OP_JU) ||
                              (e_op == `OP_JC  &&  rlo_o) ||
@@ -149,7 +184,7 @@ module bit_proc #(
       `AREA_M:  operand = m_bypass_q ? m_bypass_val_q : m_rdata;
       `AREA_T:  operand = timer_status_i[e_index[$clog2(StatusBits)-1:0]];
       `AREA_C:  operand = counter_status_i[e_index[$clog2(StatusBits)-1:0]];
-      `AREA_FB: operand = fbi_i[e_index[$clog2(Channels)-1:0]];
+      `AREA_FB: operand = |(fbi_rd_data_i & chan_sel);
       default:  operand = 1'b0;
     endcase
   end
@@ -196,8 +231,8 @@ module bit_proc #(
     end else if (latch_i) begin
       rlo_o <= 1'b0;                      // every scan starts with RLO = 0
       sp_q  <= {SpW{1'b0}};
-    end else if (e_go) begin
-      rlo_o <= rlo_d;
+    end else if (e_done) begin
+      rlo_o <= (is_byte && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
       // The assembler bounds the nesting; the stack saturates rather than wraps.
       if (is_open && sp_q != NestDepth[SpW-1:0]) begin
         stack_rlo_q[push_idx]       <= rlo_o;
@@ -211,7 +246,7 @@ module bit_proc #(
 
   // ---------------------------------------------------------------- targets
   // =, S, R write a target; FP/FN write their edge memory with the old RLO.
-  wire target_we = e_go && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_o));
+  wire target_we = e_done && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_o));
   assign target_val = is_setbit ? 1'b1 : is_rstbit ? 1'b0 : rlo_o;
   assign m_target_we = target_we && (e_area == `AREA_M);
 
@@ -223,7 +258,7 @@ module bit_proc #(
   // ---------------------------------------------------------------- pipeline flow
   // END in execute: hold address 0 in decode for the latch clock that follows.
   // Taken jump: squash decode, fetch the target. END in decode: fetch address 0.
-  wire advance = latch_i || (exec_i && !end_o);
+  wire advance = latch_i || (exec_i && !end_o && !e_stall);
   always @(*) begin
     if (!advance)        fetch_addr = d_pc_q;
     else if (jump_taken) fetch_addr = e_target;
@@ -243,8 +278,8 @@ module bit_proc #(
         e_instr_q <= d_instr;
         e_pc_q    <= d_pc_q;
         e_valid_q <= !jump_taken;
-      end else begin
-        e_valid_q <= 1'b0;
+      end else if (!e_stall) begin
+        e_valid_q <= 1'b0;               // END executed, or stopped: a bubble
       end
     end
   end

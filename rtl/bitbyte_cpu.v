@@ -1,5 +1,8 @@
 `default_nettype none
-// One bit-byte CPU: bit processor, scan controller and the binary I/O units.
+// One bit-byte CPU, the FPGA part: bit processor, scan controller, binary I/O units,
+// the exchange circuits (buffered condition flip-flops, timer/counter status buffer,
+// serial dispatch) and the byte-side port through which the byte processor (a
+// microcontroller, here firmware_byte/) takes part.
 // Wiring only; the logic lives in the leaves (docs/architecture.md has the map).
 module bitbyte_cpu #(
   parameter integer ProgWords   = 4096,  // program memory, instructions (power of two)
@@ -8,7 +11,9 @@ module bitbyte_cpu #(
   parameter integer MarkerBytes = 256,   // marker bytes: M 0.0 .. MarkerBytes-1.7
   parameter integer StatusBits  = 64,    // timers T0.. and counters C0.. (status bits each)
   parameter integer Channels    = 4,     // exchange channels FBI k / FBY k
-  parameter integer NestDepth   = 8      // parenthesis nesting levels
+  parameter integer NestDepth   = 8,     // parenthesis nesting levels
+  parameter integer InWords     = 16,    // word inputs IW n (analog)
+  parameter integer OutWords    = 16     // word outputs QW n (analog)
 ) (
   input  wire                         clk_i,
   input  wire                         rst_ni,
@@ -28,10 +33,18 @@ module bitbyte_cpu #(
   // process pins
   input  wire [InBytes*8-1:0]         in_pins_i,
   output wire [OutBytes*8-1:0]        out_pins_o,
-  // byte-side status read by bit instructions (timer/counter buffer, F_Bb channels)
-  input  wire [StatusBits-1:0]        timer_status_i,
-  input  wire [StatusBits-1:0]        counter_status_i,
-  input  wire [Channels-1:0]          fbi_i
+  // word I/O
+  input  wire [InWords*16-1:0]        in_words_i,
+  output wire [OutWords*16-1:0]       out_words_o,
+  // byte-side bus (docs/byte-bus.md)
+  input  wire [7:0]                   bus_addr_i,
+  input  wire [31:0]                  bus_wdata_i,
+  input  wire                         bus_we_i,
+  input  wire                         bus_re_i,
+  output wire [31:0]                  bus_rdata_o,
+  output wire                         bus_ready_o,
+  output wire [31:0]                  stalls_bit_o,
+  output wire [31:0]                  stalls_byte_o
 );
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
@@ -45,6 +58,18 @@ module bitbyte_cpu #(
   wire        rlo;
   wire [$clog2(ProgWords)-1:0] exec_pc;
   wire        exec_valid;
+  // exchange
+  wire [StatusBits-1:0] timer_status, counter_status, timer_enable, counter_pulse;
+  wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
+  wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
+  wire        fby_wr_data, fbi_wr_data, bit_stall;
+  wire        byte_req, byte_done, byte_rlo, byte_rlo_we;
+  wire [31:0] byte_instr, dispatch_instr, dispatch_ctx;
+  wire        next, done_we;
+  wire [1:0]  done_data;
+  wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
+  wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
+  wire [31:0] byte_flags;
 
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
@@ -111,9 +136,20 @@ module bitbyte_cpu #(
     .rise_i          (rise),
     .fall_i          (fall),
     .pio_i           (pio),
-    .timer_status_i  (timer_status_i),
-    .counter_status_i(counter_status_i),
-    .fbi_i           (fbi_i),
+    .timer_status_i  (timer_status),
+    .counter_status_i(counter_status),
+    .fbi_rd_req_o    (fbi_rd_req),
+    .fbi_rd_data_i   (fbi_rd_data),
+    .fbi_rd_ready_i  (fbi_rd_ready),
+    .fby_wr_req_o    (fby_wr_req),
+    .fby_wr_data_o   (fby_wr_data),
+    .fby_wr_ready_i  (fby_wr_ready),
+    .byte_req_o      (byte_req),
+    .byte_instr_o    (byte_instr),
+    .byte_done_i     (byte_done),
+    .byte_rlo_i      (byte_rlo),
+    .byte_rlo_we_i   (byte_rlo_we),
+    .stall_o         (bit_stall),
     .out_wr_en_o     (out_wr_en),
     .out_wr_idx_o    (out_wr_idx),
     .out_wr_val_o    (out_wr_val),
@@ -123,9 +159,121 @@ module bitbyte_cpu #(
     .exec_valid_o    (exec_valid)
   );
 
+  // Buffered condition flip-flops (Fig. 11): F_bB k carries a condition to the byte
+  // side (`= FBY k` / READ FBY k), F_Bb k to the bit side (WRITE FBI k / `A FBI k`).
+  genvar k;
+  generate
+    for (k = 0; k < Channels; k = k + 1) begin : g_channel
+      cond_ff u_fby (
+        .clk_i     (clk_i),
+        .rst_ni    (rst_ni),
+        .wr_req_i  (fby_wr_req[k]),
+        .wr_data_i (fby_wr_data),
+        .wr_ready_o(fby_wr_ready[k]),
+        .rd_req_i  (fby_rd_req[k]),
+        .rd_data_o (fby_rd_data[k]),
+        .rd_ready_o(fby_rd_ready[k]),
+        .full_o    (fby_full[k])
+      );
+      cond_ff u_fbi (
+        .clk_i     (clk_i),
+        .rst_ni    (rst_ni),
+        .wr_req_i  (fbi_wr_req[k]),
+        .wr_data_i (fbi_wr_data),
+        .wr_ready_o(fbi_wr_ready[k]),
+        .rd_req_i  (fbi_rd_req[k]),
+        .rd_data_o (fbi_rd_data[k]),
+        .rd_ready_o(fbi_rd_ready[k]),
+        .full_o    (fbi_full[k])
+      );
+    end
+  endgenerate
+
+  dispatch #(.StatusBits(StatusBits)) u_dispatch (
+    .req_i           (byte_req),
+    .instr_i         (byte_instr),
+    .rlo_i           (rlo),
+    .scan_i          (scan_count_o[15:0]),
+    .done_o          (byte_done),
+    .done_rlo_o      (byte_rlo),
+    .done_rlo_we_o   (byte_rlo_we),
+    .next_o          (next),
+    .instr_o         (dispatch_instr),
+    .ctx_o           (dispatch_ctx),
+    .done_we_i       (done_we),
+    .done_data_i     (done_data),
+    .ctl_we_o        (ctl_we),
+    .ctl_is_counter_o(ctl_is_counter),
+    .ctl_idx_o       (ctl_idx),
+    .ctl_val_o       (ctl_val)
+  );
+
+  tc_status #(.StatusBits(StatusBits)) u_tc_status (
+    .clk_i              (clk_i),
+    .rst_ni             (rst_ni),
+    .status_we_i        (tc_we),
+    .status_is_counter_i(tc_is_counter),
+    .status_idx_i       (tc_idx),
+    .status_val_i       (tc_val),
+    .ctl_we_i           (ctl_we),
+    .ctl_is_counter_i   (ctl_is_counter),
+    .ctl_idx_i          (ctl_idx),
+    .ctl_val_i          (ctl_val),
+    .timer_status_o     (timer_status),
+    .counter_status_o   (counter_status),
+    .timer_enable_o     (timer_enable),
+    .counter_pulse_o    (counter_pulse)
+  );
+
+  byte_port #(
+    .StatusBits(StatusBits),
+    .Channels  (Channels),
+    .InWords   (InWords),
+    .OutWords  (OutWords)
+  ) u_byte_port (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .bus_addr_i      (bus_addr_i),
+    .bus_wdata_i     (bus_wdata_i),
+    .bus_we_i        (bus_we_i),
+    .bus_re_i        (bus_re_i),
+    .bus_rdata_o     (bus_rdata_o),
+    .bus_ready_o     (bus_ready_o),
+    .latch_i         (latch),
+    .exec_i          (exec),
+    .fault_i         (fault_o),
+    .next_i          (next),
+    .dispatch_instr_i(dispatch_instr),
+    .dispatch_ctx_i  (dispatch_ctx),
+    .done_we_o       (done_we),
+    .done_data_o     (done_data),
+    .tc_we_o         (tc_we),
+    .tc_is_counter_o (tc_is_counter),
+    .tc_idx_o        (tc_idx),
+    .tc_val_o        (tc_val),
+    .timer_status_i  (timer_status),
+    .counter_status_i(counter_status),
+    .timer_enable_i  (timer_enable),
+    .counter_pulse_i (counter_pulse),
+    .fby_rd_req_o    (fby_rd_req),
+    .fby_rd_data_i   (fby_rd_data),
+    .fby_rd_ready_i  (fby_rd_ready),
+    .fby_full_i      (fby_full),
+    .fbi_wr_req_o    (fbi_wr_req),
+    .fbi_wr_data_o   (fbi_wr_data),
+    .fbi_wr_ready_i  (fbi_wr_ready),
+    .fbi_full_i      (fbi_full),
+    .in_words_i      (in_words_i),
+    .out_words_o     (out_words_o),
+    .bit_stall_i     (bit_stall),
+    .stalls_bit_o    (stalls_bit_o),
+    .stalls_byte_o   (stalls_byte_o),
+    .byte_flags_o    (byte_flags)
+  );
+
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid};
+  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

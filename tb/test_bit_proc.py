@@ -17,7 +17,9 @@ LD, LDN, A, AN, O, ON, X, XN = range(0x08, 0x10)
 A_OPEN, AN_OPEN, O_OPEN, ON_OPEN, X_OPEN, XN_OPEN = range(0x12, 0x18)
 ASSIGN, S, R, FP, FN = 0x18, 0x19, 0x1A, 0x1B, 0x1C
 JU, JC, JCN = 0x20, 0x21, 0x22
-AREA = {"I": 0, "PI": 1, "IR": 2, "IF": 3, "Q": 4, "PQ": 5, "M": 6, "T": 7, "C": 8}
+AREA = {"I": 0, "PI": 1, "IR": 2, "IF": 3, "Q": 4, "PQ": 5, "M": 6, "T": 7, "C": 8,
+        "FB": 9}
+CMP_GE = 0x94            # byte instruction `>=I` (docs/isa.md)
 
 
 def w(op, area=None, index=0):
@@ -36,8 +38,11 @@ class Bench:
         d = self.dut
         cocotb.start_soon(Clock(d.clk_i, 10, unit="ns").start())
         for sig in (d.rst_ni, d.latch_i, d.exec_i, d.prog_we_i, d.pins_i, d.rise_i,
-                    d.fall_i, d.pio_i, d.timer_status_i, d.counter_status_i, d.fbi_i):
+                    d.fall_i, d.pio_i, d.timer_status_i, d.counter_status_i,
+                    d.fbi_rd_data_i, d.fbi_rd_ready_i, d.byte_done_i, d.byte_rlo_i,
+                    d.byte_rlo_we_i):
             sig.value = 0
+        d.fby_wr_ready_i.value = 0b1111
         d.pii_i.value = pii
         for addr, word in enumerate(prog):
             await FallingEdge(d.clk_i)
@@ -185,6 +190,70 @@ async def parentheses_eight_deep(dut):
         expect = {1: acc & x, 2: acc | x, 3: acc ^ x}[f]
     assert rlos[-3] == expect
     assert bench.pio & 1 == expect
+
+
+@cocotb.test()
+async def waits_on_channels(dut):
+    """`= FBY 1` waits while F_bB 1 is full; `A FBI 2` waits while F_Bb 2 is empty;
+    nothing takes effect before the clock the channel is ready."""
+    bench = Bench(dut)
+    prog = [w(SET), w(ASSIGN, "FB", 1), w(A, "FB", 2), w(ASSIGN, "Q", 0), w(END)]
+    await bench.start(prog)
+    d = dut
+    d.fby_wr_ready_i.value = 0
+    d.fbi_rd_ready_i.value = 0
+    d.latch_i.value, d.exec_i.value = 1, 0
+    await RisingEdge(d.clk_i)
+    await FallingEdge(d.clk_i)
+    d.latch_i.value, d.exec_i.value = 0, 1
+    trace = []
+    for clock in range(12):
+        if clock == 3:
+            d.fby_wr_ready_i.value = 0b0010
+        if clock == 6:
+            d.fbi_rd_ready_i.value, d.fbi_rd_data_i.value = 0b0100, 0b0100
+        await Timer(1, unit="ns")
+        trace.append((int(d.exec_pc_o.value), int(d.stall_o.value),
+                      int(d.fby_wr_req_o.value), int(d.fbi_rd_req_o.value),
+                      int(d.out_wr_en_o.value)))
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        if int(d.end_o.value):
+            break
+    # pc 1 (= FBY 1) offers to channel 1 for clocks 1..3, taken at 3
+    assert [t[:3] for t in trace[1:4]] == [(1, 1, 2), (1, 1, 2), (1, 0, 2)]
+    # pc 2 (A FBI 2) asks channel 2 for clocks 4..6, served at 6; then = Q0.0 writes 1
+    assert [t[:2] + (t[3],) for t in trace[4:7]] == [(2, 1, 4), (2, 1, 4), (2, 0, 4)]
+    assert trace[7][0] == 3 and trace[7][4] == 1
+
+
+@cocotb.test()
+async def dispatch_holds_until_done(dut):
+    """A byte instruction waits in execute until DONE; DONE may carry a new RLO."""
+    bench = Bench(dut)
+    prog = [w(SET), CMP_GE << 24, w(ASSIGN, "Q", 0), w(END)]
+    await bench.start(prog)
+    d = dut
+    d.latch_i.value, d.exec_i.value = 1, 0
+    await RisingEdge(d.clk_i)
+    await FallingEdge(d.clk_i)
+    d.latch_i.value, d.exec_i.value = 0, 1
+    reqs = []
+    for clock in range(10):
+        done = clock == 5
+        d.byte_done_i.value, d.byte_rlo_i.value, d.byte_rlo_we_i.value = int(done), 0, 1
+        await Timer(1, unit="ns")
+        reqs.append(int(d.byte_req_o.value))
+        if int(d.byte_req_o.value):
+            assert int(d.byte_instr_o.value) == CMP_GE << 24
+        if int(d.out_wr_en_o.value):
+            assert int(d.out_wr_val_o.value) == 0    # the RLO came from DONE
+            wrote = clock
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        d.byte_done_i.value = 0
+    assert reqs[:7] == [0, 1, 1, 1, 1, 1, 0]         # dispatched clocks 1..5
+    assert wrote == 6
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)

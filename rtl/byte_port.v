@@ -1,0 +1,199 @@
+`default_nettype none
+// Byte-side port: the one synchronous bus through which the byte processor (a
+// microcontroller) reaches the FPGA part. Register map: docs/byte-bus.md.
+// A read returns data in the clock of its strobe; an access that cannot complete
+// (a condition channel empty/full) drops bus_ready_o and is repeated by the byte
+// processor in the next clock, each such clock counted as a byte-side stall.
+module byte_port #(
+  parameter integer StatusBits = 64,  // timers and counters (each); at most 64
+  parameter integer Channels   = 4,   // condition channels per direction; at most 8
+  parameter integer InWords    = 16,  // IW n
+  parameter integer OutWords   = 16   // QW n
+) (
+  input  wire                          clk_i,
+  input  wire                          rst_ni,
+  // the bus
+  input  wire [7:0]                    bus_addr_i,
+  input  wire [31:0]                   bus_wdata_i,
+  input  wire                          bus_we_i,
+  input  wire                          bus_re_i,
+  output reg  [31:0]                   bus_rdata_o,
+  output reg                           bus_ready_o,
+  // scan state
+  input  wire                          latch_i,      // a PII latch (clock 0 starts the time base)
+  input  wire                          exec_i,
+  input  wire                          fault_i,
+  // serial dispatch
+  input  wire                          next_i,
+  input  wire [31:0]                   dispatch_instr_i,
+  input  wire [31:0]                   dispatch_ctx_i,
+  output wire                          done_we_o,
+  output wire [1:0]                    done_data_o,
+  // timer/counter status buffer
+  output wire                          tc_we_o,
+  output wire                          tc_is_counter_o,
+  output wire [$clog2(StatusBits)-1:0] tc_idx_o,
+  output wire                          tc_val_o,
+  input  wire [StatusBits-1:0]         timer_status_i,
+  input  wire [StatusBits-1:0]         counter_status_i,
+  input  wire [StatusBits-1:0]         timer_enable_i,
+  input  wire [StatusBits-1:0]         counter_pulse_i,
+  // condition channels: FBY k (bit -> byte) are read here, FBI k (byte -> bit) written
+  output wire [Channels-1:0]           fby_rd_req_o,
+  input  wire [Channels-1:0]           fby_rd_data_i,
+  input  wire [Channels-1:0]           fby_rd_ready_i,
+  input  wire [Channels-1:0]           fby_full_i,
+  output wire [Channels-1:0]           fbi_wr_req_o,
+  output wire                          fbi_wr_data_o,
+  input  wire [Channels-1:0]           fbi_wr_ready_i,
+  input  wire [Channels-1:0]           fbi_full_i,
+  // word I/O (analog), no process image
+  input  wire [InWords*16-1:0]         in_words_i,
+  output reg  [OutWords*16-1:0]        out_words_o,
+  // statistics
+  input  wire                          bit_stall_i,  // the bit side waits this clock
+  output reg  [31:0]                   stalls_bit_o,
+  output reg  [31:0]                   stalls_byte_o,
+  output reg  [31:0]                   byte_flags_o
+);
+  localparam [7:0] AddrId       = 8'h00;
+  localparam [7:0] AddrStatus   = 8'h01;
+  localparam [7:0] AddrInstr    = 8'h02;
+  localparam [7:0] AddrCtx      = 8'h03;
+  localparam [7:0] AddrDone     = 8'h04;
+  localparam [7:0] AddrTimeMs   = 8'h08;
+  localparam [7:0] AddrTickDiv  = 8'h09;
+  localparam [7:0] AddrClock    = 8'h0A;
+  localparam [7:0] AddrTcBit    = 8'h10;
+  localparam [7:0] AddrTStatLo  = 8'h11;
+  localparam [7:0] AddrTStatHi  = 8'h12;
+  localparam [7:0] AddrCStatLo  = 8'h13;
+  localparam [7:0] AddrCStatHi  = 8'h14;
+  localparam [7:0] AddrTEnLo    = 8'h15;
+  localparam [7:0] AddrTEnHi    = 8'h16;
+  localparam [7:0] AddrCPulseLo = 8'h17;
+  localparam [7:0] AddrCPulseHi = 8'h18;
+  localparam [7:0] AddrChStatus = 8'h30;
+  localparam [7:0] AddrStallBit = 8'h60;
+  localparam [7:0] AddrStallByt = 8'h61;
+  localparam [7:0] AddrFlags    = 8'h62;
+  localparam [31:0] IdValue     = 32'hB17B_7E01;
+
+  // ---------------------------------------------------------------- time base
+  // Clock 0 is scan 0's latch; TIME_MS = floor(clock / TICK_DIV) without a divider:
+  // a sub-counter wraps every TICK_DIV clocks.
+  reg        started_q;
+  reg [31:0] clock_q, ms_q, sub_q, tick_div_q;
+  wire       counting = started_q || latch_i;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      started_q <= 1'b0;
+      clock_q   <= 32'd0;
+      ms_q      <= 32'd0;
+      sub_q     <= 32'd0;
+    end else if (counting) begin
+      started_q <= 1'b1;
+      clock_q   <= clock_q + 32'd1;
+      if (sub_q + 32'd1 >= tick_div_q) begin
+        sub_q <= 32'd0;
+        ms_q  <= ms_q + 32'd1;
+      end else begin
+        sub_q <= sub_q + 32'd1;
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------- decode
+  wire [2:0] chan   = bus_addr_i[2:0];
+  wire is_fby_rd    = bus_re_i && (bus_addr_i[7:3] == 5'b0010_0);   // 0x20..0x27
+  wire is_fbi_wr    = bus_we_i && (bus_addr_i[7:3] == 5'b0010_1);   // 0x28..0x2F
+  wire chan_ok      = ({29'd0, chan} < Channels);
+  wire [Channels-1:0] chan_sel = chan_ok ? ({{(Channels-1){1'b0}}, 1'b1} << chan)
+                                         : {Channels{1'b0}};
+  wire is_iw        = bus_addr_i[7:4] == 4'h4;
+  wire is_qw        = bus_addr_i[7:4] == 4'h5;
+  wire [3:0] word   = bus_addr_i[3:0];
+
+  assign fby_rd_req_o  = is_fby_rd ? chan_sel : {Channels{1'b0}};
+  assign fbi_wr_req_o  = is_fbi_wr ? chan_sel : {Channels{1'b0}};
+  assign fbi_wr_data_o = bus_wdata_i[0];
+
+  assign done_we_o   = bus_we_i && (bus_addr_i == AddrDone);
+  assign done_data_o = bus_wdata_i[1:0];
+
+  assign tc_we_o         = bus_we_i && (bus_addr_i == AddrTcBit);
+  assign tc_is_counter_o = bus_wdata_i[6];
+  assign tc_idx_o        = bus_wdata_i[$clog2(StatusBits)-1:0];
+  assign tc_val_o        = bus_wdata_i[8];
+
+  // Status vectors widened to 64 bits so the LO/HI registers exist for any size.
+  wire [63:0] t_stat  = {{(64-StatusBits){1'b0}}, timer_status_i};
+  wire [63:0] c_stat  = {{(64-StatusBits){1'b0}}, counter_status_i};
+  wire [63:0] t_en    = {{(64-StatusBits){1'b0}}, timer_enable_i};
+  wire [63:0] c_pulse = {{(64-StatusBits){1'b0}}, counter_pulse_i};
+  wire [7:0]  fby_full8 = {{(8-Channels){1'b0}}, fby_full_i};
+  wire [7:0]  fbi_full8 = {{(8-Channels){1'b0}}, fbi_full_i};
+
+  always @(*) begin
+    bus_rdata_o = 32'd0;
+    bus_ready_o = 1'b1;
+    if (is_fby_rd && chan_ok) begin
+      bus_rdata_o = {31'd0, |(fby_rd_data_i & chan_sel)};
+      bus_ready_o = |(fby_rd_ready_i & chan_sel);
+    end else if (is_fbi_wr && chan_ok) begin
+      bus_ready_o = |(fbi_wr_ready_i & chan_sel);
+    end else if (is_iw) begin
+      bus_rdata_o = ({28'd0, word} < InWords)
+                  ? {{16{in_words_i[word*16+15]}}, in_words_i[word*16 +: 16]} : 32'd0;
+    end else if (is_qw) begin
+      bus_rdata_o = ({28'd0, word} < OutWords)
+                  ? {{16{out_words_o[word*16+15]}}, out_words_o[word*16 +: 16]} : 32'd0;
+    end else begin
+      case (bus_addr_i)
+        AddrId:       bus_rdata_o = IdValue;
+        AddrStatus:   bus_rdata_o = {29'd0, fault_i, exec_i, next_i};
+        AddrInstr:    bus_rdata_o = dispatch_instr_i;
+        AddrCtx:      bus_rdata_o = dispatch_ctx_i;
+        AddrTimeMs:   bus_rdata_o = ms_q;
+        AddrTickDiv:  bus_rdata_o = tick_div_q;
+        AddrClock:    bus_rdata_o = clock_q;
+        AddrTStatLo:  bus_rdata_o = t_stat[31:0];
+        AddrTStatHi:  bus_rdata_o = t_stat[63:32];
+        AddrCStatLo:  bus_rdata_o = c_stat[31:0];
+        AddrCStatHi:  bus_rdata_o = c_stat[63:32];
+        AddrTEnLo:    bus_rdata_o = t_en[31:0];
+        AddrTEnHi:    bus_rdata_o = t_en[63:32];
+        AddrCPulseLo: bus_rdata_o = c_pulse[31:0];
+        AddrCPulseHi: bus_rdata_o = c_pulse[63:32];
+        AddrChStatus: bus_rdata_o = {16'd0, fbi_full8, fby_full8};
+        AddrStallBit: bus_rdata_o = stalls_bit_o;
+        AddrStallByt: bus_rdata_o = stalls_byte_o;
+        AddrFlags:    bus_rdata_o = byte_flags_o;
+        default:      bus_rdata_o = 32'd0;
+      endcase
+    end
+  end
+
+  // ---------------------------------------------------------------- registers
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tick_div_q    <= 32'd100_000;   // 100 MHz
+      out_words_o   <= {(OutWords*16){1'b0}};
+      stalls_bit_o  <= 32'd0;
+      stalls_byte_o <= 32'd0;
+      byte_flags_o  <= 32'd0;
+    end else begin
+      if (bus_we_i && bus_addr_i == AddrTickDiv) tick_div_q <= bus_wdata_i;
+      if (bus_we_i && bus_addr_i == AddrFlags) byte_flags_o <= bus_wdata_i;
+      if (bus_we_i && is_qw && ({28'd0, word} < OutWords))
+        out_words_o[word*16 +: 16] <= bus_wdata_i[15:0];
+      if (bit_stall_i) stalls_bit_o <= stalls_bit_o + 32'd1;
+      if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;
+    end
+  end
+
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_bus = ^{bus_wdata_i[31:9], bus_wdata_i[7], bus_wdata_i[5:0]};
+  // verilator lint_on UNUSEDSIGNAL
+endmodule
+`default_nettype wire

@@ -1,0 +1,53 @@
+"""Serial dispatch (paper Fig. 6/7): NEXT while a byte instruction waits, DONE (GO)
+with the RLO, enable/pulse bits for timer and counter instructions (Fig. 2)."""
+from __future__ import annotations
+
+import cocotb
+import pytest
+from cocotb.triggers import Timer
+
+from simrun import SIMULATORS, run_cocotb
+
+
+async def settle():
+    await Timer(1, unit="ns")
+
+
+@cocotb.test()
+async def next_done_and_ctx(dut):
+    dut.req_i.value, dut.instr_i.value, dut.rlo_i.value, dut.scan_i.value = 0, 0, 0, 0
+    dut.done_we_i.value, dut.done_data_i.value = 0, 0
+    await settle()
+    assert int(dut.next_o.value) == 0 and int(dut.done_o.value) == 0
+    dut.req_i.value, dut.instr_i.value, dut.rlo_i.value, dut.scan_i.value = 1, 0x90000000, 1, 7
+    await settle()
+    assert int(dut.next_o.value) == 1 and int(dut.ctx_o.value) == (7 << 16) | 1
+    assert int(dut.instr_o.value) == 0x90000000
+    assert int(dut.ctl_we_o.value) == 0          # a compare is no timer/counter
+    dut.done_we_i.value, dut.done_data_i.value = 1, 0b10
+    await settle()
+    assert (int(dut.done_o.value), int(dut.done_rlo_o.value),
+            int(dut.done_rlo_we_o.value)) == (1, 0, 1)
+    dut.req_i.value = 0                          # DONE without a request: ignored
+    await settle()
+    assert int(dut.done_o.value) == 0
+
+
+@cocotb.test()
+async def enable_and_pulse_bits(dut):
+    dut.req_i.value, dut.rlo_i.value, dut.done_we_i.value, dut.scan_i.value = 1, 1, 0, 0
+    dut.done_data_i.value = 0
+    for op, counter in [(0xB0, 0), (0xB3, 0), (0xB4, 0), (0xB8, 1), (0xBB, 1)]:
+        dut.instr_i.value = (op << 24) | (7 << 12) | 42
+        await settle()
+        assert (int(dut.ctl_we_o.value), int(dut.ctl_is_counter_o.value),
+                int(dut.ctl_idx_o.value), int(dut.ctl_val_o.value)) == (1, counter, 42, 1)
+    for op in (0x80, 0x88, 0xAF, 0xB5, 0xBC, 0xC0):
+        dut.instr_i.value = op << 24
+        await settle()
+        assert int(dut.ctl_we_o.value) == 0, hex(op)
+
+
+@pytest.mark.parametrize("sim", SIMULATORS)
+def test_dispatch(sim):
+    run_cocotb(sim, "dispatch", "test_dispatch")
