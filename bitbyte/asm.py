@@ -13,19 +13,22 @@ import os
 from dataclasses import asdict
 
 from .config import DEFAULT, Config
-from .encoder import encode
+from .encoder import constant_pool, encode
 from .parser import parse_file
 from .program import Program
 
 
-def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT) -> dict:
-    """Parse, encode and write the three files.
+def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
+             mode: str = "serial") -> dict:
+    """Parse, encode and write the three files (and `<stem>.pool.hex` when the
+    program has constants too wide for the 24-bit immediate).
 
     Returns {"hex": path, "lst": path, "json": path, "words": n}.  Raises only
     SourceError for a bad program (OSError if outdir cannot be written).
     """
     program = parse_file(path, config)
-    words, listing_text = encode(program, config)
+    words, listing_text = encode(program, config, mode)
+    pool = constant_pool(program)
     stem = os.path.splitext(os.path.basename(path))[0]
     outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
     os.makedirs(outdir, exist_ok=True)
@@ -33,6 +36,9 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT) -> 
     _write(paths["hex"], hex_image(words))
     _write(paths["lst"], listing_text)
     _write(paths["json"], json.dumps(summary(program, words, config), indent=2) + "\n")
+    if pool:
+        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        _write(paths["pool"], hex_image(pool))
     return {**paths, "words": len(words)}
 
 

@@ -73,15 +73,10 @@ def _require_bit_mode(mode: str) -> None:
                          " bit-only programs run in serial mode")
 
 
-def _assemble(path: str, config: Config, outdir: str | None):
-    from .asm import assemble
-    return assemble(path, outdir=outdir, config=config)
-
-
 def cmd_asm(args) -> int:
-    _require_bit_mode(args.mode)
-    result = _assemble(args.program, Config(), args.outdir)
-    for kind in ("hex", "lst", "json"):
+    from .asm import assemble
+    result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode)
+    for kind in ("hex", "lst", "json", "pool"):
         if kind in result:
             print(f"wrote {result[kind]}")
     return 0
@@ -120,6 +115,7 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
 
     program = parse_file(program_path, config)
     words = encode_words(program, config)
+    _require_bit_program(program)
     stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
             else no_stimulus(config))
     watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
@@ -134,6 +130,18 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                  stim=[(key, pins) for _, key, pins in events],
                  cols=[(c.header, *hw_column(c.operand)) for c in columns])
     return program, columns, job, f
+
+
+def _require_bit_program(program) -> None:
+    """Until the byte processor's firmware is attached to the simulators, a program
+    with byte instructions cannot run (it would wait in dispatch forever)."""
+    from . import isa
+    for instr in program.instrs:
+        area = instr.operand.area if instr.operand else None
+        if isa.is_byte_instruction(instr.mnemonic, area):
+            raise SourceError(program.path, instr.line, instr.col,
+                              f"`{instr.mnemonic}` needs the byte processor, which is not "
+                              "attached to the simulators yet", instr.source)
 
 
 def cmd_run(args) -> int:

@@ -1,11 +1,12 @@
 """Program -> 32-bit program-memory words (docs/isa.md) and a listing.
 
-This stage encodes bit instructions only.  A byte instruction (L, T, arithmetic,
-compares, timers, counters, READ/WRITE, `S C n`, `R C n`, `R T n`) and any bit
-instruction on an exchange channel (FBI/FBY) is rejected at its line:col with
-"... needs the byte processor ...": the serial/parallel byte side comes with the
-next release, and an image that silently dropped those instructions would run a
-different program than the one written.
+Serial mode (the default) encodes bit and byte instructions into the one program:
+the bit processor dispatches the byte ones.  The exchange instructions (READ, WRITE,
+bit instructions on FBI/FBY) belong to parallel mode and are rejected here, as is
+everything in `mode="parallel"` until the partitioning compiler lands: an image that
+silently dropped instructions would run a different program than the one written.
+Constants of `L` that do not fit the 24-bit immediate go to a constant pool
+(`constant_pool`), which the byte processor loads next to the image.
 """
 from __future__ import annotations
 
@@ -17,7 +18,11 @@ from .config import DEFAULT, Config
 from .errors import SourceError
 from .program import Instr, Program
 
-BYTE_PROCESSOR = "needs the byte processor (serial/parallel mode, next release)"
+BYTE_PROCESSOR = "needs the byte processor"
+PARALLEL = "needs the partitioning compiler (--mode parallel, next release)"
+SERIAL_EXCHANGE = "needs the byte processor in parallel mode: serial mode has one RLO " \
+                  "and no exchange channels"
+MODES = ("serial", "parallel")
 
 
 class Encoded(NamedTuple):
@@ -25,19 +30,36 @@ class Encoded(NamedTuple):
     listing: str
 
 
-def encode(program: Program, config: Config = DEFAULT) -> Encoded:
+def encode(program: Program, config: Config = DEFAULT, mode: str = "serial") -> Encoded:
     """The words of `program` (address 0 first) and its listing text."""
-    words = encode_words(program, config)
+    words = encode_words(program, config, mode)
     return Encoded(words, listing(program, words, config))
 
 
-def encode_words(program: Program, config: Config = DEFAULT) -> list[int]:
+def encode_words(program: Program, config: Config = DEFAULT,
+                 mode: str = "serial") -> list[int]:
     """One 32-bit word per instruction; SourceError at the first that cannot be."""
-    return [encode_instr(program, instr) for instr in program.instrs]
+    pool = constant_pool(program)
+    return [encode_instr(program, instr, mode, pool) for instr in program.instrs]
 
 
-def encode_instr(program: Program, instr: Instr) -> int:
+def constant_pool(program: Program) -> list[int]:
+    """32-bit constants of `L` too wide for the immediate, in first-use order."""
+    pool: list[int] = []
+    for instr in program.instrs:
+        op = instr.operand
+        if instr.mnemonic == "L" and op is not None and op.kind == "const" \
+                and not isa.fits_immediate(op.value) and op.value not in pool:
+            pool.append(op.value)
+    return [v & 0xFFFFFFFF for v in pool]
+
+
+def encode_instr(program: Program, instr: Instr, mode: str = "serial",
+                 pool: list[int] | None = None) -> int:
     m, op = instr.mnemonic, instr.operand
+    area = op.area if op is not None else None
+    if isa.is_byte_instruction(m, area) or area in isa.EXCHANGE_AREAS:
+        return _encode_byte_side(program, instr, mode, pool or [])
     opcode = isa.OPCODES.get(m)
     if opcode is None:
         raise _error(program, instr, f"`{m}` {BYTE_PROCESSOR}")
@@ -52,6 +74,24 @@ def encode_instr(program: Program, instr: Instr) -> int:
         raise _error(program, instr, f"operand `{op.address()}` does not fit the "
                                      f"{isa.INDEX_BITS}-bit index field")
     return isa.operand_word(opcode, op.area, index)
+
+
+def _encode_byte_side(program: Program, instr: Instr, mode: str, pool: list[int]) -> int:
+    """A byte instruction (or an exchange operand) in serial mode."""
+    m, op = instr.mnemonic, instr.operand
+    what = f"`{m} {op.address()}`" if op is not None else f"`{m}`"
+    if mode != "serial":
+        raise _error(program, instr, f"{what} {PARALLEL}")
+    if m in isa.EXCHANGE_OPS or (op is not None and op.area in isa.EXCHANGE_AREAS):
+        raise _error(program, instr, f"{what} {SERIAL_EXCHANGE}")
+    if op is None:
+        return isa.plain_word(isa.BYTE_OPCODES[m])
+    if op.kind == "const":
+        if isa.fits_immediate(op.value):
+            return isa.immediate_word(op.value)
+        return isa.pool_word(pool.index(op.value & 0xFFFFFFFF))
+    opcode = isa.BYTE_OPCODES[isa.byte_key(m, op.area)]
+    return isa.word_operand_word(opcode, op.area, op.index)
 
 
 def _jump_target(program: Program, instr: Instr) -> int:

@@ -82,3 +82,51 @@ def jump_word(opcode: int, target: int) -> int:
 
 def plain_word(opcode: int) -> int:
     return opcode << OPCODE_SHIFT
+
+
+# --------------------------------------------------------------------------------------
+# Byte instructions (docs/isa.md "Byte instructions"): opcodes 0x80..0xFF.
+# --------------------------------------------------------------------------------------
+
+COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")       # compare code c = index
+BYTE_OPCODES: dict[str, int] = {
+    "L#": 0x80, "L#POOL": 0x81, "L": 0x82, "T": 0x83,
+    "+I": 0x88, "-I": 0x89, "*I": 0x8A, "/I": 0x8B, "MOD": 0x8C,
+    **{cmp: 0x90 + c for c, cmp in enumerate(COMPARES)},
+    **{f"A {cmp}": 0x98 + c for c, cmp in enumerate(COMPARES)},
+    **{f"O {cmp}": 0xA0 + c for c, cmp in enumerate(COMPARES)},
+    "SD": 0xB0, "SS": 0xB1, "SP": 0xB2, "SF": 0xB3, "R T": 0xB4,
+    "CU": 0xB8, "CD": 0xB9, "S C": 0xBA, "R C": 0xBB,
+    "READ": 0xC0, "WRITE": 0xC1,
+}
+WORD_AREA_CODES = {"T": 7, "C": 8, "FBI": 9, "FBY": 9, "IW": 10, "QW": 11, "MW": 12}
+IMM_BITS = 24                                            # L constant immediate field
+EXCHANGE_OPS = ("READ", "WRITE")
+
+
+def byte_key(mnemonic: str, area: str) -> str:
+    """The BYTE_OPCODES key of a byte instruction: `S`/`R` on a counter or timer are
+    `S C` / `R C` / `R T`."""
+    if mnemonic in ("S", "R") and area in ("T", "C"):
+        return f"{mnemonic} {area}"
+    return mnemonic
+
+
+def is_byte_instruction(mnemonic: str, area: str | None) -> bool:
+    return byte_key(mnemonic, area or "") in BYTE_OPCODES
+
+
+def fits_immediate(value: int) -> bool:
+    return -(1 << (IMM_BITS - 1)) <= value < (1 << (IMM_BITS - 1))
+
+
+def immediate_word(value: int) -> int:
+    return BYTE_OPCODES["L#"] << OPCODE_SHIFT | (value & ((1 << IMM_BITS) - 1))
+
+
+def pool_word(index: int) -> int:
+    return BYTE_OPCODES["L#POOL"] << OPCODE_SHIFT | index
+
+
+def word_operand_word(opcode: int, area: str, index: int) -> int:
+    return opcode << OPCODE_SHIFT | WORD_AREA_CODES[area] << AREA_SHIFT | index

@@ -1,24 +1,37 @@
 """The reference interpreter: the oracle every hardware test compares against.
 
 It reads the parsed program (bitbyte.program), never the binary encoding, and shares
-no code with the encoder or the RTL, so that a bug in one of them cannot hide in the
-other.  It is meant to be read next to spec §3 (what each instruction does) and the
-"Timing model" of docs/isa.md (in which clock it does it):
+no code with the encoder, the RTL or the byte firmware, so that a bug in one of them
+cannot hide in the other.  It is meant to be read next to spec §3 (what each
+instruction does) and the "Timing model" / "Serial mode timing" of docs/isa.md (in
+which clock it does it).  It runs the SERIAL mode (spec §2): one instruction stream,
+one shared RLO, the bit processor waiting for each byte instruction.
 
   * scan k latches the PII (and IR/IF) in its first clock L;
-  * each executed instruction takes one clock, a taken jump two;
-  * END takes the last clock E, where PIO -> output register; cycles = E - L + 1;
+  * each executed bit instruction takes one clock, a taken jump two;
+  * a byte instruction takes exactly its cost-table cost (default "paper": 10 per word
+    instruction, 1 per READ/WRITE), from its first clock c to c + cost - 1, and the
+    next instruction executes in clock c + cost;
+  * END takes the last clock E, where PIO -> output register; cycles = E - L + 1
+    = 1 + sum of instruction clocks + 1;
   * scan k+1 latches in clock E + 1 (= the record's end_clock), t_us = end_clock / f.
 
-State is plain Python ints used as bit vectors (bit i = byte*8 + bit).  Pins are a
-step function looked up per instruction, never simulated clock by clock.
+Byte instructions act in their first clock c: `L IW n` reads the input word in clock
+c (IW has no image); timers take now = floor(t / 1 ms) with t = c / f µs.  The status
+a timer or counter instruction writes is in the status buffer at once, so the next
+instruction's `T n` / `C n` sees it.
 
-What this stage has no byte processor for is behind small hooks (timer_status,
-counter_status, read_fbi, write_fby, byte_instruction) that a later stage overrides.
+State is plain Python ints used as bit vectors (bit i = byte*8 + bit), words in dicts.
+Pins are a step function looked up per instruction, never simulated clock by clock.
+
+The exchange channels (READ, WRITE, FBI, FBY) exist only in parallel mode; here they
+raise RefSimError.  They sit behind the hooks read_fbi / write_fby / exchange_instruction
+that a parallel-mode interpreter overrides.
 """
 from __future__ import annotations
 
-from typing import Iterable
+from dataclasses import dataclass
+from typing import Iterable, Mapping
 
 from .config import DEFAULT, Config
 from .program import Instr, Operand, Program
@@ -37,10 +50,166 @@ OPENS = {
 }
 JUMPS = ("JU", "JC", "JCN")
 
+# --- byte instructions ------------------------------------------------------------------
+
+ARITHMETIC = ("+I", "-I", "*I", "/I", "MOD")
+COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
+TIMERS = ("SD", "SS", "SP", "SF")
+COUNTER_MAX = 32767
+
+# Every byte instruction kind -> its cost class, named as in the byte firmware
+# (firmware_byte/costs.c, bb_class_name).  A kind is the canonical mnemonic, except
+# that `S C n`, `R C n`, `R T n` (parsed as "S"/"R" with a C/T operand) are the kinds
+# "S C", "R C", "R T".
+BYTE_KINDS: dict[str, str] = {
+    "L": "load", "T": "transfer",
+    "+I": "arith", "-I": "arith", "*I": "muldiv", "/I": "muldiv", "MOD": "muldiv",
+    **{m: "compare" for m in COMPARES},
+    **{f"{f} {c}": "compare" for f in ("A", "O") for c in COMPARES},
+    **{m: "timer" for m in TIMERS}, "R T": "timer",
+    "CU": "counter", "CD": "counter", "S C": "counter", "R C": "counter",
+    "READ": "binary", "WRITE": "binary",
+}
+WORD_CLASSES = ("load", "transfer", "arith", "muldiv", "compare", "timer", "counter")
+COST_CLASSES = WORD_CLASSES + ("binary",)
+
+# Named tables, the same numbers as firmware_byte/costs.c.  "paper" (the default,
+# spec §5): the S7-315-2DP weights of the seed paper, 1 µs per word instruction and
+# 0.1 µs per binary one at 100 MHz.  "c320": the paper's 80C320 byte processor
+# (Table 1 average), 57 clocks per word instruction, 6 per binary one.
+COST_TABLES: dict[str, dict[str, int]] = {
+    "paper": {**{c: 10 for c in WORD_CLASSES}, "binary": 1},
+    "c320": {**{c: 57 for c in WORD_CLASSES}, "binary": 6},
+}
+PAPER_COSTS = COST_TABLES["paper"]
+
 
 class RefSimError(Exception):
-    """A program the bit-only interpreter cannot run (a byte instruction, a read of a
-    write-only operand, a parenthesis stack overflow through jumps ...)."""
+    """A program the serial-mode interpreter cannot run (an exchange channel, a read
+    of a write-only operand, a parenthesis stack overflow through jumps ...)."""
+
+
+def byte_kind(ins: Instr) -> str | None:
+    """The cost-table kind of a byte instruction ("L", "+I", "A >=I", "SD", "S C",
+    "R T", "READ", ...), or None for a bit instruction."""
+    m = ins.mnemonic
+    if m in ("S", "R"):
+        op = ins.operand
+        if op is not None and op.kind == "index" and op.area in ("T", "C"):
+            return f"{m} {op.area}"
+        return None
+    return m if m in BYTE_KINDS else None
+
+
+def resolve_costs(costs: Mapping[str, int] | str | None = None) -> dict[str, int]:
+    """kind -> clocks for every byte instruction kind.
+
+    costs is the name of a table of COST_TABLES ("paper", "c320"), or a dict laid
+    over the "paper" table whose keys are kinds of BYTE_KINDS ("*I", "S C",
+    "A ==I", ...), cost classes ("load", "transfer", "arith", "muldiv", "compare",
+    "timer", "counter", "binary") or "word" (all seven word classes).  The most
+    specific entry given wins: kind, then class, then "word", then "paper".  Every
+    cost is a whole number of clocks >= 1 (the byte processor answers DONE in the
+    last clock of its cost, at the earliest in the dispatch clock).
+    """
+    if costs is None:
+        costs = {}
+    elif isinstance(costs, str):
+        if costs not in COST_TABLES:
+            raise ValueError(f"cost table: unknown table {costs!r} "
+                             f"(known: {', '.join(COST_TABLES)})")
+        costs = COST_TABLES[costs]
+    for key, clocks in costs.items():
+        if key not in BYTE_KINDS and key not in COST_CLASSES and key != "word":
+            raise ValueError(f"cost table: unknown byte instruction or class {key!r}")
+        if isinstance(clocks, bool) or not isinstance(clocks, int) or clocks < 1:
+            raise ValueError(f"cost table: {key!r} must cost a whole number of "
+                             f"clocks >= 1, not {clocks!r}")
+    table = {}
+    for kind, cls in BYTE_KINDS.items():
+        for key in (kind, cls, "word" if cls in WORD_CLASSES else None):
+            if key in costs:
+                table[kind] = costs[key]
+                break
+        else:
+            table[kind] = PAPER_COSTS[cls]
+    return table
+
+
+def serial_cost(program: Program, costs: Mapping[str, int] | str | None = None) -> int:
+    """Clocks of instruction work of a straight-line program in serial mode: 1 per bit
+    instruction, the table cost per byte instruction, up to the first END (latch and
+    END not included, so a scan has serial_cost + 2 cycles).  Jumps count as not taken
+    (1 clock).  Spec §5's Fig. 5 program gives 59 with the default table."""
+    table = resolve_costs(costs)
+    total = 0
+    for ins in program.instrs:
+        if ins.mnemonic == "END":
+            break
+        kind = byte_kind(ins)
+        total += 1 if kind is None else table[kind]
+    return total
+
+
+def to_int16(v: int) -> int:
+    """INT(v): the low 16 bits of v, signed."""
+    v &= 0xFFFF
+    return v - 0x10000 if v & 0x8000 else v
+
+
+def to_int32(v: int) -> int:
+    """v wrapped to 32 bits, signed (an accumulator)."""
+    v &= 0xFFFFFFFF
+    return v - 0x100000000 if v & 0x80000000 else v
+
+
+def _div_trunc(a: int, b: int) -> int:
+    """a / b truncated toward zero (b != 0)."""
+    q = abs(a) // abs(b)
+    return q if (a < 0) == (b < 0) else -q
+
+
+def arithmetic(m: str, a: int, b: int) -> tuple[int, bool]:
+    """(INT result of a op b, division by zero?) for a = INT(ACCU2), b = INT(ACCU1)."""
+    if m == "+I":
+        r = a + b
+    elif m == "-I":
+        r = a - b
+    elif m == "*I":
+        r = a * b
+    elif b == 0:                          # /I, MOD by zero: 0 and the sticky flag
+        return 0, True
+    elif m == "/I":
+        r = _div_trunc(a, b)
+    else:                                 # MOD: sign of the dividend
+        r = a - b * _div_trunc(a, b)
+    return to_int16(r), False
+
+
+def compare(c: str, a: int, b: int) -> int:
+    """a c b as 0/1, c one of COMPARES."""
+    return int({"==I": a == b, "<>I": a != b, ">I": a > b, "<I": a < b,
+                ">=I": a >= b, "<=I": a <= b}[c])
+
+
+@dataclass
+class TimerState:
+    """One timer (spec §3 Timers).  start is None while the timer is stopped."""
+
+    status: int = 0
+    elapsed: int = 0
+    start: int | None = None
+    edge: int = 0
+
+
+@dataclass
+class CounterState:
+    """One counter: value 0..32767 and one edge memory per counting instruction."""
+
+    value: int = 0
+    cu_edge: int = 0
+    cd_edge: int = 0
+    s_edge: int = 0
 
 
 def combine(func: str | None, rlo: int, x: int) -> int:
@@ -70,11 +239,18 @@ class RefSim:
     scan's latch clock + watchdog, the first clock the scan was not allowed), and
     nothing more runs.  output_events lists (clock, output register) at every change
     of the output pins: a PQ write in the clock of its instruction, Q at END.
+
+    costs is the byte processor's cost table (see resolve_costs): a table name
+    ("paper", the default, or "c320") or a dict of kind / class -> clocks laid over
+    "paper" (10 per word instruction, 1 per READ / WRITE).  Byte-side state open to inspection:
+    accu1, accu2, mw, qw (signed 16-bit values by index), timers, counters (lists of
+    TimerState / CounterState) and arith_error (sticky: a /I or MOD by 0 happened).
     """
 
     def __init__(self, program: Program, config: Config = DEFAULT,
                  stimulus: Stimulus | None = None, watchdog: int = 100000,
-                 columns: list[Column] | None = None):
+                 columns: list[Column] | None = None,
+                 costs: Mapping[str, int] | str | None = None):
         self.program = program
         self.config = config
         self.stimulus = stimulus if stimulus is not None else no_stimulus(config)
@@ -90,10 +266,15 @@ class RefSim:
         # bit processor
         self.rlo = 0
         self.stack: list[tuple[int, str, int]] = []
-        # words (byte processor's, all 0 in this stage but for IW from the stimulus)
+        # byte processor: accumulators, words (signed 16-bit), timers, counters
+        self.costs = resolve_costs(costs)
+        self.accu1 = self.accu2 = 0
         self.mw: dict[int, int] = {}
         self.qw: dict[int, int] = {}
-        self.fby: dict[int, int] = {}
+        self.timers = [TimerState() for _ in range(config.timers)]
+        self.counters = [CounterState() for _ in range(config.counters)]
+        self.arith_error = False
+        self.current: Instr | None = None    # the instruction executing (for messages)
         # progress
         self.scan = 0                # number of the scan that runs next / is running
         self.clock = 0               # latch clock of the next scan
@@ -102,28 +283,35 @@ class RefSim:
         self.fault_clock: int | None = None
         self.output_events: list[tuple[int, int]] = []
 
-    # --- hooks for the byte processor (next stage) ----------------------------------
+    # --- status buffer and exchange channels ------------------------------------------
 
     def timer_status(self, n: int) -> int:
-        """Status bit `T n` (status buffer); no byte processor yet, so 0."""
-        return 0
+        """Status bit `T n` (status buffer): what the last SD/SS/SP/SF/R T left."""
+        return self.timers[n].status
 
     def counter_status(self, n: int) -> int:
-        """Status bit `C n`; no byte processor yet, so 0."""
-        return 0
+        """Status bit `C n` = (count > 0)."""
+        return int(self.counters[n].value > 0)
 
     def read_fbi(self, k: int) -> int:
-        """A bit-side read of exchange channel FBI k; nothing writes it yet, so 0."""
-        return 0
+        """A bit-side read of exchange channel FBI k: parallel mode only."""
+        raise RefSimError(f"{self._where(self.current)}: FBI{k}: serial mode has no "
+                          f"exchange channels")
 
     def write_fby(self, k: int, value: int) -> None:
-        """`= FBY k`: kept for inspection; nothing reads it yet."""
-        self.fby[k] = value
+        """`= FBY k`: parallel mode only."""
+        raise RefSimError(f"{self._where(self.current)}: FBY{k}: serial mode has no "
+                          f"exchange channels")
 
-    def byte_instruction(self, ins: Instr, clock: int) -> int:
-        """Execute a byte instruction and return its clocks; none exist yet."""
-        raise RefSimError(f"{self.program.path}:{ins.line}:{ins.col}: byte instruction "
-                          f"'{ins.mnemonic}' needs the byte processor")
+    def exchange_instruction(self, ins: Instr, clock: int) -> None:
+        """READ FBY k / WRITE FBI k: parallel mode only."""
+        raise RefSimError(f"{self._where(ins)}: {ins.mnemonic} {ins.operand.address()}: "
+                          f"serial mode has no exchange channels")
+
+    def _where(self, ins: Instr | None) -> str:
+        if ins is None:
+            return self.program.path
+        return f"{self.program.path}:{ins.line}:{ins.col}"
 
     # --- running ---------------------------------------------------------------------
 
@@ -151,6 +339,7 @@ class RefSim:
         start = self.clock
         self._latch(start)
         self.rlo, self.stack = 0, []
+        self.accu1 = self.accu2 = 0
         pc, clock = 0, start + 1
         while True:
             if clock - start + 1 > self.watchdog:      # even END here would be too late
@@ -184,6 +373,7 @@ class RefSim:
     def _step(self, ins: Instr, pc: int, clock: int) -> tuple[int, int]:
         """Execute ins (at program index pc, in clock `clock`); (next pc, clocks)."""
         m, op = ins.mnemonic, ins.operand
+        self.current = ins
         if m in COMBINES:
             func, neg = COMBINES[m]
             self.rlo = combine(func, self.rlo, self._read(op, clock) ^ neg)
@@ -245,6 +435,127 @@ class RefSim:
         if not taken:
             return pc + 1, 1
         return self.program.labels[op.label.upper()], 2
+
+    # --- byte instructions (serial mode: the bit processor waits for each) ----------
+
+    def byte_instruction(self, ins: Instr, clock: int) -> int:
+        """Execute a byte instruction whose first clock is `clock`; return its cost."""
+        kind = byte_kind(ins)
+        if kind is None:
+            raise RefSimError(f"{self._where(ins)}: unknown instruction '{ins.mnemonic}'")
+        op = ins.operand
+        if kind == "L":
+            self.accu2, self.accu1 = self.accu1, to_int32(self._load(op, clock))
+        elif kind == "T":
+            self._store(op, to_int16(self.accu1))
+        elif kind in ARITHMETIC:
+            result, by_zero = arithmetic(kind, to_int16(self.accu2), to_int16(self.accu1))
+            self.accu1 = result
+            self.arith_error |= by_zero
+        elif kind in COMPARES:
+            self.rlo = compare(kind, to_int16(self.accu2), to_int16(self.accu1))
+        elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=I"
+            bit = compare(kind[2:], to_int16(self.accu2), to_int16(self.accu1))
+            self.rlo = combine(kind[0], self.rlo, bit)
+        elif kind in TIMERS:
+            self._timer(kind, self.timers[op.index], clock)
+        elif kind == "R T":
+            if self.rlo:
+                self.timers[op.index] = TimerState()    # stopped, status/elapsed/edge 0
+        elif kind in ("CU", "CD", "S C", "R C"):
+            self._counter(kind, self.counters[op.index])
+        else:                                           # READ, WRITE
+            self.exchange_instruction(ins, clock)
+        return self.costs[kind]
+
+    def now_ms(self, clock: int) -> int:
+        """floor(t / 1 ms) for t = clock / f µs."""
+        return clock // (self.f * 1000)
+
+    def _timer(self, kind: str, tm: TimerState, clock: int) -> None:
+        """SD / SS / SP / SF per the table of spec §3 (Timers)."""
+        enable, now = self.rlo, self.now_ms(clock)
+        preset = max(self.accu1, 0)
+        rising = enable == 1 and tm.edge == 0
+        falling = enable == 0 and tm.edge == 1
+
+        def d() -> int:
+            return now - tm.start
+
+        if kind == "SD":                         # on-delay (TON)
+            if rising:
+                tm.start = now
+            elif not enable:
+                tm.start = None
+            tm.status = int(enable == 1 and tm.start is not None and d() >= preset)
+        elif kind == "SS":                       # retentive on-delay
+            if rising:                           # starts, or restarts while running
+                tm.start = now
+            if tm.start is not None and d() >= preset:
+                tm.status = 1                    # until R T n
+        elif kind == "SP":                       # pulse (TP), no retrigger
+            running = tm.start is not None
+            if rising and not (running and d() < preset):
+                tm.start = now
+            elif running and not enable and d() >= preset:
+                tm.start = None
+            tm.status = int(tm.start is not None and d() < preset)
+        else:                                    # SF: off-delay (TOF)
+            if enable:
+                tm.start = None
+                tm.status = 1
+            elif falling:
+                tm.start = now
+            if tm.start is not None and d() >= preset:
+                tm.status = 0
+        tm.elapsed = 0 if tm.start is None else min(d(), preset)
+        tm.edge = enable
+
+    def _counter(self, kind: str, ct: CounterState) -> None:
+        """CU / CD / S C n count or load on a 0->1 of the RLO against their own edge
+        memory; R C n clears while the RLO is 1 and leaves the edge memories alone."""
+        rlo = self.rlo
+        if kind == "CU":
+            if rlo and not ct.cu_edge:
+                ct.value = min(ct.value + 1, COUNTER_MAX)
+            ct.cu_edge = rlo
+        elif kind == "CD":
+            if rlo and not ct.cd_edge:
+                ct.value = max(ct.value - 1, 0)
+            ct.cd_edge = rlo
+        elif kind == "S C":
+            if rlo and not ct.s_edge:
+                ct.value = min(max(to_int16(self.accu1), 0), COUNTER_MAX)
+            ct.s_edge = rlo
+        elif rlo:                                # R C
+            ct.value = 0
+
+    def _load(self, op: Operand, clock: int) -> int:
+        """The value `L op` loads (32-bit): constants as written (16#.. patterns and
+        INTs sign-extended, T#.. in ms), words sign-extended, T n elapsed, C n count."""
+        if op.kind == "const":
+            return to_int16(op.value) if op.area == "INT" else op.value
+        area = op.area
+        if area == "IW":
+            return to_int16(self.input_words(clock).get(op.index, 0))
+        if area == "QW":
+            return self.qw.get(op.index, 0)
+        if area == "MW":
+            return self.mw.get(op.index, 0)
+        if area == "T":
+            return self.timers[op.index].elapsed
+        if area == "C":
+            return self.counters[op.index].value
+        raise RefSimError(f"cannot load {op.address()}")
+
+    def _store(self, op: Operand, value: int) -> None:
+        """`T op`: a signed 16-bit value into MW n or QW n."""
+        if op.area == "MW":
+            self.mw[op.index] = value
+        elif op.area == "QW":
+            self.qw[op.index] = value
+        else:
+            raise RefSimError(f"cannot transfer to {op.address()}")
 
     # --- operands -----------------------------------------------------------------------
 
@@ -326,13 +637,15 @@ class RefSim:
     # --- trace values ---------------------------------------------------------------------
 
     def peek(self, op: Operand, clock: int) -> int:
-        """An operand's value as the trace shows it, looking at clock `clock`."""
-        if op.kind == "bit" or op.area in ("T", "C", "FBI"):
+        """An operand's value as the trace shows it, looking at clock `clock`: bits
+        0/1 (`T n` / `C n` their status bit), words signed.  A watched exchange
+        channel shows 0 (serial mode has none)."""
+        if op.area in ("FBI", "FBY"):
+            return 0
+        if op.kind == "bit" or op.area in ("T", "C"):
             return self._read(op, clock)
-        if op.area == "FBY":
-            return self.fby.get(op.index, 0)
         if op.area == "IW":
-            return self.input_words(clock).get(op.index, 0)
+            return to_int16(self.input_words(clock).get(op.index, 0))
         if op.area == "QW":
             return self.qw.get(op.index, 0)
         if op.area == "MW":
@@ -354,9 +667,11 @@ class RefSim:
 def refsim_trace(program: Program, config: Config = DEFAULT,
                  stimulus: Stimulus | None = None, watch: Iterable[str] = (),
                  scans: int | None = None, until_us=None, watchdog: int = 100000,
+                 costs: Mapping[str, int] | str | None = None,
                  ) -> tuple[list[Column], list[ScanRecord], bool]:
-    """(columns, records, watchdog fault?) of one run: the reference TRACE.csv."""
+    """(columns, records, watchdog fault?) of one run: the reference TRACE.csv of a
+    serial-mode run with the cost table `costs` (default: the paper's)."""
     columns = trace_columns(program, list(watch), program.symbols, config)
-    sim = RefSim(program, config, stimulus, watchdog, columns)
+    sim = RefSim(program, config, stimulus, watchdog, columns, costs)
     records = sim.run(scans, until_us)
     return columns, records, sim.watchdog_fault

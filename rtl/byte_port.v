@@ -61,6 +61,8 @@ module byte_port #(
   localparam [7:0] AddrInstr    = 8'h02;
   localparam [7:0] AddrCtx      = 8'h03;
   localparam [7:0] AddrDone     = 8'h04;
+  localparam [7:0] AddrDispMs   = 8'h05;
+  localparam [7:0] AddrDispIw   = 8'h06;
   localparam [7:0] AddrTimeMs   = 8'h08;
   localparam [7:0] AddrTickDiv  = 8'h09;
   localparam [7:0] AddrClock    = 8'h0A;
@@ -102,6 +104,34 @@ module byte_port #(
       end
     end
   end
+
+  // ---------------------------------------------------------------- dispatch snapshot
+  // A byte instruction samples its inputs in its first clock (docs/isa.md): the time
+  // base and the input word it names are captured when a dispatch begins, so the
+  // firmware may read them later within the instruction's cost.
+  reg        pending_q;                  // a dispatch began and DONE has not come
+  reg [31:0] disp_ms_q;
+  reg [15:0] disp_iw_q;
+  wire       disp_first = next_i && !pending_q;
+  wire [3:0] disp_word  = dispatch_instr_i[3:0];
+  wire [15:0] named_iw  = ({28'd0, disp_word} < InWords) ? in_words_i[disp_word*16 +: 16]
+                                                           : 16'd0;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pending_q <= 1'b0;
+      disp_ms_q <= 32'd0;
+      disp_iw_q <= 16'd0;
+    end else begin
+      pending_q <= next_i && !done_we_o;
+      if (disp_first) begin
+        disp_ms_q <= ms_q;
+        disp_iw_q <= named_iw;
+      end
+    end
+  end
+  // In the first clock itself the snapshot is the live value.
+  wire [31:0] disp_ms = disp_first ? ms_q : disp_ms_q;
+  wire [15:0] disp_iw = disp_first ? named_iw : disp_iw_q;
 
   // ---------------------------------------------------------------- decode
   wire [2:0] chan   = bus_addr_i[2:0];
@@ -154,6 +184,8 @@ module byte_port #(
         AddrStatus:   bus_rdata_o = {29'd0, fault_i, exec_i, next_i};
         AddrInstr:    bus_rdata_o = dispatch_instr_i;
         AddrCtx:      bus_rdata_o = dispatch_ctx_i;
+        AddrDispMs:   bus_rdata_o = disp_ms;
+        AddrDispIw:   bus_rdata_o = {{16{disp_iw[15]}}, disp_iw};
         AddrTimeMs:   bus_rdata_o = ms_q;
         AddrTickDiv:  bus_rdata_o = tick_div_q;
         AddrClock:    bus_rdata_o = clock_q;

@@ -148,6 +148,40 @@ async def done_and_tc_bit_strobes(dut):
     assert await read(dut, 0x62) == 1
 
 
+@cocotb.test()
+async def dispatch_snapshot(dut):
+    """DISPATCH_MS / DISPATCH_IW hold the values of the dispatch's first clock, for a
+    second dispatch right after DONE too."""
+    await reset(dut)
+    await access(dut, 0x09, 2)                   # 2 clocks per ms
+    dut.latch_i.value = 1
+    await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.latch_i.value = 0                        # now in clock 1: ms = 0
+    for word_value, first_ms in ((0x1111, 0), (0xF000, 3)):   # clocks 1 and 6
+        dut.in_words_i.value = word_value << (16 * 3)
+        dut.next_i.value, dut.dispatch_instr_i.value = 1, 0x8200A003   # L IW3
+        dut.bus_addr_i.value, dut.bus_re_i.value = 0x05, 1
+        await Timer(1, unit="ns")
+        assert int(dut.bus_rdata_o.value) == first_ms
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+        dut.in_words_i.value = 0x2222 << (16 * 3)   # changes after the first clock
+        for _ in range(3):
+            await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+        dut.bus_addr_i.value = 0x06
+        await Timer(1, unit="ns")
+        expect = word_value | (0xFFFF0000 if word_value & 0x8000 else 0)
+        assert int(dut.bus_rdata_o.value) == expect
+        dut.bus_addr_i.value = 0x05
+        await Timer(1, unit="ns")
+        assert int(dut.bus_rdata_o.value) == first_ms
+        dut.bus_re_i.value = 0
+        await access(dut, 0x04, 0)               # DONE: the next dispatch starts fresh
+        dut.next_i.value = 0 if word_value == 0xF000 else 1
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_byte_port(sim):
     run_cocotb(sim, "byte_port", "test_byte_port", parameters={"Channels": CHANNELS})

@@ -13,7 +13,7 @@ import pytest
 
 from bitbyte.asm import assemble
 from bitbyte.config import Config
-from bitbyte.encoder import encode, encode_words
+from bitbyte.encoder import constant_pool, encode, encode_words
 from bitbyte.errors import SourceError
 from bitbyte.parser import parse
 
@@ -125,28 +125,38 @@ def test_worked_example_edges_is_bit_only():
                               0x1C006001, 0x18004001, 0x01000000]
 
 
-BYTE_EXAMPLES = [
-    # (program, line and mnemonic of the first byte instruction)
-    ("L 10\nL 3\n-I\nT MW0\nL 5\nL 3\n>I\n= Q0.0\n", 1, "L"),
-    ("L 16#FFFF\nT MW1\nL 32767\nL 1\n+I\nT MW2\nL -7\nL 2\n/I\nT MW3\nL -7\nL 2\n"
-     "MOD\nT MW4\n", 1, "L"),
-    ("LD I0.0\nL T#2ms\nSD T1\nLD T1\n= Q0.0\n", 2, "L"),
-    ("LD I0.0\nCU C1\nL C1\nT MW0\n", 2, "CU"),
-    ("LD I0.0\n= Q1.0\nS Q0.3\n= PQ0.1\nT QW2\n", 5, "T"),
+# Byte instructions in serial mode (docs/isa.md "Byte instructions"), words by hand.
+BYTE_WORDS = [
+    ("L 10", 0x8000000A), ("L -1", 0x80FFFFFF), ("L 16#FFFF", 0x80FFFFFF),
+    ("L 16#7FFF", 0x80007FFF), ("L T#2ms", 0x80000002), ("L T#1h", 0x8036EE80),
+    ("L MW1", 0x8200C001), ("L IW3", 0x8200A003), ("L QW15", 0x8200B00F),
+    ("L T 4", 0x82007004), ("L C63", 0x8200803F), ("T MW255", 0x8300C0FF),
+    ("T QW2", 0x8300B002), ("+I", 0x88000000), ("-I", 0x89000000), ("*I", 0x8A000000),
+    ("/I", 0x8B000000), ("MOD", 0x8C000000), ("==I", 0x90000000), ("<>I", 0x91000000),
+    (">I", 0x92000000), ("<I", 0x93000000), (">=I", 0x94000000), ("<=I", 0x95000000),
+    ("A ==I", 0x98000000), ("A >=I", 0x9C000000), ("O ==I", 0xA0000000),
+    ("O <=I", 0xA5000000), ("SD T1", 0xB0007001), ("SS T2", 0xB1007002),
+    ("SP T3", 0xB2007003), ("SF T63", 0xB300703F), ("R T 5", 0xB4007005),
+    ("CU C1", 0xB8008001), ("CD C2", 0xB9008002), ("S C 3", 0xBA008003),
+    ("R C4", 0xBB008004),
 ]
 
 
-@pytest.mark.parametrize("text, line, mnemonic", BYTE_EXAMPLES)
-def test_worked_examples_with_byte_instructions_parse_but_wait(text, line, mnemonic):
-    program = parse("ex.il", text)
-    with pytest.raises(SourceError) as info:
-        encode(program)
-    err = info.value
-    assert (err.line, err.col) == (line, 1)
-    assert err.message.startswith(f"`{mnemonic}` needs the byte processor")
+@pytest.mark.parametrize("text, word", BYTE_WORDS)
+def test_byte_instruction_words(text, word):
+    assert words_of("LD I0.0\n" + text + "\n")[1] == word
 
 
-def test_fig5_program_parses_and_its_byte_part_waits():
+def test_wide_constants_go_to_the_pool():
+    # 2h19m48s607ms = 8388607 ms = 2^23 - 1, the largest immediate
+    program = parse("p.il", "L T#500h\nL T#2h19m48s607ms\nL T#2h19m48s608ms\n"
+                            "L T#500h\nL -32768\n")
+    assert constant_pool(program) == [1_800_000_000, 8_388_608]
+    assert encode_words(program)[:5] == [0x81000000, 0x807FFFFF, 0x81000001,
+                                         0x81000000, 0x80FF8000]
+
+
+def test_fig5_program_encodes_in_serial_mode():
     text = """VAR
   Start AT I0.0; Stop AT I0.1; BLK AT I0.2;
   Flag AT M0.0; Timer AT T1;
@@ -171,29 +181,35 @@ A >=I
     program = parse("fig5.il", text)
     assert len(program.instrs) == 15
     assert program.instrs[12].mnemonic == "A >=I"
-    assert program.instrs[5].operand.address() == "MW1"
-    with pytest.raises(SourceError) as info:
-        encode(program)
-    assert (info.value.line, info.value.col) == (12, 1)
-    assert "needs the byte processor" in info.value.message
+    assert encode_words(program) == [
+        0x08000000, 0x0C006000, 0x0A000001, 0x0A000002, 0x18006000,  # LD..= Flag
+        0x8200C001, 0xB0007001,                                      # L Time, SD Timer
+        0x08007001, 0x18004000, 0x08004000,                          # LD Timer..LD Start_Up
+        0x8200A000, 0x8200C000, 0x9C000000, 0x18004001, 0x01000000]
 
 
 # ---------------------------------------------------------------------------------------
-# What the bit processor cannot do yet
+# What serial mode cannot do
 # ---------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("text", [
-    "L MW0", "L 5", "L T#1s", "L T1", "T MW0", "T QW0", "+I", "-I", "*I", "/I", "MOD",
-    "==I", "<>I", ">I", "<I", ">=I", "<=I", "A ==I", "A <=I", "O >I", "O <>I",
-    "SD T1", "SS T1", "SP T1", "SF T1", "R T1", "CU C1", "CD C1", "S C1", "R C1",
     "READ FBY0", "WRITE FBI0", "LD FBI0", "AN FBI3", "= FBY0", "S FBY1", "R FBY1",
 ])
-def test_byte_side_instructions_are_rejected_at_their_line(text):
+def test_exchange_instructions_need_parallel_mode(text):
     program = parse("t.il", "LD I0.0\n  " + text + "\n")
     with pytest.raises(SourceError) as info:
         encode(program)
     assert (info.value.line, info.value.col) == (2, 3)
-    assert "needs the byte processor" in info.value.message
+    assert "parallel mode" in info.value.message
+
+
+@pytest.mark.parametrize("text", ["L MW0", "SD T1", "A >=I", "CU C1"])
+def test_parallel_mode_waits_for_the_partitioner(text):
+    program = parse("t.il", "LD I0.0\n  " + text + "\n")
+    with pytest.raises(SourceError) as info:
+        encode(program, mode="parallel")
+    assert (info.value.line, info.value.col) == (2, 3)
+    assert "--mode parallel" in info.value.message
 
 
 # ---------------------------------------------------------------------------------------
@@ -256,10 +272,10 @@ def test_assemble_defaults_to_the_source_directory(tmp_path):
 
 def test_assemble_writes_nothing_for_a_bad_program(tmp_path):
     src = tmp_path / "bad.il"
-    src.write_text("LD I0.0\nL 5\n")
+    src.write_text("LD I0.0\nREAD FBY 0\n")
     with pytest.raises(SourceError) as info:
         assemble(str(src), str(tmp_path))
-    assert "needs the byte processor" in info.value.message
+    assert "parallel mode" in info.value.message
     assert not (tmp_path / "bad.hex").exists()
 
 

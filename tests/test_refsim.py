@@ -416,11 +416,19 @@ def test_watched_words():
     assert column(recs, "QW1") == [0, 0]
 
 
-def test_byte_instruction_is_reported():
-    p = prog("NOP")
+def test_byte_instruction_runs_in_serial_mode():
+    # latch, L 3 (10 clocks), NOP (1), T MW0 (10), END: 1 + 10 + 1 + 10 + 1 = 23 cycles
+    p = prog("NOP\nT MW0")
     p.instrs.insert(0, Instr("L", Operand("const", "INT", value=3), 1, 1, "L 3"))
-    with pytest.raises(RefSimError, match="byte"):
-        RefSim(p, Config()).run(scans=1)
+    sim = RefSim(p, Config())
+    (rec,) = sim.run(scans=1)
+    assert rec.cycles == 23 and sim.mw == {0: 3}
+
+
+@pytest.mark.parametrize("src", ["LD FBI0\n= Q0.0", "SET\n= FBY1"])
+def test_exchange_channels_are_not_in_serial_mode(src):
+    with pytest.raises(RefSimError, match=r"test.il:\d+:1: .*serial mode has no exchange"):
+        RefSim(prog(src), Config()).run(scans=1)
 
 
 # --- watchdog ---------------------------------------------------------------------------
