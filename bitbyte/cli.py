@@ -54,6 +54,8 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--waves")
     r.add_argument("--sim", choices=["verilator", "icarus"], default="verilator")
     r.add_argument("--clock-mhz", type=str, default="100")
+    r.add_argument("--costs", default="paper",
+                   help="byte processor cost table: paper (default) or c320")
     return p
 
 
@@ -62,8 +64,9 @@ def _clock_mhz(text: str) -> Fraction:
         f = Fraction(text)
     except (ValueError, ZeroDivisionError):
         raise UsageError(f"--clock-mhz: not a number: {text!r}") from None
-    if f <= 0 or (f * 1_000_000).denominator != 1:
-        raise UsageError("--clock-mhz must be positive and a whole number of Hz")
+    if f <= 0 or (f * 1000).denominator != 1:
+        raise UsageError("--clock-mhz must be positive and a whole number of kHz "
+                         "(the timers' 1 ms time base counts whole clocks)")
     return f
 
 
@@ -84,14 +87,15 @@ def cmd_asm(args) -> int:
 
 def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 scans: int | None = None, until_us: str | None = None,
-                watchdog: int = 100_000, clock_mhz: str = "100"):
+                watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper"):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
     The differential tests call this too, so they exercise the same path."""
     from . import trace as tr
-    from .encoder import encode_words
+    from .encoder import constant_pool, encode_words
     from .parser import parse_file
+    from .refsim import COST_TABLES
     from .runjob import RunJob, hw_column
     from .stimulus import load_stimulus, no_stimulus
 
@@ -113,9 +117,10 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     if scans is None and until_clock is None:
         scans = DEFAULT_SCANS
 
+    if costs not in COST_TABLES:
+        raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
     program = parse_file(program_path, config)
     words = encode_words(program, config)
-    _require_bit_program(program)
     stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
             else no_stimulus(config))
     watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
@@ -124,24 +129,21 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     except ValueError as e:
         raise UsageError(f"--watch: {e}") from None
     events = stim.events_for_harness(f)
+    has_words = any(row.words for row in stim.rows)
+
+    def input_words(kind: str, key: int):
+        if not has_words:
+            return None
+        got = stim.words_for_scan(key) if kind == "scan" else stim.words_at_clock(key, f)
+        return [got.get(n, 0) for n in range(16)]
+
     job = RunJob(prog=words, clock_hz=int(f * 1_000_000), watchdog=watchdog,
                  scans=scans, until_clock=until_clock,
                  stim_kind=events[0][0] if events else "none",
-                 stim=[(key, pins) for _, key, pins in events],
-                 cols=[(c.header, *hw_column(c.operand)) for c in columns])
+                 stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
+                 cols=[(c.header, *hw_column(c.operand)) for c in columns],
+                 costs=costs, pool=constant_pool(program))
     return program, columns, job, f
-
-
-def _require_bit_program(program) -> None:
-    """Until the byte processor's firmware is attached to the simulators, a program
-    with byte instructions cannot run (it would wait in dispatch forever)."""
-    from . import isa
-    for instr in program.instrs:
-        area = instr.operand.area if instr.operand else None
-        if isa.is_byte_instruction(instr.mnemonic, area):
-            raise SourceError(program.path, instr.line, instr.col,
-                              f"`{instr.mnemonic}` needs the byte processor, which is not "
-                              "attached to the simulators yet", instr.source)
 
 
 def cmd_run(args) -> int:
@@ -150,7 +152,8 @@ def cmd_run(args) -> int:
     _require_bit_mode(args.mode)
     _, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
-        until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz)
+        until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
+        costs=args.costs)
 
     if args.sim == "verilator":
         records, fault, summary = _run_harness(job, columns, args)

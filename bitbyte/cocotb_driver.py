@@ -5,24 +5,50 @@ The protocol is the one of docs/isa.md's timing model and of the C++ harness: lo
 the program in reset, wait for `ready_o`, raise `run_i` for one clock, then clock 0 is
 the PII latch of scan 0. Inputs for clock n are driven at the falling edge inside
 clock n; a scan's results are read at the falling edge after the edge that ended it.
+
+The byte processor is the real firmware (firmware_byte/, loaded with ctypes). It runs
+in a bridged thread (cocotb.task.bridge); each HAL call it makes is a resume-wrapped
+coroutine that drives the bus and awaits clock edges, so the C code blocks exactly
+as long as its bus accesses and its `hal_spend` take in simulated clocks.
 """
 from __future__ import annotations
 
+import ctypes
 import json
 import os
+from pathlib import Path
 
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge, Timer
+from cocotb.task import bridge, resume
+from cocotb.triggers import Event, FallingEdge, First, RisingEdge, Timer
+from cocotb.utils import get_sim_time
 
-from bitbyte.runjob import RunJob
+from bitbyte.runjob import WORD_KINDS, RunJob
+
+FIRMWARE_LIB = Path(__file__).resolve().parents[1] / "firmware_byte" / "build" / \
+    "libbyteproc_cb.so"
 
 PERIOD_NS = 10      # simulator time only; reported time uses the job's clock_hz
 MARKER_BITS = 2048  # the marker RAM clears one bit per clock after reset
 
 
-def _reader(dut, kind: str, index: int):
+def _word(vector, index: int) -> int:
+    return _signed16((int(vector.value) >> (16 * index)) & 0xFFFF)
+
+
+def _signed16(v: int) -> int:
+    return v - 0x10000 if v & 0x8000 else v
+
+
+def _reader(dut, kind: str, index: int, firmware=None):
     """A function returning the current value of one traced column."""
+    if kind == "mw":
+        return lambda: firmware.mw(index)
+    if kind == "qw":
+        return lambda: _word(dut.out_words_o, index)
+    if kind == "iw":
+        return lambda: _word(dut.in_words_i, index)
     if kind == "q":
         return lambda: (int(dut.out_pins_o.value) >> index) & 1
     if kind == "pi":
@@ -43,6 +69,100 @@ def _reader(dut, kind: str, index: int):
     return lambda: 0
 
 
+class Firmware:
+    """The byte processor: firmware_byte's C code with a HAL onto this simulation."""
+
+    _lib = None
+
+    def __init__(self, dut, job: RunJob, clock0_ns: float):
+        lib = Firmware._load()
+        self.dut, self.clock0_ns = dut, clock0_ns
+        self.stopped = Event()
+        self.state = lib.bb_new()
+        lib.bb_init(self.state, lib.bb_cost_table(job.costs.encode()))
+        if job.pool:
+            words = (ctypes.c_uint32 * len(job.pool))(*job.pool)
+            lib.bb_load_pool(self.state, words, len(job.pool))
+        # The HAL: each callback runs in the firmware's thread and blocks on a coroutine.
+        hal = (lib.HalRead(resume(self._read)), lib.HalWrite(resume(self._write)),
+               lib.HalSpend(resume(self._spend)), lib.HalWait(resume(self._wait)),
+               lib.HalNow(self._now))
+        self._keep = hal                       # ctypes callbacks must outlive the C calls
+        lib.bb_hal_set_callbacks(*hal)
+
+    @classmethod
+    def _load(cls):
+        if cls._lib is None:
+            lib = ctypes.CDLL(str(FIRMWARE_LIB))
+            lib.bb_new.restype = ctypes.c_void_p
+            lib.bb_free.argtypes = [ctypes.c_void_p]
+            lib.bb_cost_table.restype = ctypes.c_void_p
+            lib.bb_cost_table.argtypes = [ctypes.c_char_p]
+            lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+            lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
+            lib.bb_serial_step.argtypes = [ctypes.c_void_p]
+            lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
+            lib.bb_mw.restype = ctypes.c_int16
+            lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint8)
+            lib.HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint8, ctypes.c_uint32)
+            lib.HalSpend = ctypes.CFUNCTYPE(None, ctypes.c_uint32)
+            lib.HalWait = ctypes.CFUNCTYPE(None)
+            lib.HalNow = ctypes.CFUNCTYPE(ctypes.c_uint64)
+            cls._lib = lib
+        return cls._lib
+
+    def mw(self, n: int) -> int:
+        return int(self._lib.bb_mw(self.state, n))
+
+    def close(self):
+        self._lib.bb_hal_set_callbacks(None, None, None, None, None)
+        self._lib.bb_free(self.state)
+
+    # HAL (docs/byte-bus.md). Each runs at a falling edge: "this clock" is the clock
+    # whose falling edge it is; an access takes the clock and returns at the next one.
+    async def _access(self, addr: int, data: int | None) -> int:
+        dut = self.dut
+        while not self.stopped.is_set():
+            dut.bus_addr_i.value = addr
+            dut.bus_re_i.value = int(data is None)
+            dut.bus_we_i.value = int(data is not None)
+            dut.bus_wdata_i.value = data or 0
+            await Timer(1, unit="ns")                    # combinational read data
+            rdata, ready = int(dut.bus_rdata_o.value), int(dut.bus_ready_o.value)
+            await FallingEdge(dut.clk_i)
+            dut.bus_re_i.value = dut.bus_we_i.value = 0
+            if ready:
+                return rdata
+        return 0
+
+    async def _read(self, addr: int) -> int:
+        return await self._access(addr, None)
+
+    async def _write(self, addr: int, data: int) -> None:
+        await self._access(addr, data)
+
+    async def _spend(self, clocks: int) -> None:
+        if clocks and not self.stopped.is_set():
+            # from one falling edge to the falling edge `clocks` clocks later, in one wait
+            await Timer(clocks * PERIOD_NS, unit="ns")
+
+    async def _wait(self) -> None:
+        dut = self.dut
+        if int(dut.next.value) or self.stopped.is_set():
+            return
+        await First(RisingEdge(dut.next), self.stopped.wait())
+        if not self.stopped.is_set():
+            await FallingEdge(dut.clk_i)               # into the dispatch clock
+
+    def _now(self) -> int:
+        return int((get_sim_time("ns") - self.clock0_ns) // PERIOD_NS)
+
+    def run_until_stopped(self) -> None:
+        """The firmware's main loop (in the bridged thread)."""
+        while not self.stopped.is_set():
+            self._lib.bb_serial_step(self.state)
+
+
 async def run_job(dut, job: RunJob) -> dict:
     dut.rst_ni.value = 0
     dut.run_i.value = 0
@@ -60,10 +180,28 @@ async def run_job(dut, job: RunJob) -> dict:
     while not int(dut.ready_o.value):
         await FallingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
+    dut.bus_addr_i.value, dut.bus_wdata_i.value = 0x09, job.clock_hz // 1000   # TICK_DIV
+    dut.bus_we_i.value = 1
+    await FallingEdge(dut.clk_i)
+    dut.bus_we_i.value = 0
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 
-    readers = [_reader(dut, kind, index) for _, kind, index in job.cols]
+    firmware = Firmware(dut, job, get_sim_time("ns"))
+    fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
+    try:
+        result = await _scans(dut, job, firmware)
+    finally:
+        firmware.stopped.set()
+        await fw_thread
+        firmware.close()
+        dut.bus_re_i.value = dut.bus_we_i.value = 0
+    return result
+
+
+async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
+    """Clock by clock from clock 0: inputs, finished scans, the stop condition."""
+    readers = [_reader(dut, kind, index, firmware) for _, kind, index in job.cols]
     stim = list(job.stim)
     next_stim = 0
     rows, fault = [], False
@@ -86,8 +224,11 @@ async def run_job(dut, job: RunJob) -> dict:
         latch_clock = clock == 0 or int(dut.scan_done_o.value)
         if job.stim_kind == "clock" or (job.stim_kind == "scan" and latch_clock):
             while next_stim < len(stim) and stim[next_stim][0] <= key:
-                pins = stim[next_stim][1]
+                _, pins, words = stim[next_stim]
                 next_stim += 1
+                if words is not None:
+                    dut.in_words_i.value = sum((w & 0xFFFF) << (16 * i)
+                                               for i, w in enumerate(words))
             dut.in_pins_i.value = pins
         await FallingEdge(dut.clk_i)
         clock += 1

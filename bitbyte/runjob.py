@@ -14,15 +14,18 @@ from .program import Operand
 
 # Hardware column kinds understood by both runners.
 _BIT_KINDS = {"Q": "q", "PQ": "q", "I": "i", "PI": "pi", "IR": "ir", "IF": "if", "M": "m"}
+_INDEX_KINDS = {"T": "t", "C": "c", "MW": "mw", "QW": "qw", "IW": "iw"}
+WORD_KINDS = ("mw", "qw", "iw")          # traced as signed decimal
 
 
 def hw_column(operand: Operand) -> tuple[str, int]:
-    """(kind, index) of a traced operand in the hardware; 'zero' for what the
-    bit-only CPU does not hold yet (timer/counter status, words)."""
+    """(kind, index) of a traced operand in the hardware: a bit of the CPU, a status
+    bit (t, c), a word (mw: byte processor memory, qw/iw: word I/O); 'zero' for what
+    has no value in serial mode (the exchange channels)."""
     if operand.kind == "bit" and operand.area in _BIT_KINDS:
         return _BIT_KINDS[operand.area], operand.bit_number
-    if operand.kind == "index" and operand.area in ("T", "C"):
-        return operand.area.lower(), operand.index
+    if operand.kind == "index" and operand.area in _INDEX_KINDS:
+        return _INDEX_KINDS[operand.area], operand.index
     return "zero", 0
 
 
@@ -34,8 +37,11 @@ class RunJob:
     scans: int | None = None             # stop after this many scans, or
     until_clock: int | None = None       # after the first scan ending at or after it
     stim_kind: str = "none"              # none | scan | clock
-    stim: list[tuple[int, int]] = field(default_factory=list)   # (key, pins)
+    # (key, pins, words): words = the 16 input words IW0..15, or None (no IW columns)
+    stim: list[tuple[int, int, list[int] | None]] = field(default_factory=list)
     cols: list[tuple[str, str, int]] = field(default_factory=list)  # (header, kind, index)
+    costs: str = "paper"                 # byte processor cost table
+    pool: list[int] = field(default_factory=list)   # constant pool words
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -52,7 +58,12 @@ class RunJob:
         if self.until_clock is not None:
             lines.append(f"until_clock {self.until_clock}")
         lines.append(f"stim_kind {self.stim_kind}")
-        lines += [f"stim {key} {pins:x}" for key, pins in self.stim]
+        for key, pins, words in self.stim:
+            tail = "" if words is None else " " + " ".join(str(w) for w in words)
+            lines.append(f"stim {key} {pins:x}{tail}")
+        lines.append(f"costs {self.costs}")
+        if self.pool:
+            lines.append("pool " + " ".join(f"{w:08x}" for w in self.pool))
         lines += [f"col {header} {kind} {index}" for header, kind, index in self.cols]
         lines.append(f"trace {trace_path}")
         if waves:

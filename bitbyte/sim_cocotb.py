@@ -59,10 +59,24 @@ def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
     )
 
 
+def build_firmware() -> None:
+    """firmware_byte/build/libbyteproc_cb.so, the byte processor for ctypes."""
+    import subprocess
+    lock_dir = ROOT / "firmware_byte" / "build"
+    lock_dir.mkdir(parents=True, exist_ok=True)
+    with open(lock_dir / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT / "firmware_byte"), "lib"],
+                              capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError("building firmware_byte failed:\n" + proc.stdout + proc.stderr)
+
+
 def run_jobs(jobs, sim: str = "icarus"):
     """Run RunJobs on `sim` in one simulator process; returns RunResults in order."""
     from .runjob import RunResult
 
+    build_firmware()
     build_dir = ROOT / "build" / f"cocotb-{sim}"
     build_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:

@@ -54,7 +54,7 @@ module bit_proc #(
   input  wire                         byte_done_i,    // ... and completes this clock
   input  wire                         byte_rlo_i,
   input  wire                         byte_rlo_we_i,
-  output wire                         stall_o,        // execute waits this clock
+  output wire                         stall_o,        // execute waits on a channel
   // output unit write port (Q, PQ)
   output wire                         out_wr_en_o,
   output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
@@ -114,11 +114,13 @@ module bit_proc #(
   wire on_channel = e_area == `AREA_FB;
   wire fbi_read   = e_go && on_channel && is_logic;
   wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_o));
-  wire e_stall    = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
-                    (fby_write && !(|(fby_wr_ready_i & chan_sel))) ||
-                    (e_go && is_byte && !byte_done_i);
+  wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
+                    (fby_write && !(|(fby_wr_ready_i & chan_sel)));
+  wire e_stall    = chan_wait || (e_go && is_byte && !byte_done_i);
   wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
-  assign stall_o  = e_stall;
+  // A stall is a wait on the other processor's condition; a dispatched instruction's
+  // own clocks (serial mode) are its execution time, not a stall.
+  assign stall_o  = chan_wait;
 
   assign fbi_rd_req_o  = fbi_read  ? chan_sel : {Channels{1'b0}};
   assign fby_wr_req_o  = fby_write ? chan_sel : {Channels{1'b0}};

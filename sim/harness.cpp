@@ -13,6 +13,12 @@
 #include "Vbitbyte_cpu.h"
 #include "Vbitbyte_cpu___024root.h"  // internal signals, made public by harness.vlt
 #include "verilated.h"
+
+extern "C" {
+#include "byteproc.h"  // the byte processor firmware (firmware_byte/), linked in
+#include "hal.h"
+}
+#include <csetjmp>
 // Waves: the build picks one format (Verilator allows one --trace-* per model).
 #if VM_TRACE_FST
 #include "verilated_fst_c.h"
@@ -109,7 +115,12 @@ static char* put_t_us(char* p, uint64_t end_clock, uint64_t clock_hz) {
 }
 
 // ------------------------------------------------------------------ run file
-struct Stim { uint64_t key; uint32_t pins[4]; };                 // 128 pins, word 0 = I0.0..I3.7
+struct Stim {                                                      // one stimulus row
+  uint64_t key;
+  uint32_t pins[4];                                                // 128 pins, word 0 = I0.0..I3.7
+  bool has_words;
+  int16_t words[16];                                               // IW0..IW15
+};
 struct Col  { std::string header, kind; uint32_t index; };
 
 struct RunFile {
@@ -119,6 +130,8 @@ struct RunFile {
   std::string stim_kind = "none";
   std::vector<Stim> stim;
   std::vector<Col> cols;
+  std::string costs = "paper";                                     // byte processor cost table
+  std::vector<uint32_t> pool;                                      // constant pool
 };
 
 static int hex_digit(char c) {  // -1 if c is no hex digit
@@ -185,12 +198,26 @@ static RunFile read_run_file(const char* path) {
       if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");
       rf.stim_kind = w[1];
     } else if (k == "stim") {
-      want(2);
-      Stim s;
+      // stim KEY HEXPINS [IW0 .. IW15]: the input words, signed decimal, all 16
+      if (w.size() != 3 && w.size() != 19) die("'stim' takes KEY HEXPINS [16 input words]");
+      Stim s{};
       s.key = parse_u64(w[1], "stim key");
       if (!rf.stim.empty() && s.key < rf.stim.back().key) die("stim keys must be ascending");
       parse_pins(w[2], s.pins);
+      s.has_words = w.size() == 19;
+      for (size_t i = 0; s.has_words && i < 16; ++i) {
+        const std::string& t = w[3 + i];
+        long v = std::strtol(t.c_str(), nullptr, 10);
+        if (v < -32768 || v > 65535) die("input word '%s' out of range", t.c_str());
+        s.words[i] = int16_t(uint16_t(v));
+      }
       rf.stim.push_back(s);
+    } else if (k == "costs") {
+      want(1);
+      rf.costs = w[1];
+    } else if (k == "pool") {
+      for (size_t i = 1; i < w.size(); ++i)
+        rf.pool.push_back(uint32_t(std::strtoul(w[i].c_str(), nullptr, 16)));
     } else if (k == "col") {
       // The header is all the text between `col` and the last two words: `--watch`
       // operands are named exactly as typed, and "I 0.1" is a valid one.
@@ -198,7 +225,8 @@ static RunFile read_run_file(const char* path) {
       const size_t nw = w.size();
       std::string header = line.substr(at[1], at[nw - 2] - at[1]);
       header.erase(header.find_last_not_of(" \t") + 1);
-      static const char* kinds[] = {"q", "i", "pi", "ir", "if", "m", "t", "c", "zero"};
+      static const char* kinds[] = {"q", "i", "pi", "ir", "if", "m", "t", "c", "mw", "qw",
+                                    "iw", "zero"};
       bool ok = false;
       for (const char* kk : kinds) ok |= (w[nw - 2] == kk);
       if (!ok) die("unknown column kind '%s'", w[nw - 2].c_str());
@@ -298,14 +326,160 @@ struct TraceOut {
   }
 };
 
-// Where a trace column reads its bit: a word of a packed vector, or a marker RAM byte.
-struct ColSrc { const uint32_t* word; const uint8_t* byte; uint32_t mask; };
+// Where a trace column reads its value.
+struct ColSrc {
+  enum Kind { kBit, kMarker, kWord16, kMw, kZero } kind;
+  const uint32_t* word;     // kBit: the 32-bit word of a packed vector; kWord16: vector base
+  const uint8_t* byte;      // kMarker
+  uint32_t mask;            // kBit
+  uint32_t index;           // kWord16: word number; kMw: MW n
+};
 
 template <class W> static ColSrc wide_bit(const W& v, uint32_t idx, const Col& c) {
   const uint32_t bits = sizeof(W) * 8;
   if (idx >= bits) die("column %s: index %u out of range (0..%u)", c.header.c_str(), idx, bits - 1);
-  return {reinterpret_cast<const uint32_t*>(&v) + idx / 32, nullptr, 1u << (idx % 32)};
+  return {ColSrc::kBit, reinterpret_cast<const uint32_t*>(&v) + idx / 32, nullptr, 1u << (idx % 32), 0};
 }
+
+template <class W> static ColSrc word16(const W& v, uint32_t idx, const Col& c) {
+  if (idx >= sizeof(W) / 2) die("column %s: word %u out of range", c.header.c_str(), idx);
+  return {ColSrc::kWord16, reinterpret_cast<const uint32_t*>(&v), nullptr, 0, idx};
+}
+
+// ------------------------------------------------------------------ the run
+// The byte processor's firmware owns the main loop: it calls the HAL, and every HAL
+// call that takes time runs clocks through Run::fall() / Run::end_clock(). Each clock
+// n: the inputs of clock n are already applied; the HAL sets the bus; fall() evaluates
+// the clock-low half (combinational outputs valid: bus read data); end_clock() makes
+// the rising edge, records a finished scan, applies the inputs of clock n+1 and, when
+// the run is over, jumps out of the firmware (longjmp back into main).
+struct Run {
+  Dut* d;
+  Vbitbyte_cpu* top;
+  const RunFile* rf;
+  bb_state* bb;
+  std::vector<ColSrc> srcs;
+  TraceOut* out;
+  uint64_t n = 0, scans = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
+  uint64_t want_scans = UINT64_MAX, until = UINT64_MAX;
+  bool fault = false, by_scan = false, by_clock = false;
+  size_t next_stim = 0;
+  uint64_t next_stim_clock = UINT64_MAX;
+  std::jmp_buf stop;
+
+  void apply_stim(uint64_t key) {  // the last row with KEY <= key, if any is due
+    const Stim* st = nullptr;
+    while (next_stim < rf->stim.size() && rf->stim[next_stim].key <= key) st = &rf->stim[next_stim++];
+    if (!st) return;
+    std::memcpy(&top->in_pins_i, st->pins, 16);
+    if (st->has_words) {
+      uint32_t* w = reinterpret_cast<uint32_t*>(&top->in_words_i);
+      for (unsigned i = 0; i < 16; ++i) {
+        w[i / 2] &= ~(0xFFFFu << (16 * (i % 2)));
+        w[i / 2] |= uint32_t(uint16_t(st->words[i])) << (16 * (i % 2));
+      }
+    }
+  }
+  void inputs_for_clock() {  // clock stimulus: inputs of clock n, before its edge
+    if (n == next_stim_clock) {
+      apply_stim(n);
+      next_stim_clock = next_stim < rf->stim.size() ? rf->stim[next_stim].key : UINT64_MAX;
+    }
+  }
+  void fall() {
+    top->clk_i = 0;
+    d->eval();
+    if (d->wave) d->wave->dump(d->t_ps + d->half_ps);
+  }
+  uint32_t value(const ColSrc& c) const {
+    switch (c.kind) {
+      case ColSrc::kBit: return (*c.word & c.mask) ? 1 : 0;
+      case ColSrc::kMarker: return *c.byte & 1;
+      case ColSrc::kWord16: return (c.word[c.index / 2] >> (16 * (c.index % 2))) & 0xFFFF;
+      case ColSrc::kMw: return uint16_t(bb_mw(bb, c.index));
+      default: return 0;
+    }
+  }
+  void record() {  // a scan ended with clock n-1: its row, values after its END
+    const uint64_t cycles = top->scan_cycles_o;
+    cyc_min = std::min(cyc_min, cycles);
+    cyc_max = std::max(cyc_max, cycles);
+    cyc_sum += cycles;
+    if (!out->f) return;
+    char* p = out->row();
+    p = std::to_chars(p, p + 24, scans).ptr;
+    *p++ = ',';
+    p = put_t_us(p, n, rf->clock_hz);
+    *p++ = ',';
+    p = std::to_chars(p, p + 24, cycles).ptr;
+    for (const ColSrc& c : srcs) {
+      *p++ = ',';
+      const uint32_t v = value(c);
+      if (c.kind == ColSrc::kWord16 || c.kind == ColSrc::kMw) p = std::to_chars(p, p + 8, int(int16_t(v))).ptr;
+      else *p++ = v ? '1' : '0';
+    }
+    *p++ = '\n';
+    out->commit(p);
+  }
+  void end_clock() {
+    top->clk_i = 1;
+    d->eval();
+    d->t_ps += d->period_ps;
+    if (d->wave) d->wave->dump(d->t_ps);
+    top->bus_re_i = 0;
+    top->bus_we_i = 0;
+    ++n;
+    if (top->fault_o) { fault = true; std::longjmp(stop, 1); }
+    if (top->scan_done_o) {
+      record();
+      ++scans;
+      if (scans >= want_scans || n >= until) std::longjmp(stop, 1);
+      if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`
+    }
+    inputs_for_clock();
+  }
+  void idle_clock() { fall(); end_clock(); }
+  bool next() const { return top->rootp->bitbyte_cpu__DOT__next; }
+};
+
+static Run* g_run;  // the HAL's view of the simulation
+
+// ------------------------------------------------------------------ the HAL (hal.h)
+extern "C" uint32_t hal_bus_read(uint8_t addr) {
+  Run& r = *g_run;
+  for (;;) {
+    r.top->bus_addr_i = addr;
+    r.top->bus_re_i = 1;
+    r.fall();
+    const uint32_t data = r.top->bus_rdata_o;
+    const bool ready = r.top->bus_ready_o;
+    r.end_clock();
+    if (ready) return data;  // else: a byte-side stall, the access repeats
+  }
+}
+
+extern "C" void hal_bus_write(uint8_t addr, uint32_t data) {
+  Run& r = *g_run;
+  for (;;) {
+    r.top->bus_addr_i = addr;
+    r.top->bus_wdata_i = data;
+    r.top->bus_we_i = 1;
+    r.fall();
+    const bool ready = r.top->bus_ready_o;
+    r.end_clock();
+    if (ready) return;
+  }
+}
+
+extern "C" void hal_spend(uint32_t clocks) {
+  for (uint32_t i = 0; i < clocks; ++i) g_run->idle_clock();
+}
+
+extern "C" void hal_wait_dispatch(void) {
+  while (!g_run->next()) g_run->idle_clock();
+}
+
+extern "C" uint64_t hal_now(void) { return g_run->n; }
 
 int main(int argc, char** argv) {
   if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }
@@ -319,19 +493,43 @@ int main(int argc, char** argv) {
   const uint32_t prog_words = sizeof(rp->bitbyte_cpu__DOT__u_bit_proc__DOT__u_prog_ram__DOT__mem) / 4;
   static_assert(sizeof(top.in_pins_i) == 16, "harness assumes 128 input pins (InBytes = 16)");
 
-  // Trace columns resolved once to (pointer, mask): the per-scan cost is a load each.
-  std::vector<ColSrc> srcs;
+  // The byte processor: firmware state, cost table, constant pool.
+  static bb_state bb;
+  const bb_costs* costs = bb_cost_table(rf.costs.c_str());
+  if (!costs) die("unknown cost table '%s'", rf.costs.c_str());
+  bb_init(&bb, costs);
+  if (!rf.pool.empty()) bb_load_pool(&bb, rf.pool.data(), unsigned(rf.pool.size()));
+  if (rf.clock_hz % 1000) die("clock_hz must be a whole number of kHz (the 1 ms time base)");
+
+  TraceOut out;
+  Run run;
+  run.d = &d;
+  run.top = &top;
+  run.rf = &rf;
+  run.bb = &bb;
+  run.out = &out;
+  g_run = &run;
+
+  // Trace columns resolved once: the per-scan cost is a load each.
   for (const Col& c : rf.cols) {
+    auto& srcs = run.srcs;
     if (c.kind == "q") srcs.push_back(wide_bit(top.out_pins_o, c.index, c));
     else if (c.kind == "pi") srcs.push_back(wide_bit(top.in_pins_i, c.index, c));
     else if (c.kind == "i") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__pii_o, c.index, c));
     else if (c.kind == "ir") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__rise_o, c.index, c));
     else if (c.kind == "if") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__fall_o, c.index, c));
-    else if (c.kind == "m") {
-      const uint32_t n = sizeof(marker) / sizeof(marker[0]);
-      if (c.index >= n) die("column %s: marker %u out of range (0..%u)", c.header.c_str(), c.index, n - 1);
-      srcs.push_back({nullptr, &marker[c.index], 1});
-    } else srcs.push_back({nullptr, nullptr, 0});  // t, c (no timers yet), zero: always 0
+    else if (c.kind == "t") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_tc_status__DOT__timer_status_o, c.index, c));
+    else if (c.kind == "c") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_tc_status__DOT__counter_status_o, c.index, c));
+    else if (c.kind == "qw") srcs.push_back(word16(top.out_words_o, c.index, c));
+    else if (c.kind == "iw") srcs.push_back(word16(top.in_words_i, c.index, c));
+    else if (c.kind == "mw") {
+      if (c.index >= BB_NUM_MW) die("column %s: MW %u out of range", c.header.c_str(), c.index);
+      srcs.push_back({ColSrc::kMw, nullptr, nullptr, 0, c.index});
+    } else if (c.kind == "m") {
+      const uint32_t nm = sizeof(marker) / sizeof(marker[0]);
+      if (c.index >= nm) die("column %s: marker %u out of range (0..%u)", c.header.c_str(), c.index, nm - 1);
+      srcs.push_back({ColSrc::kMarker, nullptr, &marker[c.index], 0, 0});
+    } else srcs.push_back({ColSrc::kZero, nullptr, nullptr, 0, 0});
   }
 
   // Waveform: 1 ps resolution, real clock period, time 0 = start of reset.
@@ -357,19 +555,19 @@ int main(int argc, char** argv) {
 #endif
   }
 
-  TraceOut out;
   if (!rf.trace.empty()) {
     out.path = rf.trace;
     out.f = std::fopen(rf.trace.c_str(), "w");
     if (!out.f) die("cannot write trace %s", rf.trace.c_str());
-    out.row_max = 3 * 24 + 2 * rf.cols.size() + 8;
+    out.row_max = 3 * 24 + 8 * rf.cols.size() + 8;
     out.buf.resize(std::max<size_t>(1 << 20, 4 * out.row_max));
     std::fputs("scan,t_us,cycles", out.f);
     for (const Col& c : rf.cols) std::fprintf(out.f, ",%s", c.header.c_str());
     std::fputc('\n', out.f);
   }
 
-  // ---- reset, program load, memory clear, RUN (the protocol the Python model assumes)
+  // ---- reset, program load, memory clear, time base, RUN (the protocol the Python
+  // model assumes)
   const auto image = read_hex(rf.prog, prog_words);
   top.rst_ni = 0;
   top.run_i = 0;
@@ -392,61 +590,30 @@ int main(int argc, char** argv) {
     if (i > 1000000) die("ready_o never rose after reset");
     d.tick();
   }
+  top.bus_addr_i = 0x09;  // TICK_DIV: clocks per ms, set before scan 0 (no clock of any scan)
+  top.bus_wdata_i = uint32_t(rf.clock_hz / 1000);
+  top.bus_we_i = 1;
+  d.tick();
+  top.bus_we_i = 0;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
 
-  // ---- the scans
-  const bool by_scan = rf.stim_kind == "scan", by_clock = rf.stim_kind == "clock";
-  size_t next_stim = 0;
-  auto apply_stim = [&](uint64_t key) {  // last row with KEY <= key, if any is due
-    const Stim* s = nullptr;
-    while (next_stim < rf.stim.size() && rf.stim[next_stim].key <= key) s = &rf.stim[next_stim++];
-    if (s) std::memcpy(&top.in_pins_i, s->pins, 16);
-  };
-  uint64_t next_stim_clock = (by_clock && !rf.stim.empty()) ? rf.stim[0].key : UINT64_MAX;
-
-  uint64_t n = 0, scans = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
-  const uint64_t want_scans = rf.scans < 0 ? UINT64_MAX : uint64_t(rf.scans);
-  const uint64_t until = rf.until_clock < 0 ? UINT64_MAX : uint64_t(rf.until_clock);
-  bool fault = false;
-  if (by_scan) apply_stim(0);
+  // ---- the scans: the firmware runs until Run::end_clock() jumps back here
+  run.by_scan = rf.stim_kind == "scan";
+  run.by_clock = rf.stim_kind == "clock";
+  run.next_stim_clock = (run.by_clock && !rf.stim.empty()) ? rf.stim[0].key : UINT64_MAX;
+  run.want_scans = rf.scans < 0 ? UINT64_MAX : uint64_t(rf.scans);
+  run.until = rf.until_clock < 0 ? UINT64_MAX : uint64_t(rf.until_clock);
+  if (run.by_scan) run.apply_stim(0);
+  run.inputs_for_clock();
   d.direct = !d.wave;  // the model is initialised by now (first eval() done)
   const auto wall0 = std::chrono::steady_clock::now();
-
-  while (scans < want_scans) {
-    if (n == next_stim_clock) {  // clock stimulus: pins for clock n, before its edge
-      apply_stim(n);
-      next_stim_clock = next_stim < rf.stim.size() ? rf.stim[next_stim].key : UINT64_MAX;
-    }
-    d.tick();  // the rising edge that ends clock n
-    ++n;
-    if (top.fault_o) { fault = true; break; }
-    if (!top.scan_done_o) continue;
-
-    // A scan ended with clock n-1: record it with the register values after its END.
-    const uint64_t cycles = top.scan_cycles_o;
-    cyc_min = std::min(cyc_min, cycles);
-    cyc_max = std::max(cyc_max, cycles);
-    cyc_sum += cycles;
-    if (out.f) {
-      char* p = out.row();
-      p = std::to_chars(p, p + 24, scans).ptr;
-      *p++ = ',';
-      p = put_t_us(p, n, rf.clock_hz);
-      *p++ = ',';
-      p = std::to_chars(p, p + 24, cycles).ptr;
-      for (const ColSrc& s : srcs) {
-        *p++ = ',';
-        *p++ = (s.word ? (*s.word & s.mask) : s.byte ? (*s.byte & 1) : 0) ? '1' : '0';
-      }
-      *p++ = '\n';
-      out.commit(p);
-    }
-    ++scans;
-    if (n >= until) break;
-    if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`
+  if (setjmp(run.stop) == 0) {
+    for (;;) bb_serial_step(&bb);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const uint64_t n = run.n, scans = run.scans;
+  const bool fault = run.fault;
 
   if (fault) {
     std::fprintf(stderr, "scan watchdog: scan %llu exceeded %llu clocks\n",
@@ -470,14 +637,15 @@ int main(int argc, char** argv) {
   auto us = [&](u128 clocks_num, u128 den) { return fmt_ratio(clocks_num * 1000000u, u128(den) * rf.clock_hz, 6); };
   std::printf("scans            %llu\n", (unsigned long long)scans);
   if (scans) {
-    std::printf("cycles/scan      min %llu  mean %s  max %llu\n", (unsigned long long)cyc_min,
-                fmt_ratio(cyc_sum, scans, 3).c_str(), (unsigned long long)cyc_max);
-    std::printf("scan time [us]   min %s  mean %s  max %s  (clock %s MHz)\n", us(cyc_min, 1).c_str(),
-                us(cyc_sum, scans).c_str(), us(cyc_max, 1).c_str(), mhz.c_str());
+    std::printf("cycles/scan      min %llu  mean %s  max %llu\n", (unsigned long long)run.cyc_min,
+                fmt_ratio(run.cyc_sum, scans, 3).c_str(), (unsigned long long)run.cyc_max);
+    std::printf("scan time [us]   min %s  mean %s  max %s  (clock %s MHz)\n", us(run.cyc_min, 1).c_str(),
+                us(run.cyc_sum, scans).c_str(), us(run.cyc_max, 1).c_str(), mhz.c_str());
   } else {
     std::printf("cycles/scan      -\nscan time [us]   -  (clock %s MHz)\n", mhz.c_str());
   }
-  std::printf("stalls           bit side 0, byte side 0\n");  // no byte processor yet
+  std::printf("stalls           bit side %u, byte side %u\n", top.stalls_bit_o, top.stalls_byte_o);
+  if (bb_flags(&bb) & BB_FLAG_ARITH) std::printf("byte flags       arithmetic error (/I or MOD by 0)\n");
   const double rate = wall > 0 ? double(n) / wall / 1e6 : 0;
   std::printf("simulated        %s us, %llu clocks, %.*f M clocks/s wall\n", us(n, 1).c_str(),
               (unsigned long long)n, rate >= 1 ? 1 : 3, rate);

@@ -60,12 +60,42 @@ def test_binary_garbage(tmp_path):
     assert proc.returncode == 1 and proc.stderr.startswith(f"{src}:1:1:")
 
 
-def test_byte_instruction_needs_byte_processor(tmp_path):
+def test_exchange_instructions_need_parallel_mode(tmp_path):
     src = tmp_path / "byte.il"
-    src.write_text("  L 10\n  T MW0\n")
+    src.write_text("  L 10\n  READ FBY 0\n")
     proc = bitbyte("run", src)
-    assert proc.returncode == 1 and "needs the byte processor" in proc.stderr
-    assert proc.stderr.startswith(f"{src}:1:3:")
+    assert proc.returncode == 1 and "parallel mode" in proc.stderr
+    assert proc.stderr.startswith(f"{src}:2:3:")
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_worked_example_arithmetic(tmp_path, sim):
+    """Spec §3 worked examples: MW0 = 7, Q0.0 = 1; MW1..MW4 = -1, -32768, -3, -1.
+    Serial timing: 1 + 2 bit + 6*10 + ... (worked out in the comments)."""
+    src = tmp_path / "a.il"
+    # 7 byte instructions (70) + `= Q0.0` (1) + latch + END = 73
+    src.write_text("L 10\nL 3\n-I\nT MW0\nL 5\nL 3\n>I\n= Q0.0\n")
+    trace = tmp_path / "a.csv"
+    proc = bitbyte("run", src, "--scans", 2, "--sim", sim, "--trace", trace, "--watch", "MW0")
+    assert proc.returncode == 0, proc.stderr
+    assert trace.read_text().splitlines() == [
+        "scan,t_us,cycles,Q0.0,MW0", "0,0.73,73,1,7", "1,1.46,73,1,7"]
+    src.write_text("L 16#FFFF\nT MW1\nL 32767\nL 1\n+I\nT MW2\nL -7\nL 2\n/I\nT MW3\n"
+                   "L -7\nL 2\nMOD\nT MW4\n")       # 14 byte instructions: 140 + 2
+    proc = bitbyte("run", src, "--scans", 1, "--sim", sim, "--trace", trace,
+                   "--watch", "MW1,MW2,MW3,MW4")
+    assert proc.returncode == 0, proc.stderr
+    assert trace.read_text().splitlines()[1] == "0,1.42,142,-1,-32768,-3,-1"
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_divide_by_zero_is_reported(tmp_path, sim):
+    src = tmp_path / "d.il"
+    src.write_text("L 5\nL 0\n/I\nT MW0\n")
+    trace = tmp_path / "d.csv"
+    proc = bitbyte("run", src, "--scans", 1, "--sim", sim, "--trace", trace, "--watch", "MW0")
+    assert proc.returncode == 0, proc.stderr
+    assert trace.read_text().splitlines()[1].endswith(",0")
 
 
 def test_usage_errors_exit_2(tmp_path):

@@ -1,0 +1,264 @@
+/*
+ * interp.c — decode, dispatch and cost accounting of the byte processor.
+ *
+ * bb_classify() decodes an instruction word (docs/isa.md) into its cost class and
+ * validates its operand; exec() runs it, with the loads and transfers done here and the
+ * other procedures in arith.c, compare.c, timers.c, counters.c and exchange.c.
+ * bb_serial_step() wraps one execution in the serial dispatch protocol and pads it to
+ * exactly its table cost; bb_step() does the padding for parallel mode.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "bb_internal.h"
+#include "bus_map.h"
+#include "hal.h"
+
+/* ------------------------------------------------------------------- set-up */
+
+void bb_init(bb_state *s, const bb_costs *costs) {
+  memset(s, 0, sizeof *s);
+  s->costs = costs != NULL ? costs : bb_cost_table(NULL);
+  s->last_class = BB_CL_ILLEGAL;
+}
+
+void bb_load_pool(bb_state *s, const uint32_t *words, unsigned n) {
+  if (words == NULL) n = 0;
+  if (n > BB_POOL_WORDS) n = BB_POOL_WORDS;
+  if (n > 0) memcpy(s->pool, words, n * sizeof *words);
+  s->pool_len = n;
+}
+
+void bb_scan_start(bb_state *s) {
+  s->accu1 = 0;
+  s->accu2 = 0;
+}
+
+bb_state *bb_new(void) {
+  bb_state *s = malloc(sizeof *s);   /* the firmware's only allocation (ctypes side) */
+  if (s != NULL) bb_init(s, NULL);
+  return s;
+}
+
+void bb_free(bb_state *s) { free(s); }
+
+void bb_raise_flag(bb_state *s, uint32_t flag) {
+  s->flags |= flag;
+  hal_bus_write(BB_BUS_BYTE_FLAGS, s->flags);
+}
+
+/* ------------------------------------------------------------------- decode */
+
+static int word_operand_ok(unsigned area, unsigned n, int for_load) {
+  switch (area) {
+    case BB_AREA_IW: return for_load && n < BB_NUM_IW;
+    case BB_AREA_QW: return n < BB_NUM_QW;
+    case BB_AREA_MW: return n < BB_NUM_MW;
+    case BB_AREA_T:  return for_load && n < BB_NUM_TIMERS;
+    case BB_AREA_C:  return for_load && n < BB_NUM_COUNTERS;
+    default:         return 0;
+  }
+}
+
+int bb_classify(uint32_t instr) {
+  const unsigned op = bb_opcode(instr), area = bb_area(instr), n = bb_index(instr);
+  switch (op) {
+    case BB_OP_L_IMM:
+    case BB_OP_L_POOL:
+      return BB_CL_LOAD;
+    case BB_OP_L_WORD:
+      return word_operand_ok(area, n, 1) ? BB_CL_LOAD : BB_CL_ILLEGAL;
+    case BB_OP_T_WORD:
+      return word_operand_ok(area, n, 0) ? BB_CL_TRANSFER : BB_CL_ILLEGAL;
+    case BB_OP_ADD: case BB_OP_SUB:
+      return BB_CL_ARITH;
+    case BB_OP_MUL: case BB_OP_DIV: case BB_OP_MOD:
+      return BB_CL_MULDIV;
+    case BB_OP_SD: case BB_OP_SS: case BB_OP_SP: case BB_OP_SF: case BB_OP_RT:
+      return (area == BB_AREA_T && n < BB_NUM_TIMERS) ? BB_CL_TIMER : BB_CL_ILLEGAL;
+    case BB_OP_CU: case BB_OP_CD: case BB_OP_SC: case BB_OP_RC:
+      return (area == BB_AREA_C && n < BB_NUM_COUNTERS) ? BB_CL_COUNTER : BB_CL_ILLEGAL;
+    case BB_OP_READ: case BB_OP_WRITE:
+      return (area == BB_AREA_FB && n < BB_NUM_CHANNELS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
+    default:
+      break;
+  }
+  if ((op & ~7u) == BB_OP_CMP || (op & ~7u) == BB_OP_A_CMP || (op & ~7u) == BB_OP_O_CMP)
+    return (op & 7u) <= BB_CMP_LE ? BB_CL_COMPARE : BB_CL_ILLEGAL;
+  return BB_CL_ILLEGAL;
+}
+
+/* ------------------------------------------------------------------- load / transfer */
+
+/* L x: the new ACCU1 (the caller shifts ACCU1 into ACCU2). One bus read for IW / QW.
+ * Serial mode reads IW n from DISPATCH_IW, the port's copy of it taken in the
+ * instruction's first clock: an instruction samples its inputs in its first clock. */
+static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int serial) {
+  switch (area) {
+    case BB_AREA_IW:
+      return bb_int16(hal_bus_read(serial ? BB_BUS_DISPATCH_IW : (uint8_t)BB_BUS_IW(n)));
+    case BB_AREA_QW: return bb_int16(hal_bus_read((uint8_t)BB_BUS_QW(n)));  /* no copy */
+    case BB_AREA_MW: return s->mw[n];
+    case BB_AREA_T:  return s->timer[n].elapsed;
+    case BB_AREA_C:  return s->counter[n].value;
+    default:         return 0;   /* excluded by bb_classify() */
+  }
+}
+
+/* T w: the low 16 bits of ACCU1. One bus write for QW. */
+static void transfer_word(bb_state *s, unsigned area, unsigned n) {
+  if (area == BB_AREA_QW)
+    hal_bus_write((uint8_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
+  else
+    s->mw[n] = (int16_t)bb_int16((uint32_t)s->accu1);
+}
+
+/* ------------------------------------------------------------------- execute */
+
+/* One instruction. *rlo is F_B / the RLO in and out. serial: the instruction was
+ * dispatched, so `now` and IW come from the port's dispatch snapshot (DISPATCH_MS,
+ * DISPATCH_IW, both taken in the instruction's first clock); otherwise a timer reads
+ * TIME_MS as its first access. Returns the cost class. */
+static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
+  const unsigned op = bb_opcode(instr), area = bb_area(instr), n = bb_index(instr);
+  int cls = bb_classify(instr);
+  int r = *rlo != 0;
+  s->rlo_written = 0;
+
+  switch (cls) {
+    case BB_CL_LOAD: {
+      int32_t v;
+      if (op == BB_OP_L_IMM) {
+        v = bb_imm24(instr);
+      } else if (op == BB_OP_L_POOL) {
+        uint32_t i = instr & 0xFFFFFFu;
+        if (i >= s->pool_len) {            /* a pool the program did not bring */
+          cls = BB_CL_ILLEGAL;
+          bb_raise_flag(s, BB_FLAG_ILLEGAL);
+          break;
+        }
+        v = bb_s32(s->pool[i]);
+      } else {
+        v = load_word(s, area, n, serial);
+      }
+      s->accu2 = s->accu1;
+      s->accu1 = v;
+      break;
+    }
+    case BB_CL_TRANSFER:
+      transfer_word(s, area, n);
+      break;
+    case BB_CL_ARITH:
+    case BB_CL_MULDIV:
+      bb_proc_arith(s, op);
+      break;
+    case BB_CL_COMPARE:
+      r = bb_proc_compare(s, op, r);
+      s->rlo_written = 1;
+      break;
+    case BB_CL_TIMER: {
+      uint32_t now = 0;
+      if (op != BB_OP_RT)
+        now = hal_bus_read(serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
+      bb_proc_timer(s, op, n, r, now);
+      break;
+    }
+    case BB_CL_COUNTER:
+      bb_proc_counter(s, op, n, r);
+      break;
+    case BB_CL_BINARY:
+      if (op == BB_OP_READ) {
+        r = bb_proc_read(n);
+        s->rlo_written = 1;
+      } else {
+        bb_proc_write(n, r);
+      }
+      break;
+    default:
+      cls = BB_CL_ILLEGAL;
+      bb_raise_flag(s, BB_FLAG_ILLEGAL);
+      break;
+  }
+  *rlo = r;
+  s->rlo = r;
+  s->executed++;
+  s->last_instr = instr;
+  s->last_class = cls;
+  return cls;
+}
+
+int bb_exec(bb_state *s, uint32_t instr, int *rlo) {
+  int local = s->rlo;
+  int *io = rlo != NULL ? rlo : &local;
+  int cls = exec(s, instr, io, 0);
+  return cls;
+}
+
+/* Cost accounting. The table cost covers everything the instruction does on the bus;
+ * whatever it leaves is spent with hal_spend(). Bus accesses that stall can make the
+ * instruction longer than its cost: never spend a negative amount, count an overrun. */
+int bb_step(bb_state *s, uint32_t instr, int *rlo) {
+  const uint64_t t0 = hal_now();
+  const int cls = bb_exec(s, instr, rlo);
+  const uint64_t cost = bb_cost(s, cls);
+  const uint64_t used = hal_now() - t0;
+  if (used < cost) hal_spend((uint32_t)(cost - used));
+  const uint64_t taken = hal_now() - t0;
+  if (taken > cost) s->overruns++;
+  s->last_clocks = (uint32_t)taken;
+  return (int)taken;
+}
+
+int bb_serial_step(bb_state *s) {
+  hal_wait_dispatch();
+  const uint64_t t0 = hal_now();                              /* the dispatch clock */
+  const uint32_t instr = hal_bus_read(BB_BUS_DISPATCH_INSTR); /* t0 */
+  const uint32_t ctx = hal_bus_read(BB_BUS_DISPATCH_CTX);     /* t0 + 1 */
+  const uint32_t scan = ctx >> BB_CTX_SCAN_SHIFT;
+  if (!s->scan_seen || scan != s->last_scan) {                /* a new scan: ACCUs := 0 */
+    bb_scan_start(s);
+    s->scan_seen = 1;
+    s->last_scan = scan;
+  }
+  int rlo = (ctx & BB_CTX_RLO) != 0;
+  const int cls = exec(s, instr, &rlo, 1);
+  const uint64_t cost = bb_cost(s, cls);
+  const uint64_t used = hal_now() - t0;
+  if (used + 1 < cost) hal_spend((uint32_t)(cost - used - 1)); /* leave 1 for DONE */
+  hal_bus_write(BB_BUS_DONE, (rlo ? BB_DONE_RLO : 0u) | (s->rlo_written ? BB_DONE_RLO_WE : 0u));
+  const uint64_t taken = hal_now() - t0;
+  if (taken > cost) s->overruns++;
+  s->last_clocks = (uint32_t)taken;
+  return (int)taken;
+}
+
+/* ------------------------------------------------------------------- accessors */
+
+int16_t bb_mw(const bb_state *s, unsigned n) { return n < BB_NUM_MW ? s->mw[n] : 0; }
+
+int32_t bb_timer_elapsed(const bb_state *s, unsigned n) {
+  return n < BB_NUM_TIMERS ? s->timer[n].elapsed : 0;
+}
+
+int bb_timer_status(const bb_state *s, unsigned n) {
+  return n < BB_NUM_TIMERS ? s->timer[n].status : 0;
+}
+
+int bb_timer_running(const bb_state *s, unsigned n) {
+  return n < BB_NUM_TIMERS ? s->timer[n].running : 0;
+}
+
+int bb_counter_value(const bb_state *s, unsigned n) {
+  return n < BB_NUM_COUNTERS ? s->counter[n].value : 0;
+}
+
+int bb_counter_status(const bb_state *s, unsigned n) {
+  return n < BB_NUM_COUNTERS ? s->counter[n].value > 0 : 0;
+}
+
+uint32_t bb_flags(const bb_state *s) { return s->flags; }
+int32_t bb_accu1(const bb_state *s) { return s->accu1; }
+int32_t bb_accu2(const bb_state *s) { return s->accu2; }
+uint32_t bb_overruns(const bb_state *s) { return s->overruns; }
+uint64_t bb_executed(const bb_state *s) { return s->executed; }
+int bb_rlo(const bb_state *s) { return s->rlo; }

@@ -1,0 +1,101 @@
+/* test_costs.c — the cost tables, bb_classify(), set-up and the accessors. */
+#include <string.h>
+
+#include "tt.h"
+
+static void test_tables(void) {
+  const bb_costs *p = bb_cost_table("paper");
+  CHECK(p != NULL);
+  CHECK(bb_cost_table(NULL) == p);       /* the default */
+  CHECK(strcmp(p->name, "paper") == 0);
+  for (int c = BB_CL_LOAD; c <= BB_CL_COUNTER; c++) CHECK_EQ(p->clocks[c], 10);
+  CHECK_EQ(p->clocks[BB_CL_BINARY], 1);
+  CHECK_EQ(p->clocks[BB_CL_ILLEGAL], 1);
+  const bb_costs *q = bb_cost_table("c320");
+  CHECK(q != NULL);
+  CHECK(strcmp(q->name, "c320") == 0);
+  for (int c = BB_CL_LOAD; c <= BB_CL_COUNTER; c++) CHECK_EQ(q->clocks[c], 57);
+  CHECK_EQ(q->clocks[BB_CL_BINARY], 6);
+  CHECK_EQ(q->clocks[BB_CL_ILLEGAL], 1);
+  CHECK(bb_cost_table("s7") == NULL);
+  CHECK(bb_cost_table("") == NULL);
+  /* a serial word instruction must fit its protocol: 3 reads + 1 access + DONE */
+  for (int c = BB_CL_LOAD; c <= BB_CL_COUNTER; c++) CHECK(q->clocks[c] >= 5);
+
+  setup();
+  CHECK(S.costs == p);
+  CHECK_EQ(bb_cost(&S, BB_CL_TIMER), 10);
+  CHECK_EQ(bb_cost(&S, -1), 0);
+  CHECK_EQ(bb_cost(&S, BB_NUM_CLASSES), 0);
+  CHECK_EQ(bb_set_costs(&S, "nope"), -1);
+  CHECK(S.costs == p);
+  CHECK_EQ(bb_set_costs(&S, "c320"), 0);
+  CHECK_EQ(bb_cost(&S, BB_CL_COMPARE), 57);
+  bb_init(&S, q);
+  CHECK(S.costs == q);
+  CHECK(strcmp(bb_class_name(BB_CL_TIMER), "timer") == 0);
+  CHECK(strcmp(bb_class_name(99), "?") == 0);
+}
+
+static void test_classify(void) {
+  CHECK_EQ(bb_classify(0x80FFFFFFu), BB_CL_LOAD);
+  CHECK_EQ(bb_classify(0x81000000u), BB_CL_LOAD);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_L_WORD, BB_AREA_IW, 15)), BB_CL_LOAD);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_L_WORD, BB_AREA_FB, 0)), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_T_WORD, BB_AREA_MW, 255)), BB_CL_TRANSFER);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_T_WORD, BB_AREA_C, 0)), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(0x88000000u), BB_CL_ARITH);
+  CHECK_EQ(bb_classify(0x89000000u), BB_CL_ARITH);
+  CHECK_EQ(bb_classify(0x8A000000u), BB_CL_MULDIV);
+  CHECK_EQ(bb_classify(0x8C000000u), BB_CL_MULDIV);
+  CHECK_EQ(bb_classify(0x8D000000u), BB_CL_ILLEGAL);
+  for (unsigned c = 0; c < 8; c++) {
+    int want = c < 6 ? BB_CL_COMPARE : BB_CL_ILLEGAL;
+    CHECK_EQ(bb_classify((0x90u + c) << 24), want);
+    CHECK_EQ(bb_classify((0x98u + c) << 24), want);
+    CHECK_EQ(bb_classify((0xA0u + c) << 24), want);
+  }
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RT, BB_AREA_T, 0)), BB_CL_TIMER);
+  CHECK_EQ(bb_classify(BB_INSTR(0xB5, BB_AREA_T, 0)), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RC, BB_AREA_C, 0)), BB_CL_COUNTER);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_READ, BB_AREA_FB, 7)), BB_CL_BINARY);
+  CHECK_EQ(bb_classify(BB_INSTR(0xC2, BB_AREA_FB, 0)), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(0x00000000u), BB_CL_ILLEGAL);
+}
+
+static void test_new_free_accessors(void) {
+  bb_state *s = bb_new();
+  CHECK(s != NULL);
+  if (s == NULL) return;
+  CHECK(s->costs == bb_cost_table(NULL));
+  CHECK_EQ(bb_accu1(s), 0);
+  CHECK_EQ(bb_accu2(s), 0);
+  CHECK_EQ(bb_flags(s), 0);
+  CHECK_EQ(bb_overruns(s), 0);
+  CHECK_EQ(bb_executed(s), 0);
+  for (unsigned n = 0; n < BB_NUM_MW; n++) CHECK_EQ(bb_mw(s, n), 0);
+  for (unsigned n = 0; n < BB_NUM_TIMERS; n++) {
+    CHECK_EQ(bb_timer_status(s, n), 0);
+    CHECK_EQ(bb_timer_elapsed(s, n), 0);
+  }
+  for (unsigned n = 0; n < BB_NUM_COUNTERS; n++) CHECK_EQ(bb_counter_value(s, n), 0);
+  fh_reset();
+  int rlo = 1;
+  bb_exec(s, 0x80000007u, &rlo);
+  bb_exec(s, 0x80000009u, NULL);           /* NULL: the state's own F_B */
+  CHECK_EQ(bb_accu1(s), 9);
+  CHECK_EQ(bb_accu2(s), 7);
+  CHECK_EQ(bb_rlo(s), 1);
+  CHECK_EQ(bb_executed(s), 2);
+  CHECK_EQ(bb_timer_elapsed(s, 1000), 0);
+  CHECK_EQ(bb_counter_status(s, 1000), 0);
+  CHECK_EQ(bb_timer_running(s, 1000), 0);
+  bb_free(s);
+  bb_free(NULL);
+}
+
+void suite_costs(void) {
+  RUN(test_tables);
+  RUN(test_classify);
+  RUN(test_new_free_accessors);
+}
