@@ -167,6 +167,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.rst_ni.value = 0
     dut.run_i.value = 0
     dut.in_pins_i.value = 0
+    dut.in_words_i.value = 0               # nothing of the previous job carries over
     dut.watchdog_limit_i.value = job.watchdog
     for addr, word in enumerate(job.prog):
         await FallingEdge(dut.clk_i)

@@ -136,3 +136,109 @@ def random_watch(seed: int) -> list[str]:
     rng = random.Random(seed ^ 0xAA)
     return [_bit(rng, rng.choice(["M", "I", "IR", "IF", "PI"])).replace(" ", "")
             for _ in range(rng.randrange(0, 5))]
+
+
+# ------------------------------------------------------------------ mixed programs
+# Word instructions for serial mode: loads, transfers, arithmetic, compares, timers and
+# counters, between the bit blocks above. Run at 0.1 MHz (100 clocks per ms) a scan
+# lasts a few ms, so timers with presets of 0..25 ms start, run out and stop.
+
+WORD_SOURCES = ["MW", "MW", "IW", "QW", "T", "C"]
+ARITH = ["+I", "-I", "*I", "/I", "MOD"]
+COMPARES = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
+TIMERS = ["SD", "SS", "SP", "SF"]
+
+
+class MixedGen(Gen):
+    def load(self) -> str:
+        rng = self.rng
+        r = rng.random()
+        if r < 0.35:
+            value = rng.choice([0, 1, 2, 3, 7, -7, 100, -1, 32767, -32768,
+                                rng.randrange(-300, 300)])
+            return f"  L {value}"
+        if r < 0.42:
+            return f"  L 16#{rng.randrange(0x10000):X}"
+        if r < 0.5:
+            return f"  L T#{rng.randrange(0, 26)}ms"
+        area = rng.choice(WORD_SOURCES)
+        n = rng.randrange(4 if area in ("IW", "QW") else 8)
+        return f"  L {area}{n}"
+
+    def word_block(self) -> None:
+        rng = self.rng
+        r = rng.random()
+        if r < 0.3:                      # arithmetic into a word
+            self.lines += [self.load(), self.load(), f"  {rng.choice(ARITH)}",
+                           f"  T {rng.choice(['MW', 'MW', 'QW'])}{rng.randrange(4)}"]
+        elif r < 0.5:                    # compare into the RLO, combined or not
+            if rng.random() < 0.5:
+                self.lines += [self.load(), self.load(), f"  {rng.choice(COMPARES)}"]
+            else:
+                self.chain(0)
+                self.lines += [self.load(), self.load(),
+                               f"  {rng.choice('AO')} {rng.choice(COMPARES)}"]
+            self.lines.append(f"  = {self.operand(WRITE_AREAS)}")
+        elif r < 0.75:                   # a timer, then its status
+            t = rng.randrange(8)
+            self.chain(0)
+            self.lines += [self.load() if rng.random() < 0.3 else
+                           f"  L T#{rng.randrange(0, 26)}ms", f"  {rng.choice(TIMERS)} T{t}"]
+            if rng.random() < 0.15:
+                self.chain(0)
+                self.lines.append(f"  R T{t}")
+            self.lines += [f"  LD T{t}", f"  = {self.operand(WRITE_AREAS)}"]
+        else:                            # a counter
+            c = rng.randrange(8)
+            self.chain(0)
+            kind = rng.random()
+            if kind < 0.6:
+                self.lines.append(f"  {rng.choice(['CU', 'CD'])} C{c}")
+            elif kind < 0.8:
+                self.lines += [self.load(), f"  S C{c}"]
+            else:
+                self.lines.append(f"  R C{c}")
+            self.lines += [f"  A C{c}", f"  = {self.operand(WRITE_AREAS)}"]
+            if rng.random() < 0.3:
+                self.lines += [f"  L C{c}", f"  T MW{rng.randrange(8)}"]
+
+    def block(self, index: int, nblocks: int) -> None:
+        if self.rng.random() < 0.45:
+            for target, label in [p for p in self.pending if p[0] == index]:
+                self.lines.append(f"{label}:")
+                self.pending.remove((target, label))
+            self.word_block()
+        else:
+            super().block(index, nblocks)
+
+
+def random_mixed_program(seed: int) -> str:
+    return MixedGen(random.Random(seed)).program()
+
+
+def random_mixed_stimulus(seed: int, scans: int, us_per_scan: float) -> str:
+    """Input bits and the input words IW0..IW3, by scan or by time."""
+    rng = random.Random(seed ^ 0x5EED)
+    cols = [f"I{b}.{n}" for b in range(IN_BYTES) for n in range(8)] + \
+        [f"IW{n}" for n in range(4)]
+
+    def row():
+        return [str(rng.randrange(2)) for _ in range(8 * IN_BYTES)] + \
+            [str(rng.choice([0, 1, -1, 5, 100, -32768, 32767, rng.randrange(-500, 500)]))
+             for _ in range(4)]
+    if rng.random() < 0.5:
+        rows = ["scan," + ",".join(cols)]
+        for s in sorted(rng.sample(range(scans), rng.randrange(1, scans))):
+            rows.append(f"{s}," + ",".join(row()))
+    else:
+        rows = ["t_us," + ",".join(cols)]
+        for t in sorted(rng.randrange(0, int(scans * us_per_scan)) for _ in range(25)):
+            rows.append(f"{t}," + ",".join(row()))
+    return "\n".join(rows) + "\n"
+
+
+def random_mixed_watch(seed: int) -> list[str]:
+    rng = random.Random(seed ^ 0xAB)
+    pick = [f"MW{n}" for n in range(8)] + [f"T{n}" for n in range(8)] + \
+        [f"C{n}" for n in range(8)] + ["QW0", "IW1", "M0.1"]
+    return rng.sample(pick, rng.randrange(1, 6))

@@ -1,6 +1,8 @@
-"""Random bit-only programs: the hardware's trace equals the reference interpreter's,
-scan by scan (every column, t_us and cycles included), on the Verilator C++ harness
+"""Random programs: the hardware's trace equals the reference interpreter's, scan by
+scan (every column, t_us and cycles included), on the Verilator C++ harness
 (`bitbyte run --sim verilator`) and through cocotb on Icarus and on Verilator.
+Two families: bit-only programs, and mixed programs in serial mode (word
+instructions, timers and counters executed by the byte processor's firmware).
 
 The seed is printed in the pytest header; BITBYTE_SEED=<n> reproduces a run, and a
 failing program is written to the test's tmp directory with its seed.
@@ -17,32 +19,58 @@ from bitbyte.refsim import refsim_trace
 from bitbyte.sim_cocotb import run_jobs
 from bitbyte.stimulus import load_stimulus
 from bitbyte.trace import read_trace_rows, trace_text
-from randprog import random_program, random_stimulus, random_watch
+from randprog import (random_mixed_program, random_mixed_stimulus, random_mixed_watch,
+                      random_program, random_stimulus, random_watch)
 
 PROGRAMS = int(os.environ.get("BITBYTE_RANDOM_PROGRAMS", "200"))
+MIXED_PROGRAMS = int(os.environ.get("BITBYTE_MIXED_PROGRAMS", "200"))
 SCANS = 12
-WATCHDOG = 600
 BASE_SEED = int(os.environ["BITBYTE_SEED"])
+
+
+class Family:
+    """How one family of random programs is made and run."""
+
+    def __init__(self, name, program, stimulus, watch, clock_mhz, watchdog):
+        self.name, self.program, self.stimulus, self.watch = name, program, stimulus, watch
+        self.clock_mhz, self.watchdog = clock_mhz, watchdog
+
+
+BIT_ONLY = Family("bit", random_program, lambda seed: random_stimulus(seed, SCANS),
+                  random_watch, "100", 600)
+# 0.1 MHz: 100 clocks per ms, so the timers' 0..25 ms presets run out within a run
+MIXED = Family("mixed", random_mixed_program,
+               lambda seed: random_mixed_stimulus(seed, SCANS, 3000), random_mixed_watch,
+               "0.1", 20_000)
 
 
 class Case:
     """One random program written to disk with its stimulus and expected trace."""
 
-    def __init__(self, tmp: Path, index: int):
+    def __init__(self, tmp: Path, index: int, family: Family = BIT_ONLY):
         self.seed = BASE_SEED * 1000 + index
-        self.il = tmp / f"p{self.seed}.il"
-        self.stim = tmp / f"p{self.seed}.stim.csv"
-        self.il.write_text(random_program(self.seed))
-        self.stim.write_text(random_stimulus(self.seed, SCANS))
-        self.watch = ",".join(random_watch(self.seed))
+        self.family = family
+        self.il = tmp / f"{family.name}{self.seed}.il"
+        self.stim = tmp / f"{family.name}{self.seed}.stim.csv"
+        self.il.write_text(family.program(self.seed))
+        self.stim.write_text(family.stimulus(self.seed))
+        self.watch = ",".join(family.watch(self.seed))
         self.program, self.columns, self.job, self.f = cli.prepare_run(
             str(self.il), stimulus=str(self.stim), watch=self.watch, scans=SCANS,
-            watchdog=WATCHDOG)
+            watchdog=family.watchdog, clock_mhz=family.clock_mhz)
         stim = load_stimulus(str(self.stim), self.program.symbols)
+        stim.clock_mhz = self.f
         _, records, self.fault = refsim_trace(
-            self.program, stimulus=stim, watch=self.watch.split(",") if self.watch else [],
-            scans=SCANS, watchdog=WATCHDOG)
+            self.program, config=cli.Config(clock_mhz=float(self.f)), stimulus=stim,
+            watch=self.watch.split(",") if self.watch else [],
+            scans=SCANS, watchdog=family.watchdog)
         self.expected = trace_text(self.columns, records, self.f)
+
+    def argv(self, trace: Path) -> list[str]:
+        argv = ["run", str(self.il), "--sim", "verilator", "--stimulus", str(self.stim),
+                "--scans", str(SCANS), "--watchdog", str(self.family.watchdog),
+                "--clock-mhz", self.family.clock_mhz, "--trace", str(trace)]
+        return argv + (["--watch", self.watch] if self.watch else [])
 
     def check(self, records, fault, how: str):
         got = trace_text(self.columns, records, self.f)
@@ -55,6 +83,13 @@ def cases(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("random")
     print(f"random programs: BITBYTE_SEED={BASE_SEED}, {PROGRAMS} programs")
     return [Case(tmp, i) for i in range(PROGRAMS)]
+
+
+@pytest.fixture(scope="module")
+def mixed_cases(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("mixed")
+    print(f"mixed programs: BITBYTE_SEED={BASE_SEED}, {MIXED_PROGRAMS} programs")
+    return [Case(tmp, i, MIXED) for i in range(MIXED_PROGRAMS)]
 
 
 def test_generator_covers_the_instruction_set(cases):
@@ -72,11 +107,7 @@ def test_verilator_harness(cases, tmp_path, capsys):
     """`bitbyte run --sim verilator` (the C++ harness) against the reference."""
     for case in cases:
         trace = tmp_path / f"{case.seed}.csv"
-        argv = ["run", str(case.il), "--sim", "verilator", "--stimulus", str(case.stim),
-                "--scans", str(SCANS), "--watchdog", str(WATCHDOG), "--trace", str(trace)]
-        if case.watch:
-            argv += ["--watch", case.watch]
-        rc = cli.main(argv)
+        rc = cli.main(case.argv(trace))
         assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
         case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
                    "verilator harness")
@@ -89,3 +120,33 @@ def test_cocotb(cases, sim):
     for case, result in zip(cases, results):
         case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
                    f"cocotb {sim}")
+
+
+def test_mixed_generator_covers_the_byte_instructions(mixed_cases):
+    mnemonics = {i.mnemonic for c in mixed_cases for i in c.program.instrs}
+    assert {"L", "T", "+I", "-I", "*I", "/I", "MOD", "==I", ">=I", "SD", "SS", "SP",
+            "SF", "CU", "CD", "S", "R"} <= mnemonics
+    assert any(m.startswith("A ") for m in mnemonics) and \
+        any(m.startswith("O ") for m in mnemonics)
+    # the timers do run out within the runs: some timer status is 1 somewhere
+    assert any(",1" in c.expected and "T" in c.watch for c in mixed_cases)
+
+
+def test_mixed_verilator_harness(mixed_cases, tmp_path, capsys):
+    """Serial mode, `bitbyte run --sim verilator`, against the reference."""
+    for case in mixed_cases:
+        trace = tmp_path / f"{case.seed}.csv"
+        rc = cli.main(case.argv(trace))
+        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
+        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
+                   "verilator harness, serial mode")
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_mixed_cocotb(mixed_cases, sim):
+    """Serial mode through cocotb with the firmware in a bridged thread."""
+    count = int(os.environ.get("BITBYTE_MIXED_COCOTB", "40"))
+    results = run_jobs([c.job for c in mixed_cases[:count]], sim)
+    for case, result in zip(mixed_cases, results):
+        case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
+                   f"cocotb {sim}, serial mode")
