@@ -20,9 +20,9 @@ export PYTHONDONTWRITEBYTECODE = 1
 
 RTL         := $(wildcard rtl/*.v)
 HARNESS     := sim/build/Vbitbyte_cpu
-EXAMPLE     ?= examples/interlock.il
-EXAMPLE_STIM?= examples/interlock.stim.csv
-WAVES       ?= sim/waves/interlock.fst
+EXAMPLE     ?= examples/star_delta.il
+EXAMPLE_STIM?= examples/star_delta.stim.csv
+WAVES       ?= sim/waves/star_delta.fst
 
 .PHONY: help venv deps lint test sim harness clean FORCE
 
@@ -58,10 +58,12 @@ $(HARNESS): $(VENV_STAMP) FORCE
 
 FORCE:
 
-sim: $(HARNESS)       ## run the example on Verilator, write a waveform, print the summary
+sim: $(HARNESS)       ## run the star-delta example on Verilator, write a waveform, print the summary
 	@mkdir -p $(dir $(WAVES))
-	bitbyte run $(EXAMPLE) --stimulus $(EXAMPLE_STIM) --scans 26 --sim verilator \
-	  --trace sim/waves/interlock.trace.csv --waves $(WAVES)
+	bitbyte asm $(EXAMPLE) -o sim/waves >/dev/null
+	bitbyte run $(EXAMPLE) --stimulus $(EXAMPLE_STIM) --clock-mhz 1 --until-us 260000 \
+	  --sim verilator --watch Run,SpeedOK,StartDelay,StarFault,Speed \
+	  --trace $(WAVES:.fst=.trace.csv) --waves $(WAVES)
 
 test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
 	@$(MAKE) --no-print-directory lint
