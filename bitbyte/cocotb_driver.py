@@ -201,39 +201,55 @@ async def run_job(dut, job: RunJob) -> dict:
 
 
 async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
-    """Clock by clock from clock 0: inputs, finished scans, the stop condition."""
+    """From clock 0 on: inputs, finished scans, the stop condition. The coroutine
+    wakes only at the clocks where something happens (a scan ends, the watchdog
+    fires, a time-keyed input changes), always at that clock's falling edge."""
     readers = [_reader(dut, kind, index, firmware) for _, kind, index in job.cols]
     stim = list(job.stim)
     next_stim = 0
     rows, fault = [], False
-    clock, scan = 0, 0
+    scan = 0
     pins = 0
+    clock0 = firmware.clock0_ns
+
+    def clock_now() -> int:
+        return int((get_sim_time("ns") - clock0) // PERIOD_NS)
+
+    def apply_due(key: int) -> None:
+        nonlocal next_stim, pins
+        while next_stim < len(stim) and stim[next_stim][0] <= key:
+            _, pins, words = stim[next_stim]
+            next_stim += 1
+            if words is not None:
+                dut.in_words_i.value = sum((w & 0xFFFF) << (16 * i) for i, w in enumerate(words))
+        dut.in_pins_i.value = pins
+
+    apply_due(0)                               # clock 0: the latch of scan 0
     while True:
+        # sleep until a scan ends, the watchdog fires or the next time-keyed input
+        wake = [RisingEdge(dut.scan_done_o), RisingEdge(dut.fault_o)]
+        if job.stim_kind == "clock" and next_stim < len(stim):
+            at = clock0 + stim[next_stim][0] * PERIOD_NS - get_sim_time("ns")
+            wake.append(Timer(at, unit="ns"))     # at > 0: due inputs are applied
+        fired = await First(*wake)
+        if isinstance(fired, RisingEdge):
+            await FallingEdge(dut.clk_i)       # into the clock after the edge
+        clock = clock_now()
         if int(dut.fault_o.value):
             fault = True
             break
-        if int(dut.scan_done_o.value):
+        if isinstance(fired, RisingEdge) and int(dut.scan_done_o.value):
             rows.append((scan, clock, int(dut.scan_cycles_o.value), [r() for r in readers]))
             scan += 1
             if job.scans is not None and scan >= job.scans:
                 break
             if job.until_clock is not None and clock >= job.until_clock:
                 break
-        # Inputs for this clock: scan rows switch at the latch of their scan (the
-        # clock right after scan_done / clock 0), time rows at their clock.
-        key = scan if job.stim_kind == "scan" else clock
-        latch_clock = clock == 0 or int(dut.scan_done_o.value)
-        if job.stim_kind == "clock" or (job.stim_kind == "scan" and latch_clock):
-            while next_stim < len(stim) and stim[next_stim][0] <= key:
-                _, pins, words = stim[next_stim]
-                next_stim += 1
-                if words is not None:
-                    dut.in_words_i.value = sum((w & 0xFFFF) << (16 * i)
-                                               for i, w in enumerate(words))
-            dut.in_pins_i.value = pins
-        await FallingEdge(dut.clk_i)
-        clock += 1
-    return {"rows": rows, "fault": fault, "clocks": clock}
+            if job.stim_kind == "scan":
+                apply_due(scan)                # this clock latches scan `scan`
+        if job.stim_kind == "clock":
+            apply_due(clock)
+    return {"rows": rows, "fault": fault, "clocks": clock_now()}
 
 
 @cocotb.test()
