@@ -186,7 +186,7 @@ def _run_cocotb(job, columns, args, f):
     except (SystemExit, RuntimeError, OSError) as e:
         raise SimError(f"cocotb on {args.sim} failed: {e}") from None
     records = _records_from_rows(columns, result.rows)
-    return records, result.fault, summary_text(records, f, args.trace)
+    return records, result.fault, summary_text(records, f, args.trace, result.stalls)
 
 
 class SimError(Exception):

@@ -249,7 +249,8 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
                 apply_due(scan)                # this clock latches scan `scan`
         if job.stim_kind == "clock":
             apply_due(clock)
-    return {"rows": rows, "fault": fault, "clocks": clock_now()}
+    return {"rows": rows, "fault": fault, "clocks": clock_now(),
+            "stalls": [int(dut.stalls_bit_o.value), int(dut.stalls_byte_o.value)]}
 
 
 @cocotb.test()

@@ -77,6 +77,7 @@ class RunResult:
     rows: list[tuple[int, int, int, list[int]]]
     fault: bool = False
     clocks: int = 0
+    stalls: tuple[int, int] = (0, 0)     # (bit side, byte side) clocks spent waiting
 
     def to_json(self) -> str:
         return json.dumps(asdict(self))

@@ -92,4 +92,4 @@ def run_jobs(jobs, sim: str = "icarus"):
                            quiet=True)
         data = json.loads(results_path.read_text())
     return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
-                      clocks=d["clocks"]) for d in data]
+                      clocks=d["clocks"], stalls=tuple(d["stalls"])) for d in data]
