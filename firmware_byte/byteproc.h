@@ -5,11 +5,14 @@
  * instructions") with the semantics of the spec, section 3, and reaches the FPGA part
  * only through hal.h. Nothing here allocates memory except bb_new().
  *
- * Two ways to run an instruction:
+ * Three ways to run instructions:
  *  - bb_serial_step(): serial mode, the whole dispatch protocol (wait for NEXT, read
  *    the instruction and its context, execute, pad to the table cost, write DONE);
  *  - bb_exec() / bb_step(): the bare semantics, for parallel mode, where the byte
- *    processor runs its own program and keeps F_B itself.
+ *    processor runs its own program and keeps F_B itself;
+ *  - bb_load_program() / bb_run_scan(): parallel mode's byte program (the byte part of
+ *    a partitioned program, paper Fig. 11-13), one scan at a time, with the byte-side
+ *    jumps JU_B / JC_B / JCN_B on F_B and END_B.
  */
 #ifndef BB_BYTEPROC_H
 #define BB_BYTEPROC_H
@@ -28,6 +31,8 @@ extern "C" {
 #define BB_NUM_QW        16u
 #define BB_NUM_CHANNELS  8u      /* FBY/FBI k: the bus decodes 0..7 */
 #define BB_POOL_WORDS    1024u   /* constant pool (opcode 0x81) */
+#define BB_PROG_WORDS    4096u   /* byte program (parallel mode), bb_load_program() */
+#define BB_MAX_STEPS_DEFAULT 1000000u  /* bb_state.max_steps after bb_init() */
 #define BB_COUNTER_MAX   32767
 
 /* Opcodes (docs/isa.md, "Byte instructions"). */
@@ -54,6 +59,11 @@ extern "C" {
 #define BB_OP_RC         0xBBu
 #define BB_OP_READ       0xC0u
 #define BB_OP_WRITE      0xC1u
+/* Byte program only (parallel mode): target = byte-program address, bits 15..0. */
+#define BB_OP_JU_B       0xC8u   /* jump */
+#define BB_OP_JC_B       0xC9u   /* jump if F_B = 1 */
+#define BB_OP_JCN_B      0xCAu   /* jump if F_B = 0 */
+#define BB_OP_END_B      0xCFu   /* end of the byte part of one scan */
 
 /* Compare codes c. */
 #define BB_CMP_EQ 0
@@ -75,10 +85,13 @@ extern "C" {
 #define BB_INSTR(op, area, index) \
   (((uint32_t)(op) << 24) | (((uint32_t)(area) & 0xFu) << 12) | ((uint32_t)(index) & 0xFFFu))
 #define BB_INSTR_IMM(op, imm24) (((uint32_t)(op) << 24) | ((uint32_t)(imm24) & 0xFFFFFFu))
+#define BB_INSTR_JUMP(op, target) \
+  (((uint32_t)(op) << 24) | ((uint32_t)(target) & 0xFFFFu))
 
 /* Sticky flags (bb_flags(), also mirrored to the bus register BYTE_FLAGS). */
 #define BB_FLAG_ARITH    0x1u    /* /I or MOD by 0 */
 #define BB_FLAG_ILLEGAL  0x2u    /* unknown opcode or operand */
+#define BB_FLAG_RUNAWAY  0x4u    /* bb_run_scan() hit max_steps before END_B */
 
 /* Cost classes: every instruction falls in one; a cost table gives each its clocks. */
 typedef enum {
@@ -89,8 +102,9 @@ typedef enum {
   BB_CL_COMPARE,    /* ==I ... , A cmp, O cmp */
   BB_CL_TIMER,      /* SD SS SP SF, R T n */
   BB_CL_COUNTER,    /* CU CD, S C n, R C n */
-  BB_CL_BINARY,     /* READ FBY k, WRITE FBI k */
+  BB_CL_BINARY,     /* READ FBY k, WRITE FBI k, JU_B JC_B JCN_B (taken or not) */
   BB_CL_ILLEGAL,    /* anything else */
+  BB_CL_END,        /* END_B: 0 clocks in every table (the synchronisation point) */
   BB_NUM_CLASSES
 } bb_class;
 
@@ -135,12 +149,20 @@ typedef struct bb_state {
   uint32_t   last_instr;     /* the last instruction, its class and its clocks */
   int        last_class;
   uint32_t   last_clocks;
+  /* parallel mode: the byte program (bb_load_program, bb_run_scan) */
+  uint32_t   prog[BB_PROG_WORDS];
+  uint32_t   prog_len;
+  uint32_t   pc;             /* address of the next instruction of the byte program */
+  int        jumped;         /* the last instruction was a taken jump */
+  uint32_t   max_steps;      /* instructions a bb_run_scan may execute, END_B included */
+  uint32_t   scan_steps;     /* instructions the last bb_run_scan executed */
 } bb_state;
 
 /* --- set-up ------------------------------------------------------------------------ */
 
-/* Reset everything to the spec's state after reset (all 0) and select a cost table
- * (NULL: the default, "paper"). No bus access. */
+/* Reset everything to the spec's state after reset (all 0, no byte program,
+ * max_steps = BB_MAX_STEPS_DEFAULT) and select a cost table (NULL: the default,
+ * "paper"). No bus access. */
 void bb_init(bb_state *s, const bb_costs *costs);
 
 /* Copy the constant pool (PROG.pool.hex); at most BB_POOL_WORDS words are kept. */
@@ -148,6 +170,11 @@ void bb_load_pool(bb_state *s, const uint32_t *words, unsigned n);
 
 /* Start of a scan: ACCU1 := ACCU2 := 0 (parallel mode; serial mode does it itself). */
 void bb_scan_start(bb_state *s);
+
+/* Copy the byte program (parallel mode: the byte part of a partitioned program),
+ * address 0 first. Returns 0, or -1 (nothing changed) if n > BB_PROG_WORDS or words is
+ * NULL with n > 0. The program lives in the state (no allocation); PC := 0. */
+int bb_load_program(bb_state *s, const uint32_t *words, unsigned n);
 
 /* For the ctypes side: the only allocation. bb_new() returns an initialised state with
  * the default table, or NULL. */
@@ -176,18 +203,36 @@ const char *bb_class_name(int cls);
  *   DISPATCH_IW: the port's snapshot of the first clock); hal_spend(cost - used - 1)
  *   if positive;
  *   write DONE = RLO | rlo_written << 1 (in the last clock of the cost).
+ * JU_B / JC_B / JCN_B / END_B belong to a byte program only: dispatched, they are
+ * illegal instructions (flag, the illegal class's cost).
  * Returns the clocks the instruction took (= its cost unless it overran). */
 int bb_serial_step(bb_state *s);
 
 /* The instruction's semantics with its own bus accesses (TIME_MS for SD/SS/SP/SF,
  * IW/QW, all read live; TC_BIT, BYTE_FLAGS, channels), no dispatch protocol and no
  * padding.
- * *rlo is F_B in and out (NULL: s->rlo). Returns the cost class (bb_class). */
+ * *rlo is F_B in and out (NULL: s->rlo). Returns the cost class (bb_class).
+ * A jump sets s->pc := target when taken (s->jumped says whether it was); a target
+ * past the loaded program (> prog_len) is illegal. END_B does nothing here (class
+ * BB_CL_END): bb_run_scan() stops on it. */
 int bb_exec(bb_state *s, uint32_t instr, int *rlo);
 
 /* bb_exec() padded to the table cost with hal_spend(): parallel mode's step. Returns
  * the clocks taken (more than the cost only if the bus stalled: counted in overruns). */
 int bb_step(bb_state *s, uint32_t instr, int *rlo);
+
+/* Parallel mode, one scan of the byte program (README.md, "Parallel mode"):
+ *   ACCU1 := ACCU2 := 0 and F_B := 0 (every scan starts from the same state, as serial
+ *   mode's ACCUs and the bit side's RLO do); PC := 0;
+ *   then bb_step() instruction by instruction (each takes exactly its table cost when
+ *   its bus accesses fit: jumps 1 clock with "paper", taken or not, END_B 0) until
+ *   END_B is executed or the PC reaches the end of the program (counts as END_B).
+ * A jump to an address past the program (target > program length) is illegal (flag,
+ * no jump); a jump to exactly the program length ends the scan.
+ * More than s->max_steps instructions (END_B included) without reaching the end:
+ * sticky BB_FLAG_RUNAWAY (one BYTE_FLAGS write) and return.
+ * Returns the clocks the scan took. */
+int bb_run_scan(bb_state *s);
 
 /* --- trace accessors (no bus access) ------------------------------------------------ */
 
@@ -197,12 +242,13 @@ int      bb_timer_status(const bb_state *s, unsigned n);
 int      bb_timer_running(const bb_state *s, unsigned n);
 int      bb_counter_value(const bb_state *s, unsigned n);
 int      bb_counter_status(const bb_state *s, unsigned n);
-uint32_t bb_flags(const bb_state *s);
+uint32_t bb_flags(const bb_state *s);   /* BB_FLAG_ARITH | ILLEGAL | RUNAWAY */
 int32_t  bb_accu1(const bb_state *s);
 int32_t  bb_accu2(const bb_state *s);
 uint32_t bb_overruns(const bb_state *s);
 uint64_t bb_executed(const bb_state *s);
 int      bb_rlo(const bb_state *s);
+int      bb_fb(const bb_state *s);     /* F_B, the byte side's RLO (= bb_rlo) */
 
 #ifdef __cplusplus
 }

@@ -22,6 +22,12 @@
  * one dispatch, so it is not a per-instruction figure and is not used.)
  *
  * Both tables charge 1 clock for an illegal instruction (the firmware only flags it).
+ *
+ * The byte program's jumps JU_B / JC_B / JCN_B are binary instructions (one bit-side
+ * instruction's worth of work: test F_B, load the PC), the same clocks whether taken
+ * or not: the byte side has no pipeline to refill. END_B costs 0 in every table: it is
+ * not work but the synchronisation point of parallel mode, where the byte part of a
+ * scan ends and the byte processor waits for the next scan.
  */
 #include <string.h>
 
@@ -33,6 +39,7 @@ static const bb_costs table_paper = {
     [BB_CL_LOAD] = 10, [BB_CL_TRANSFER] = 10, [BB_CL_ARITH] = 10, [BB_CL_MULDIV] = 10,
     [BB_CL_COMPARE] = 10, [BB_CL_TIMER] = 10, [BB_CL_COUNTER] = 10,
     [BB_CL_BINARY] = 1, [BB_CL_ILLEGAL] = 1,
+    [BB_CL_END] = 0,       /* END_B: the synchronisation point, no work */
   },
 };
 
@@ -42,6 +49,7 @@ static const bb_costs table_c320 = {
     [BB_CL_LOAD] = 57, [BB_CL_TRANSFER] = 57, [BB_CL_ARITH] = 57, [BB_CL_MULDIV] = 57,
     [BB_CL_COMPARE] = 57, [BB_CL_TIMER] = 57, [BB_CL_COUNTER] = 57,
     [BB_CL_BINARY] = 6, [BB_CL_ILLEGAL] = 1,
+    [BB_CL_END] = 0,       /* END_B: the synchronisation point, no work */
   },
 };
 
@@ -60,7 +68,7 @@ uint32_t bb_cost(const bb_state *s, int cls) {
 const char *bb_class_name(int cls) {
   static const char *const names[BB_NUM_CLASSES] = {
     "load", "transfer", "arith", "muldiv", "compare", "timer", "counter", "binary",
-    "illegal",
+    "illegal", "end",
   };
   return (cls >= 0 && cls < BB_NUM_CLASSES) ? names[cls] : "?";
 }

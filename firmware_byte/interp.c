@@ -5,8 +5,11 @@
  * validates its operand; exec() runs it, with the loads and transfers done here and the
  * other procedures in arith.c, compare.c, timers.c, counters.c and exchange.c.
  * bb_serial_step() wraps one execution in the serial dispatch protocol and pads it to
- * exactly its table cost; bb_step() does the padding for parallel mode.
+ * exactly its table cost; bb_step() does the padding for parallel mode, and
+ * bb_run_scan() runs parallel mode's byte program (its own jumps, END_B) one scan at a
+ * time with bb_step().
  */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,6 +23,7 @@ void bb_init(bb_state *s, const bb_costs *costs) {
   memset(s, 0, sizeof *s);
   s->costs = costs != NULL ? costs : bb_cost_table(NULL);
   s->last_class = BB_CL_ILLEGAL;
+  s->max_steps = BB_MAX_STEPS_DEFAULT;
 }
 
 void bb_load_pool(bb_state *s, const uint32_t *words, unsigned n) {
@@ -27,6 +31,14 @@ void bb_load_pool(bb_state *s, const uint32_t *words, unsigned n) {
   if (n > BB_POOL_WORDS) n = BB_POOL_WORDS;
   if (n > 0) memcpy(s->pool, words, n * sizeof *words);
   s->pool_len = n;
+}
+
+int bb_load_program(bb_state *s, const uint32_t *words, unsigned n) {
+  if (n > BB_PROG_WORDS || (words == NULL && n > 0)) return -1;
+  if (n > 0) memcpy(s->prog, words, n * sizeof *words);
+  s->prog_len = n;
+  s->pc = 0;
+  return 0;
 }
 
 void bb_scan_start(bb_state *s) {
@@ -80,6 +92,10 @@ int bb_classify(uint32_t instr) {
       return (area == BB_AREA_C && n < BB_NUM_COUNTERS) ? BB_CL_COUNTER : BB_CL_ILLEGAL;
     case BB_OP_READ: case BB_OP_WRITE:
       return (area == BB_AREA_FB && n < BB_NUM_CHANNELS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
+    case BB_OP_JU_B: case BB_OP_JC_B: case BB_OP_JCN_B:
+      return BB_CL_BINARY;     /* the target is checked by execution (program length) */
+    case BB_OP_END_B:
+      return BB_CL_END;
     default:
       break;
   }
@@ -119,11 +135,18 @@ static void transfer_word(bb_state *s, unsigned area, unsigned n) {
  * dispatched, so `now` and IW come from the port's dispatch snapshot (DISPATCH_MS,
  * DISPATCH_IW, both taken in the instruction's first clock); otherwise a timer reads
  * TIME_MS as its first access. Returns the cost class. */
+static int is_jump(unsigned op) {
+  return op == BB_OP_JU_B || op == BB_OP_JC_B || op == BB_OP_JCN_B;
+}
+
 static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
   const unsigned op = bb_opcode(instr), area = bb_area(instr), n = bb_index(instr);
   int cls = bb_classify(instr);
   int r = *rlo != 0;
   s->rlo_written = 0;
+  s->jumped = 0;
+  /* The jumps and END_B belong to a byte program; a dispatched one is illegal. */
+  if (serial && (cls == BB_CL_END || is_jump(op))) cls = BB_CL_ILLEGAL;
 
   switch (cls) {
     case BB_CL_LOAD: {
@@ -167,12 +190,25 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       bb_proc_counter(s, op, n, r);
       break;
     case BB_CL_BINARY:
-      if (op == BB_OP_READ) {
+      if (is_jump(op)) {
+        const uint32_t target = instr & 0xFFFFu;   /* bits 23..16 reserved, ignored */
+        if (target > s->prog_len) {                /* past the loaded program */
+          cls = BB_CL_ILLEGAL;
+          bb_raise_flag(s, BB_FLAG_ILLEGAL);
+          break;
+        }
+        if (op == BB_OP_JU_B || (op == BB_OP_JC_B) == (r != 0)) {
+          s->pc = target;       /* == prog_len: off the end, the scan's byte part ends */
+          s->jumped = 1;
+        }
+      } else if (op == BB_OP_READ) {
         r = bb_proc_read(n);
         s->rlo_written = 1;
       } else {
         bb_proc_write(n, r);
       }
+      break;
+    case BB_CL_END:             /* bb_run_scan() stops on the class */
       break;
     default:
       cls = BB_CL_ILLEGAL;
@@ -207,6 +243,34 @@ int bb_step(bb_state *s, uint32_t instr, int *rlo) {
   if (taken > cost) s->overruns++;
   s->last_clocks = (uint32_t)taken;
   return (int)taken;
+}
+
+/* Parallel mode, one scan of the byte program. F_B := 0 at the start: the byte part of
+ * a scan must not depend on where the previous one stopped (the same reason the ACCUs
+ * are cleared), and a program that wants a condition from the bit side gets it with
+ * READ FBY k. The runaway guard is in instructions, not clocks: the hardware watchdog
+ * (bit side) bounds the scan time; this only keeps a byte-side loop from hanging the
+ * firmware. */
+int bb_run_scan(bb_state *s) {
+  const uint64_t t0 = hal_now();
+  int rlo = 0;
+  bb_scan_start(s);
+  s->rlo = 0;
+  s->pc = 0;
+  s->jumped = 0;
+  s->scan_steps = 0;
+  while (s->pc < s->prog_len) {                  /* off the end: as END_B */
+    if (s->scan_steps >= s->max_steps) {
+      bb_raise_flag(s, BB_FLAG_RUNAWAY);
+      break;
+    }
+    const uint32_t instr = s->prog[s->pc++];     /* a taken jump overwrites the PC */
+    s->scan_steps++;
+    bb_step(s, instr, &rlo);
+    if (s->last_class == BB_CL_END) break;
+  }
+  const uint64_t taken = hal_now() - t0;
+  return taken > (uint64_t)INT_MAX ? INT_MAX : (int)taken;
 }
 
 int bb_serial_step(bb_state *s) {
@@ -262,3 +326,4 @@ int32_t bb_accu2(const bb_state *s) { return s->accu2; }
 uint32_t bb_overruns(const bb_state *s) { return s->overruns; }
 uint64_t bb_executed(const bb_state *s) { return s->executed; }
 int bb_rlo(const bb_state *s) { return s->rlo; }
+int bb_fb(const bb_state *s) { return s->rlo; }

@@ -144,7 +144,8 @@ static void test_serial_accesses(void) {
 
 static void test_no_crash_any_opcode(void) {
   /* every opcode with a spread of operand fields: no crash, and execution's class is
-   * bb_classify()'s (pool index aside), an illegal one sets the flag and nothing else */
+   * bb_classify()'s (pool index, jump target aside), an illegal one sets the flag and
+   * nothing else */
   static const uint32_t operands[] = {
     0x000000u, 0x000001u, 0x007003u, 0x00703Fu, 0x007040u, 0x008005u, 0x009003u,
     0x009008u, 0x00A00Fu, 0x00A010u, 0x00B00Fu, 0x00C0FFu, 0x00C100u, 0x00F000u,
@@ -159,6 +160,8 @@ static void test_no_crash_any_opcode(void) {
       CHECK(cls >= 0 && cls < BB_NUM_CLASSES);
       int want = bb_classify(instr);
       if (op == BB_OP_L_POOL) want = BB_CL_ILLEGAL;   /* the pool is empty here */
+      const int jump = op == BB_OP_JU_B || op == BB_OP_JC_B || op == BB_OP_JCN_B;
+      if (jump && (instr & 0xFFFFu) > 0) want = BB_CL_ILLEGAL;  /* no byte program */
       CHECK_EQ(cls, want);
       CHECK_EQ((S.flags & BB_FLAG_ILLEGAL) != 0, cls == BB_CL_ILLEGAL);
       if (op < 0x80) CHECK_EQ(cls, BB_CL_ILLEGAL);   /* bit instructions */

@@ -15,6 +15,7 @@ int main(void) {
   suite_serial();
   suite_bus();
   suite_costs();
+  suite_program();
   printf("firmware_byte unit tests: %d tests, %d checks, %d failed\n", tt_tests, tt_checks,
          tt_fails);
   return tt_fails == 0 ? 0 : 1;

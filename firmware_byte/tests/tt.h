@@ -97,5 +97,6 @@ void suite_exchange(void);
 void suite_serial(void);
 void suite_bus(void);
 void suite_costs(void);
+void suite_program(void);
 
 #endif
