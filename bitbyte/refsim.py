@@ -7,13 +7,14 @@ instruction does) and the "Timing model" / "Serial mode timing" of docs/isa.md (
 which clock it does it).  It runs the SERIAL mode (spec §2): one instruction stream,
 one shared RLO, the bit processor waiting for each byte instruction.
 
-  * scan k latches the PII (and IR/IF) in its first clock L;
+  * scan k latches the PII (and IR/IF) in its first clock L, in which its first
+    instruction already executes (seeing the values being latched);
   * each executed bit instruction takes one clock, a taken jump two;
   * a byte instruction takes exactly its cost-table cost (default "paper": 10 per word
     instruction, 1 per READ/WRITE), from its first clock c to c + cost - 1, and the
     next instruction executes in clock c + cost;
   * END takes the last clock E, where PIO -> output register; cycles = E - L + 1
-    = 1 + sum of instruction clocks + 1;
+    = sum of instruction clocks + 1 (END);
   * scan k+1 latches in clock E + 1 (= the record's end_clock), t_us = end_clock / f.
 
 Byte instructions act in their first clock c: `L IW n` reads the input word in clock
@@ -138,8 +139,8 @@ def resolve_costs(costs: Mapping[str, int] | str | None = None) -> dict[str, int
 
 def serial_cost(program: Program, costs: Mapping[str, int] | str | None = None) -> int:
     """Clocks of instruction work of a straight-line program in serial mode: 1 per bit
-    instruction, the table cost per byte instruction, up to the first END (latch and
-    END not included, so a scan has serial_cost + 2 cycles).  Jumps count as not taken
+    instruction, the table cost per byte instruction, up to the first END (END not
+    included, so a scan has serial_cost + 1 cycles).  Jumps count as not taken
     (1 clock).  Spec §5's Fig. 5 program gives 59 with the default table."""
     table = resolve_costs(costs)
     total = 0
@@ -340,7 +341,7 @@ class RefSim:
         self._latch(start)
         self.rlo, self.stack = 0, []
         self.accu1 = self.accu2 = 0
-        pc, clock = 0, start + 1
+        pc, clock = 0, start                           # the first one in the latch clock
         while True:
             if clock - start + 1 > self.watchdog:      # even END here would be too late
                 self._fault(start)
@@ -424,7 +425,8 @@ class RefSim:
         elif m == "NOP":
             pass
         elif m == "REFRESH":
-            self._latch(clock)
+            if clock != self.last_latch:       # in the latch clock itself: one latch
+                self._latch(clock)
         else:
             return False
         return True

@@ -9,9 +9,10 @@
 //   execute the operand is selected, the RLO, the parenthesis stack and the targets
 //           are updated, jumps are taken
 // A taken jump squashes the one instruction in decode (2 clocks). END is recognised
-// in decode, so address 0 is fetched while END executes and the next scan starts
-// with a full pipeline. The processor idles (fetch held at address 0) whenever the
-// scan controller does not latch or execute.
+// in decode, so address 0 is fetched while END executes and moves to execute at the
+// end of END's clock: the next scan's first instruction executes in its latch clock,
+// with the RLO and the parenthesis stack already reset for it. The processor idles
+// (fetch held at address 0) whenever the scan controller is not running.
 module bit_proc #(
   parameter integer ProgWords   = 4096,  // program memory, instructions
   parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
@@ -28,8 +29,9 @@ module bit_proc #(
   input  wire [$clog2(ProgWords)-1:0] prog_waddr_i,
   input  wire [31:0]                  prog_wdata_i,
   // scan control
-  input  wire                         latch_i,     // scan start clock
-  input  wire                         exec_i,      // instructions execute
+  input  wire                         start_i,     // the next clock starts a scan
+  input  wire                         latch_i,     // this clock starts a scan
+  input  wire                         exec_i,      // instructions execute (scan clocks)
   output wire                         mem_ready_o, // marker memory cleared
   output wire                         end_o,       // END executes in this clock
   output wire                         refresh_o,   // REFRESH executes in this clock
@@ -62,6 +64,7 @@ module bit_proc #(
   output wire                         out_wr_direct_o,
   // observation (waveforms, test benches)
   output reg                          rlo_o,
+  output wire                         rlo_now_o,      // the RLO execute works with
   output wire [$clog2(ProgWords)-1:0] exec_pc_o,
   output wire                         exec_valid_o
 );
@@ -93,6 +96,10 @@ module bit_proc #(
   wire [11:0] e_index  = e_instr_q[`ISA_INDEX];
   wire [PcW-1:0] e_target = e_instr_q[PcW-1:0];
   wire        e_go     = e_valid_q && exec_i;
+  // A scan starts with RLO = 0 and an empty stack, also for the instruction that
+  // executes in the latch clock itself.
+  wire        rlo_cur  = latch_i ? 1'b0 : rlo_o;
+  assign rlo_now_o = rlo_cur;
 
   wire is_logic  = (e_op & `OP_LOGIC_MASK) == `OP_LOGIC;
   wire is_open   = (e_op & `OP_LOGIC_MASK) == `OP_OPEN;
@@ -113,7 +120,7 @@ module bit_proc #(
       ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[$clog2(Channels)-1:0]) : {Channels{1'b0}};
   wire on_channel = e_area == `AREA_FB;
   wire fbi_read   = e_go && on_channel && is_logic;
-  wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_o));
+  wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_cur));
   wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
                     (fby_write && !(|(fby_wr_ready_i & chan_sel)));
   wire e_stall    = chan_wait || (e_go && is_byte && !byte_done_i);
@@ -124,13 +131,13 @@ module bit_proc #(
 
   assign fbi_rd_req_o  = fbi_read  ? chan_sel : {Channels{1'b0}};
   assign fby_wr_req_o  = fby_write ? chan_sel : {Channels{1'b0}};
-  assign fby_wr_data_o = !is_rstbit && rlo_o;          // =: RLO; S: 1; R: 0
+  assign fby_wr_data_o = !is_rstbit && rlo_cur;        // =: RLO; S: 1; R: 0
   assign byte_req_o    = e_go && is_byte;
   assign byte_instr_o  = e_instr_q;
 
   wire jump_taken = e_go && ((e_op == `OP_JU) ||
-                             (e_op == `OP_JC  &&  rlo_o) ||
-                             (e_op == `OP_JCN && !rlo_o));
+                             (e_op == `OP_JC  &&  rlo_cur) ||
+                             (e_op == `OP_JCN && !rlo_cur));
   assign end_o     = e_go && (e_op == `OP_END);
   assign refresh_o = e_go && (e_op == `OP_REFRESH);
   wire   d_is_end  = d_instr[`ISA_OPCODE] == `OP_END;
@@ -177,7 +184,7 @@ module bit_proc #(
   reg operand;
   always @(*) begin
     case (e_area)
-      `AREA_I:  operand = pii_i[e_index[$clog2(InBits)-1:0]];
+      `AREA_I:  operand = pii_i[e_index[$clog2(InBits)-1:0]];   // as of this clock
       `AREA_PI: operand = pins_i[e_index[$clog2(InBits)-1:0]];
       `AREA_IR: operand = rise_i[e_index[$clog2(InBits)-1:0]];
       `AREA_IF: operand = fall_i[e_index[$clog2(InBits)-1:0]];
@@ -206,20 +213,21 @@ module bit_proc #(
   reg [NestDepth-1:0] stack_rlo_q;        // saved RLO per level
   reg [NestDepth*3-1:0] stack_op_q;       // saved {f, n} per level
   reg [SpW-1:0] sp_q;                     // levels in use
-  wire [SpW-1:0] sp_top = sp_q - 1'b1;
+  wire [SpW-1:0] sp_cur = latch_i ? {SpW{1'b0}} : sp_q;
+  wire [SpW-1:0] sp_top = sp_cur - 1'b1;
   wire [IdxW-1:0] top_idx  = sp_top[IdxW-1:0];
-  wire [IdxW-1:0] push_idx = sp_q[IdxW-1:0];
+  wire [IdxW-1:0] push_idx = sp_cur[IdxW-1:0];
   wire          top_rlo = stack_rlo_q[top_idx];
   wire [2:0]    top_op  = stack_op_q[top_idx*3 +: 3];
 
   reg rlo_d;
   always @(*) begin
-    rlo_d = rlo_o;
-    if (is_logic)        rlo_d = combine(e_op[2:1], rlo_o, operand ^ e_op[0]);
-    else if (is_close)   rlo_d = combine(top_op[2:1], top_rlo, rlo_o ^ top_op[0]);
-    else if (is_fp)      rlo_d = rlo_o & ~operand;
-    else if (is_fn)      rlo_d = ~rlo_o & operand;
-    else if (e_op == `OP_NOT) rlo_d = ~rlo_o;
+    rlo_d = rlo_cur;
+    if (is_logic)        rlo_d = combine(e_op[2:1], rlo_cur, operand ^ e_op[0]);
+    else if (is_close)   rlo_d = combine(top_op[2:1], top_rlo, rlo_cur ^ top_op[0]);
+    else if (is_fp)      rlo_d = rlo_cur & ~operand;
+    else if (is_fn)      rlo_d = ~rlo_cur & operand;
+    else if (e_op == `OP_NOT) rlo_d = ~rlo_cur;
     else if (e_op == `OP_SET) rlo_d = 1'b1;
     else if (e_op == `OP_CLR) rlo_d = 1'b0;
   end
@@ -230,26 +238,27 @@ module bit_proc #(
       sp_q        <= {SpW{1'b0}};
       stack_rlo_q <= {NestDepth{1'b0}};
       stack_op_q  <= {(NestDepth*3){1'b0}};
+    end else if (e_done) begin
+      rlo_o <= (is_byte && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
+      sp_q  <= sp_cur;
+      // The assembler bounds the nesting; the stack saturates rather than wraps.
+      if (is_open && sp_cur != NestDepth[SpW-1:0]) begin
+        stack_rlo_q[push_idx]       <= rlo_cur;
+        stack_op_q[push_idx*3 +: 3] <= e_op[2:0];
+        sp_q                        <= sp_cur + 1'b1;
+      end else if (is_close && sp_cur != {SpW{1'b0}}) begin
+        sp_q <= sp_top;
+      end
     end else if (latch_i) begin
       rlo_o <= 1'b0;                      // every scan starts with RLO = 0
       sp_q  <= {SpW{1'b0}};
-    end else if (e_done) begin
-      rlo_o <= (is_byte && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
-      // The assembler bounds the nesting; the stack saturates rather than wraps.
-      if (is_open && sp_q != NestDepth[SpW-1:0]) begin
-        stack_rlo_q[push_idx]       <= rlo_o;
-        stack_op_q[push_idx*3 +: 3] <= e_op[2:0];
-        sp_q                     <= sp_q + 1'b1;
-      end else if (is_close && sp_q != {SpW{1'b0}}) begin
-        sp_q <= sp_top;
-      end
     end
   end
 
   // ---------------------------------------------------------------- targets
   // =, S, R write a target; FP/FN write their edge memory with the old RLO.
-  wire target_we = e_done && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_o));
-  assign target_val = is_setbit ? 1'b1 : is_rstbit ? 1'b0 : rlo_o;
+  wire target_we = e_done && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_cur));
+  assign target_val = is_setbit ? 1'b1 : is_rstbit ? 1'b0 : rlo_cur;
   assign m_target_we = target_we && (e_area == `AREA_M);
 
   assign out_wr_en_o     = target_we && (e_area == `AREA_Q || e_area == `AREA_PQ);
@@ -258,9 +267,10 @@ module bit_proc #(
   assign out_wr_direct_o = (e_area == `AREA_PQ);
 
   // ---------------------------------------------------------------- pipeline flow
-  // END in execute: hold address 0 in decode for the latch clock that follows.
   // Taken jump: squash decode, fetch the target. END in decode: fetch address 0.
-  wire advance = latch_i || (exec_i && !end_o && !e_stall);
+  // END in execute: address 0 (in decode) moves on only if a scan follows; the
+  // first clock of a scan finds it in execute.
+  wire advance = start_i || (exec_i && !end_o && !e_stall);
   always @(*) begin
     if (!advance)        fetch_addr = d_pc_q;
     else if (jump_taken) fetch_addr = e_target;

@@ -49,13 +49,13 @@ module bitbyte_cpu #(
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
 
-  wire latch, exec, mem_ready, end_exec, refresh;
-  wire [InBits-1:0]  pii, rise, fall;
+  wire start, latch, exec, mem_ready, end_exec, refresh;
+  wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now;
   wire [OutBits-1:0] pio;
   wire                       out_wr_en, out_wr_val, out_wr_direct;
   wire [$clog2(OutBits)-1:0] out_wr_idx;
   wire [31:0] cycle_now;
-  wire        rlo;
+  wire        rlo, rlo_now;
   wire [$clog2(ProgWords)-1:0] exec_pc;
   wire        exec_valid;
   // exchange
@@ -78,6 +78,7 @@ module bitbyte_cpu #(
     .run_i            (run_i),
     .end_i            (end_exec),
     .watchdog_limit_i (watchdog_limit_i),
+    .start_o          (start),
     .latch_o          (latch),
     .exec_o           (exec),
     .ready_o          (ready_o),
@@ -94,9 +95,12 @@ module bitbyte_cpu #(
     .rst_ni (rst_ni),
     .pins_i (in_pins_i),
     .latch_i(latch || refresh),
-    .pii_o  (pii),
-    .rise_o (rise),
-    .fall_o (fall)
+    .pii_o     (pii),
+    .rise_o    (rise),
+    .fall_o    (fall),
+    .pii_now_o (pii_now),
+    .rise_now_o(rise_now),
+    .fall_now_o(fall_now)
   );
 
   output_unit #(.OutBits(OutBits)) u_output_unit (
@@ -126,15 +130,16 @@ module bitbyte_cpu #(
     .prog_we_i       (prog_we_i),
     .prog_waddr_i    (prog_waddr_i),
     .prog_wdata_i    (prog_wdata_i),
+    .start_i         (start),
     .latch_i         (latch),
     .exec_i          (exec),
     .mem_ready_o     (mem_ready),
     .end_o           (end_exec),
     .refresh_o       (refresh),
-    .pii_i           (pii),
+    .pii_i           (pii_now),
     .pins_i          (in_pins_i),
-    .rise_i          (rise),
-    .fall_i          (fall),
+    .rise_i          (rise_now),
+    .fall_i          (fall_now),
     .pio_i           (pio),
     .timer_status_i  (timer_status),
     .counter_status_i(counter_status),
@@ -155,6 +160,7 @@ module bitbyte_cpu #(
     .out_wr_val_o    (out_wr_val),
     .out_wr_direct_o (out_wr_direct),
     .rlo_o           (rlo),
+    .rlo_now_o       (rlo_now),
     .exec_pc_o       (exec_pc),
     .exec_valid_o    (exec_valid)
   );
@@ -192,7 +198,7 @@ module bitbyte_cpu #(
   dispatch #(.StatusBits(StatusBits)) u_dispatch (
     .req_i           (byte_req),
     .instr_i         (byte_instr),
-    .rlo_i           (rlo),
+    .rlo_i           (rlo_now),
     .scan_i          (scan_count_o[15:0]),
     .done_o          (byte_done),
     .done_rlo_o      (byte_rlo),
@@ -273,7 +279,7 @@ module bitbyte_cpu #(
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
+  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags, pii, rise, fall};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

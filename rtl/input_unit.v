@@ -14,9 +14,14 @@ module input_unit #(
   input  wire              rst_ni,
   input  wire [InBits-1:0] pins_i,
   input  wire              latch_i,  // take the image in this clock
-  output reg  [InBits-1:0] pii_o,    // I b.n
+  output reg  [InBits-1:0] pii_o,    // I b.n (the image register)
   output reg  [InBits-1:0] rise_o,   // IR b.n: rose since the previous latch
-  output reg  [InBits-1:0] fall_o    // IF b.n: fell since the previous latch
+  output reg  [InBits-1:0] fall_o,   // IF b.n: fell since the previous latch
+  // The image as an instruction executing in this clock sees it: in a latch clock
+  // the values being latched (the scan's first instruction runs in its latch clock).
+  output wire [InBits-1:0] pii_now_o,
+  output wire [InBits-1:0] rise_now_o,
+  output wire [InBits-1:0] fall_now_o
 );
   // Pin value one clock ago. Reset to 0: before the first scan every input counts as
   // having been 0, so an input that is 1 at the first latch shows a rising edge.
@@ -24,6 +29,10 @@ module input_unit #(
   reg  [InBits-1:0] rise_acc_q, fall_acc_q;  // edges since the last latch
   wire [InBits-1:0] rise_now = pins_i & ~pins_prev_q;
   wire [InBits-1:0] fall_now = ~pins_i & pins_prev_q;
+
+  assign pii_now_o  = latch_i ? pins_i : pii_o;
+  assign rise_now_o = latch_i ? (rise_acc_q | rise_now) : rise_o;
+  assign fall_now_o = latch_i ? (fall_acc_q | fall_now) : fall_o;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

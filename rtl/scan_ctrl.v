@@ -1,8 +1,10 @@
 `default_nettype none
 // Scan controller: the PLC's cycle. After reset it waits for the bit processor to
-// clear its memories (INIT), then for the RUN switch (IDLE). A scan is one LATCH
-// clock (PII and edge flags taken), the program's clocks (EXEC) and the clock in which
-// END executes (PIO -> pins); the next scan latches in the clock right after END.
+// clear its memories (INIT), then for the RUN switch (IDLE). A scan (RUN) is the
+// clock that latches the PII — in which the first instruction already executes, its
+// I/IR/IF operands forwarded from the latch (input_unit.v) — then the program's clocks
+// up to the clock in which END executes (PIO -> pins); the next scan latches in the
+// clock right after END. So a scan costs 1 + its instructions' clocks, END included.
 // The watchdog turns a scan longer than watchdog_limit_i clocks into a FAULT that
 // holds the outputs at 0 until reset, so an endless loop cannot hang a simulation.
 module scan_ctrl (
@@ -12,6 +14,7 @@ module scan_ctrl (
   input  wire        run_i,             // RUN/STOP switch; STOP takes effect at END
   input  wire        end_i,             // END executes in this clock
   input  wire [31:0] watchdog_limit_i,  // longest legal scan, in clocks
+  output wire        start_o,           // the next clock starts a scan (prefetch)
   output wire        latch_o,           // this clock latches the PII (scan start)
   output wire        exec_o,            // program instructions execute in this clock
   output wire        ready_o,           // initialised; a RUN request starts scan 0
@@ -22,35 +25,34 @@ module scan_ctrl (
   output reg  [31:0] scan_cycles_max_o, // longest completed scan
   output reg  [31:0] cycle_q_o          // clocks of the current scan so far
 );
-  localparam [2:0] StInit  = 3'd0;
-  localparam [2:0] StIdle  = 3'd1;
-  localparam [2:0] StLatch = 3'd2;
-  localparam [2:0] StExec  = 3'd3;
-  localparam [2:0] StFault = 3'd4;
+  localparam [1:0] StInit  = 2'd0;
+  localparam [1:0] StIdle  = 2'd1;
+  localparam [1:0] StRun   = 2'd2;
+  localparam [1:0] StFault = 2'd3;
 
-  reg [2:0] state_q, state_d;
+  reg [1:0] state_q, state_d;
+  reg       first_q;                    // this is the first (latch) clock of a scan
 
-  assign latch_o = (state_q == StLatch);
-  assign exec_o  = (state_q == StExec);
+  assign exec_o  = (state_q == StRun);
+  assign latch_o = exec_o && first_q;
   assign ready_o = (state_q == StIdle);
   assign fault_o = (state_q == StFault);
 
   // Clocks this scan will have used once the current clock ends.
-  wire [31:0] cycles_now = cycle_q_o + 32'd1;
+  wire [31:0] cycles_now = latch_o ? 32'd1 : cycle_q_o + 32'd1;
   // Without END in this clock the scan needs at least one clock more: past the limit?
   wire watchdog_fire = exec_o && !end_i && (cycles_now >= watchdog_limit_i);
+  assign start_o = run_i && ((state_q == StIdle) || (exec_o && end_i));
 
   always @(*) begin
     state_d = state_q;
     case (state_q)
       StInit:  if (mem_ready_i) state_d = StIdle;
-      StIdle:  if (run_i) state_d = StLatch;
-      StLatch: state_d = StExec;
-      StExec: begin
+      StIdle:  if (run_i) state_d = StRun;
+      StRun: begin
         if (watchdog_fire) state_d = StFault;
-        else if (end_i) state_d = run_i ? StLatch : StIdle;
+        else if (end_i && !run_i) state_d = StIdle;
       end
-      StFault: state_d = StFault;
       default: state_d = StFault;
     endcase
   end
@@ -58,6 +60,7 @@ module scan_ctrl (
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q           <= StInit;
+      first_q           <= 1'b0;
       scan_done_o       <= 1'b0;
       scan_count_o      <= 32'd0;
       scan_cycles_o     <= 32'd0;
@@ -65,12 +68,11 @@ module scan_ctrl (
       cycle_q_o         <= 32'd0;
     end else begin
       state_q     <= state_d;
+      first_q     <= start_o;
       scan_done_o <= 1'b0;
-      if (latch_o) begin
-        cycle_q_o <= 32'd1;
-      end else if (exec_o) begin
+      if (exec_o) begin
         cycle_q_o <= cycles_now;
-        if (end_i && !watchdog_fire) begin
+        if (end_i) begin
           scan_done_o   <= 1'b1;
           scan_count_o  <= scan_count_o + 32'd1;
           scan_cycles_o <= cycles_now;

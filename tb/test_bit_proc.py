@@ -37,7 +37,7 @@ class Bench:
     async def start(self, prog, pii=0):
         d = self.dut
         cocotb.start_soon(Clock(d.clk_i, 10, unit="ns").start())
-        for sig in (d.rst_ni, d.latch_i, d.exec_i, d.prog_we_i, d.pins_i, d.rise_i,
+        for sig in (d.rst_ni, d.start_i, d.latch_i, d.exec_i, d.prog_we_i, d.pins_i, d.rise_i,
                     d.fall_i, d.pio_i, d.timer_status_i, d.counter_status_i,
                     d.fbi_rd_data_i, d.fbi_rd_ready_i, d.byte_done_i, d.byte_rlo_i,
                     d.byte_rlo_we_i):
@@ -55,18 +55,24 @@ class Bench:
             await FallingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
 
-    async def scan(self, limit=1000):
-        """One scan: latch clock, then execute until END. Returns (cycles, pcs, rlos):
-        cycles counted like the scan controller (latch + executed clocks incl. END),
-        pcs/rlos = executed address and RLO after it, per clock (None = bubble)."""
+    async def begin(self):
+        """An idle clock announcing the scan (start_i: address 0 moves to execute),
+        then the latch clock, in which the first instruction executes."""
         d = self.dut
-        d.latch_i.value, d.exec_i.value = 1, 0
+        d.start_i.value, d.latch_i.value, d.exec_i.value = 1, 0, 0
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
-        d.latch_i.value, d.exec_i.value = 0, 1
-        cycles, pcs, rlos = 1, [], []
+        d.start_i.value, d.latch_i.value, d.exec_i.value = 0, 1, 1
+
+    async def scan(self, limit=1000):
+        """One scan: from the latch clock until END. Returns (cycles, pcs, rlos):
+        cycles counted like the scan controller (latch clock through END), pcs/rlos =
+        executed address and RLO after it, per clock (None = bubble)."""
+        d = self.dut
+        await self.begin()
+        cycles, pcs, rlos = 0, [], []
         for clock in range(limit):
-            await Timer(1, unit="ns")      # let the new exec_i settle before sampling
+            await Timer(1, unit="ns")      # let the new controls settle before sampling
             valid = int(d.exec_valid_o.value)
             pc = int(d.exec_pc_o.value) if valid else None
             ended = int(d.end_o.value)
@@ -76,6 +82,7 @@ class Bench:
                 self.pio = (self.pio & ~(1 << idx)) | (val << idx)
             await RisingEdge(d.clk_i)
             await FallingEdge(d.clk_i)
+            d.latch_i.value = 0
             d.pio_i.value = self.pio
             cycles += 1
             pcs.append(pc)
@@ -88,7 +95,8 @@ class Bench:
 
 @cocotb.test()
 async def one_instruction_per_clock(dut):
-    """Straight-line code: N instructions + END take N + 2 clocks, no bubble."""
+    """Straight-line code: N instructions + END take N + 1 clocks, no bubble (the
+    first executes in the latch clock)."""
     pattern = [w(LD, "I", 0), w(A, "I", 1), w(O, "I", 2), w(X, "I", 3),
                w(AN, "I", 4), w(ON, "I", 5), w(XN, "I", 6), w(LDN, "I", 7)]
     for n in (1, 8, 100):
@@ -96,9 +104,9 @@ async def one_instruction_per_clock(dut):
         prog = [pattern[i % 8] for i in range(n)] + [w(END)]
         await bench.start(prog, pii=0b10100110)
         cycles, pcs, _ = await bench.scan()
-        assert cycles == n + 2, f"N={n}: {cycles} clocks"
+        assert cycles == n + 1, f"N={n}: {cycles} clocks"
         assert pcs == list(range(n + 1)), "a bubble or a skipped instruction"
-        dut._log.info("N=%d: %d clocks per scan, CPI %.2f", n, cycles, (cycles - 2) / n)
+        dut._log.info("N=%d: %d clocks per scan, CPI %.2f", n, cycles, (cycles - 1) / n)
         cycles2, pcs2, _ = await bench.scan()      # the next scan: same, no refill
         assert (cycles2, pcs2) == (cycles, pcs)
 
@@ -154,7 +162,7 @@ async def jumps_cost_two_clocks(dut):
     await bench.start(prog)
     cycles, pcs, _ = await bench.scan()
     assert [p for p in pcs if p is not None] == [0, 1, 2, 5, 7]
-    assert cycles == 1 + 1 + 1 + 2 + 2 + 1
+    assert cycles == 1 + 1 + 2 + 2 + 1
 
 
 @cocotb.test()
@@ -166,7 +174,7 @@ async def backward_jump_loop(dut):
     cycles, pcs, _ = await bench.scan()
     # first pass: M0.0 0 -> 1, RLO 1, jump; second: 1 -> 0, fall through
     assert [p for p in pcs if p is not None] == [0, 1, 2, 3, 0, 1, 2, 3, 4]
-    assert cycles == 1 + 3 + 2 + 4 + 1
+    assert cycles == 3 + 2 + 4 + 1
 
 
 @cocotb.test()
@@ -202,10 +210,7 @@ async def waits_on_channels(dut):
     d = dut
     d.fby_wr_ready_i.value = 0
     d.fbi_rd_ready_i.value = 0
-    d.latch_i.value, d.exec_i.value = 1, 0
-    await RisingEdge(d.clk_i)
-    await FallingEdge(d.clk_i)
-    d.latch_i.value, d.exec_i.value = 0, 1
+    await bench.begin()
     trace = []
     for clock in range(12):
         if clock == 3:
@@ -216,9 +221,11 @@ async def waits_on_channels(dut):
         trace.append((int(d.exec_pc_o.value), int(d.stall_o.value),
                       int(d.fby_wr_req_o.value), int(d.fbi_rd_req_o.value),
                       int(d.out_wr_en_o.value)))
+        ended = int(d.end_o.value)
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
-        if int(d.end_o.value):
+        d.latch_i.value = 0
+        if ended:
             break
     # pc 1 (= FBY 1) offers to channel 1 for clocks 1..3, taken at 3
     assert [t[:3] for t in trace[1:4]] == [(1, 1, 2), (1, 1, 2), (1, 0, 2)]
@@ -234,10 +241,7 @@ async def dispatch_holds_until_done(dut):
     prog = [w(SET), CMP_GE << 24, w(ASSIGN, "Q", 0), w(END)]
     await bench.start(prog)
     d = dut
-    d.latch_i.value, d.exec_i.value = 1, 0
-    await RisingEdge(d.clk_i)
-    await FallingEdge(d.clk_i)
-    d.latch_i.value, d.exec_i.value = 0, 1
+    await bench.begin()
     reqs = []
     for clock in range(10):
         done = clock == 5
@@ -251,6 +255,7 @@ async def dispatch_holds_until_done(dut):
             wrote = clock
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
+        d.latch_i.value = 0
         d.byte_done_i.value = 0
     assert reqs[:7] == [0, 1, 1, 1, 1, 1, 0]         # dispatched clocks 1..5
     assert wrote == 6

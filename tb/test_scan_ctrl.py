@@ -1,10 +1,11 @@
-"""Scan controller: INIT -> IDLE -> LATCH/EXEC cycle, scan counting, watchdog."""
+"""Scan controller: INIT -> IDLE -> RUN, scans (latch clock, in which the first
+instruction executes, then the program up to END), scan counting, watchdog."""
 from __future__ import annotations
 
 import cocotb
 import pytest
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge, RisingEdge
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
 
@@ -43,21 +44,24 @@ async def waits_for_memory_then_run(dut):
     await clock(dut)
     assert flags(dut) == (0, 0)          # stays stopped without RUN
     dut.run_i.value = 1
+    await Timer(1, unit="ns")
+    assert int(dut.start_o.value) == 1   # the next clock starts a scan
     await clock(dut)
-    assert flags(dut) == (1, 0)          # the latch clock of scan 0
+    assert flags(dut) == (1, 1)          # the latch clock of scan 0 executes too
 
 
 @cocotb.test()
 async def counts_cycles_of_each_scan(dut):
-    """A scan = latch clock + execute clocks + END clock; the next latches right after."""
+    """A scan = latch clock (first instruction) + more clocks + END clock; the next
+    latches right after; END in the latch clock itself makes a 1-clock scan."""
     await reset(dut)
     dut.mem_ready_i.value = 1
     await clock(dut)
     dut.run_i.value = 1
     await clock(dut)
     for scan, body in enumerate([0, 3, 10]):
-        assert flags(dut) == (1, 0)
-        await clock(dut)                 # latch
+        assert flags(dut) == (1, 1)
+        await clock(dut)                 # latch + first instruction
         for _ in range(body):
             assert flags(dut) == (0, 1)
             await clock(dut)
@@ -66,6 +70,9 @@ async def counts_cycles_of_each_scan(dut):
         assert int(dut.scan_done_o.value) == 1
         assert int(dut.scan_cycles_o.value) == body + 2
         assert int(dut.scan_count_o.value) == scan + 1
+    assert flags(dut) == (1, 1)
+    await clock(dut, end=True)           # END as the first instruction
+    assert int(dut.scan_cycles_o.value) == 1 and int(dut.scan_count_o.value) == 4
     assert int(dut.scan_cycles_max_o.value) == 12
 
 

@@ -71,21 +71,21 @@ def test_exchange_instructions_need_parallel_mode(tmp_path):
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
 def test_worked_example_arithmetic(tmp_path, sim):
     """Spec §3 worked examples: MW0 = 7, Q0.0 = 1; MW1..MW4 = -1, -32768, -3, -1.
-    Serial timing: 1 + 2 bit + 6*10 + ... (worked out in the comments)."""
+    Serial timing: the first instruction runs in the latch clock, END adds one."""
     src = tmp_path / "a.il"
-    # 7 byte instructions (70) + `= Q0.0` (1) + latch + END = 73
+    # 7 byte instructions (70) + `= Q0.0` (1) + END = 72
     src.write_text("L 10\nL 3\n-I\nT MW0\nL 5\nL 3\n>I\n= Q0.0\n")
     trace = tmp_path / "a.csv"
     proc = bitbyte("run", src, "--scans", 2, "--sim", sim, "--trace", trace, "--watch", "MW0")
     assert proc.returncode == 0, proc.stderr
     assert trace.read_text().splitlines() == [
-        "scan,t_us,cycles,Q0.0,MW0", "0,0.73,73,1,7", "1,1.46,73,1,7"]
+        "scan,t_us,cycles,Q0.0,MW0", "0,0.72,72,1,7", "1,1.44,72,1,7"]
     src.write_text("L 16#FFFF\nT MW1\nL 32767\nL 1\n+I\nT MW2\nL -7\nL 2\n/I\nT MW3\n"
-                   "L -7\nL 2\nMOD\nT MW4\n")       # 14 byte instructions: 140 + 2
+                   "L -7\nL 2\nMOD\nT MW4\n")       # 14 byte instructions: 140 + END
     proc = bitbyte("run", src, "--scans", 1, "--sim", sim, "--trace", trace,
                    "--watch", "MW1,MW2,MW3,MW4")
     assert proc.returncode == 0, proc.stderr
-    assert trace.read_text().splitlines()[1] == "0,1.42,142,-1,-32768,-3,-1"
+    assert trace.read_text().splitlines()[1] == "0,1.41,141,-1,-32768,-3,-1"
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
@@ -144,8 +144,8 @@ def test_fp_fn_worked_example(tmp_path, sim):
     assert rows[0] == ["scan", "t_us", "cycles", "Q0.0", "Q0.1"]
     assert [r[3:] for r in rows[1:]] == [["1", "0"], ["0", "0"], ["0", "0"],
                                          ["0", "1"], ["0", "0"], ["0", "0"]]
-    assert [r[2] for r in rows[1:]] == ["8"] * 6          # 6 instructions + 2
-    assert rows[1][1] == "0.08" and rows[6][1] == "0.48"
+    assert [r[2] for r in rows[1:]] == ["7"] * 6          # 6 instructions + END
+    assert rows[1][1] == "0.07" and rows[6][1] == "0.42"
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
@@ -159,20 +159,22 @@ def test_watchdog(tmp_path, sim):
                    "--sim", sim, "--trace", trace)
     assert proc.returncode == 3
     assert "scan watchdog" in proc.stderr
-    assert trace.read_text().splitlines()[1:] == ["0,0.06,6,1", "1,0.12,6,1"]
+    # SET, = Q0.0, LD I0.0, JC (not taken), END: 5 clocks while I0.0 = 0
+    assert trace.read_text().splitlines()[1:] == ["0,0.05,5,1", "1,0.1,5,1"]
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
 def test_until_us_and_time_stimulus(tmp_path, sim):
     """t_us rows: I sees a change at the first latch at or after it; PI at once."""
     src = tmp_path / "t.il"
-    src.write_text("LD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\nNOP\nNOP\nNOP\nNOP\n")
+    src.write_text("NOP\nNOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n")
     stim = tmp_path / "s.csv"
-    # scans are 10 clocks = 0.1 us; the pin rises at 0.25 us (clock 25: mid scan 2)
-    stim.write_text("t_us,I0.0\n0.25,1\n")
+    # scans are 9 clocks = 0.09 us (scan k latches in clock 9k, LD PI0.0 runs in 9k+4);
+    # the pin rises at 0.21 us = clock 21: after scan 2's latch (18), before its LD PI
+    stim.write_text("t_us,I0.0\n0.21,1\n")
     trace = tmp_path / "t.csv"
     proc = bitbyte("run", src, "--stimulus", stim, "--until-us", "0.4", "--sim", sim,
                    "--trace", trace)
     assert proc.returncode == 0, proc.stderr
-    assert trace.read_text().splitlines()[1:] == [
-        "0,0.1,10,0,0", "1,0.2,10,0,0", "2,0.3,10,0,0", "3,0.4,10,1,1"]
+    assert trace.read_text().splitlines()[1:] == [      # until the scan ending >= 40
+        "0,0.09,9,0,0", "1,0.18,9,0,0", "2,0.27,9,1,0", "3,0.36,9,1,1", "4,0.45,9,1,1"]

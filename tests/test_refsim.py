@@ -202,7 +202,9 @@ def test_nested_parentheses_7_deep():
     # two spot checks worked fully by hand
     assert recs[0].values["Q0.0"] == 0          # all inputs 0
     assert recs[0b0000001].values["Q0.0"] == 1  # I0.0 = 1 alone
-    assert all(r.cycles == 1 + 23 + 1 for r in recs)
+    # SET + 7 opens + 7 loads + 7 `)` + `=` = 23 instructions, SET in the latch
+    # clock, + END
+    assert all(r.cycles == 23 + 1 for r in recs)
 
 
 def test_parenthesis_versus_sequence():
@@ -232,9 +234,10 @@ def test_forward_jc_taken_and_not_taken():
     recs = run(src, stim("scan,I0.0,I0.1\n0,1,1\n1,0,0\n"), scans=2)
     assert column(recs, "Q0.0") == [0, 1]
     assert column(recs, "Q0.1") == [1, 0]
-    # taken: latch + LD + JC(2) + LD + = + END = 7; not taken: 1 + 6 + 1 = 8
-    assert [r.cycles for r in recs] == [7, 8]
-    assert [r.end_clock for r in recs] == [7, 15]
+    # taken: LD + JC(2) + LD + = + END = 6 (LD in the latch clock 0, END in 5);
+    # not taken: 6 instructions + END = 7, latch 6, END 12
+    assert [r.cycles for r in recs] == [6, 7]
+    assert [r.end_clock for r in recs] == [6, 13]
 
 
 def test_jcn_and_ju():
@@ -242,8 +245,8 @@ def test_jcn_and_ju():
     recs = run(src, stim("scan,I0.0\n0,0\n1,1\n"), scans=2)
     assert column(recs, "Q0.0") == [0, 1]
     assert column(recs, "Q0.1") == [0, 0]
-    # scan 0: LD, JCN(2), JU(2), NOP = 6 + 2; scan 1: LD, JCN, SET, =, JU(2), NOP = 7 + 2
-    assert [r.cycles for r in recs] == [8, 9]
+    # scan 0: LD, JCN(2), JU(2), NOP = 6 + END; scan 1: LD, JCN, SET, =, JU(2), NOP = 7 + END
+    assert [r.cycles for r in recs] == [7, 8]
 
 
 def test_backward_loop():
@@ -260,26 +263,29 @@ def test_backward_loop():
     recs = run(src, scans=2, watch=["M0.0"])
     assert column(recs, "Q0.0") == [1, 1]
     assert column(recs, "M0.0") == [0, 0]
-    # CLR, =, (LD NOT = JC:2), (LD NOT = JC:1), SET, = -> 13, + latch + END
-    assert [r.cycles for r in recs] == [15, 15]
+    # CLR, =, (LD NOT = JC:2), (LD NOT = JC:1), SET, = -> 13 (CLR in the latch
+    # clock), + END
+    assert [r.cycles for r in recs] == [14, 14]
 
 
 @pytest.mark.parametrize("n", [0, 1, 5, 100])
-def test_straight_line_takes_n_plus_2(n):
+def test_straight_line_takes_n_plus_1(n):
+    # n NOPs from the latch clock on, END in clock n of the scan
     recs = run("NOP\n" * n, scans=3)
-    assert [r.cycles for r in recs] == [n + 2] * 3
-    assert [r.end_clock for r in recs] == [(n + 2), 2 * (n + 2), 3 * (n + 2)]
+    assert [r.cycles for r in recs] == [n + 1] * 3
+    assert [r.end_clock for r in recs] == [(n + 1), 2 * (n + 1), 3 * (n + 1)]
 
 
-def test_t_us_of_62_cycle_scans():
+def test_t_us_of_61_cycle_scans():
+    # 60 NOPs + END = 61 cycles; end clocks 61, 122, 183 at 100 MHz
     columns, recs, fault = refsim_trace(prog("NOP\n" * 60), Config(), scans=3)
     assert trace_text(columns, recs, 100) == (
-        "scan,t_us,cycles\n0,0.62,62\n1,1.24,62\n2,1.86,62\n")
+        "scan,t_us,cycles\n0,0.61,61\n1,1.22,61\n2,1.83,61\n")
 
 
 def test_until_us_stops_after_first_scan_ending_at_or_after_t():
-    p = prog("NOP\n" * 60)                       # 0.62 us per scan
-    for until, count in [(0, 1), (1.24, 2), ("1.24", 2), (1.25, 3), (0.62, 1)]:
+    p = prog("NOP\n" * 60)                       # 61 cycles: 0.61 us per scan
+    for until, count in [(0, 1), (1.22, 2), ("1.22", 2), (1.23, 3), (0.61, 1)]:
         _, recs, _ = refsim_trace(p, Config(), until_us=until)
         assert len(recs) == count, until
 
@@ -289,12 +295,12 @@ def test_label_on_final_end_and_end_mid_program():
     recs = run(src, scans=1)
     assert column(recs, "Q0.0") == [0]
     assert column(recs, "Q0.1") == [0]
-    assert recs[0].cycles == 1 + 1 + 2 + 1
+    assert recs[0].cycles == 1 + 2 + 1      # SET (latch clock), JC taken, END
 
 
 # --- inputs, edges and REFRESH ----------------------------------------------------------
 
-EDGE_PROG = "LD IR0.0\n= Q0.0\nLD IF0.0\n= Q0.1\nLD I0.0\n= Q0.2"   # 8 clocks a scan
+EDGE_PROG = "LD IR0.0\n= Q0.0\nLD IF0.0\n= Q0.1\nLD I0.0\n= Q0.2"   # 7 clocks a scan
 
 
 def test_ir_in_scan_0_for_input_high_from_t0():
@@ -312,7 +318,7 @@ def test_if_with_scan_stimulus():
 
 
 def test_pulse_shorter_than_a_scan_is_seen_by_ir_and_if():
-    # latches at clocks 0, 8, 16 (100 MHz); the pin is 1 in clocks 3 and 4 only
+    # latches at clocks 0, 7, 14 (100 MHz); the pin is 1 in clocks 3 and 4 only
     recs = run(EDGE_PROG, stim("t_us,I0.0\n0.03,1\n0.05,0\n"), scans=3)
     assert column(recs, "Q0.0") == [0, 1, 0]
     assert column(recs, "Q0.1") == [0, 1, 0]
@@ -320,10 +326,11 @@ def test_pulse_shorter_than_a_scan_is_seen_by_ir_and_if():
 
 
 def test_change_exactly_at_a_latch_clock_and_just_after():
-    at_latch = run(EDGE_PROG, stim("t_us,I0.0\n0.08,1\n"), scans=3)      # clock 8
+    # 7-clock scans: scan 1 latches (and runs LD IR0.0) in clock 7, scan 2 in clock 14
+    at_latch = run(EDGE_PROG, stim("t_us,I0.0\n0.07,1\n"), scans=3)      # clock 7
     assert column(at_latch, "Q0.2") == [0, 1, 1]
     assert column(at_latch, "Q0.0") == [0, 1, 0]
-    after = run(EDGE_PROG, stim("t_us,I0.0\n0.0801,1\n"), scans=3)      # clock 9
+    after = run(EDGE_PROG, stim("t_us,I0.0\n0.0701,1\n"), scans=3)      # clock 8
     assert column(after, "Q0.2") == [0, 0, 1]
     assert column(after, "Q0.0") == [0, 0, 1]
 
@@ -336,35 +343,50 @@ def test_changes_within_one_clock_collapse_to_the_last():
 
 
 def test_pi_reads_the_pin_in_the_clock_of_the_instruction():
-    # LD@1 = @2 LD@3 = @4 END@5; pin rises at clock 2
+    # LD@0 (latch clock) =@1 LD@2 =@3 END@4; pin rises at clock 2
     recs = run("LD PI0.0\n= Q0.0\nLD PI0.0\n= Q0.1", stim("t_us,I0.0\n0.02,1\n"),
                scans=2, watch=["I0.0", "PI0.0"])
     assert column(recs, "Q0.0") == [0, 1]
     assert column(recs, "Q0.1") == [1, 1]
-    assert column(recs, "I0.0") == [0, 1]    # PII latched at clock 0, then at 6
+    assert column(recs, "I0.0") == [0, 1]    # PII latched at clock 0, then at 5
     assert column(recs, "PI0.0") == [1, 1]
 
 
 def refresh_prog():
-    # latch@0 LD@1 =@2 NOP@3 NOP@4 REFRESH@5 LD@6 =@7 LD@8 =@9 END@10 -> 11 cycles
+    # latch+LD@0 =@1 NOP@2 NOP@3 REFRESH@4 LD@5 =@6 LD@7 =@8 END@9 -> 10 cycles
     return "LD I0.0\n= Q0.0\nNOP\nNOP\nREFRESH\nLD I0.0\n= Q0.1\nLD IR0.0\n= Q0.2"
 
 
 def test_refresh_relatches_pii_and_edges():
-    recs = run(refresh_prog(), stim("t_us,I0.0\n0.04,1\n"), scans=2)
+    # the pin rises in clock 3, between the latch (0) and the REFRESH (4)
+    recs = run(refresh_prog(), stim("t_us,I0.0\n0.03,1\n"), scans=2)
     assert column(recs, "Q0.0") == [0, 1]
     assert column(recs, "Q0.1") == [1, 1]
     assert column(recs, "Q0.2") == [1, 0]    # the rise was taken by the REFRESH
-    assert [r.cycles for r in recs] == [11, 11]
+    assert [r.cycles for r in recs] == [10, 10]
 
 
 def test_refresh_sees_a_change_in_its_own_clock_only():
-    in_clock = run(refresh_prog(), stim("t_us,I0.0\n0.05,1\n"), scans=1)
+    # REFRESH in clock 4: a rise at 0.04 us (clock 4) is seen, at 0.041 us (clock 5) not
+    in_clock = run(refresh_prog(), stim("t_us,I0.0\n0.04,1\n"), scans=1)
     assert column(in_clock, "Q0.1") == [1]
-    later = run(refresh_prog(), stim("t_us,I0.0\n0.051,1\n"), scans=2)
+    later = run(refresh_prog(), stim("t_us,I0.0\n0.041,1\n"), scans=2)
     assert column(later, "Q0.1") == [0, 1]
     assert column(later, "Q0.0") == [0, 1]   # scan 1's latch took the rise ...
     assert column(later, "Q0.2") == [0, 0]   # ... so its REFRESH sees no new edge
+
+
+def test_refresh_in_the_latch_clock_is_the_same_single_latch():
+    # REFRESH@L (the latch clock itself) LD IR0.0@L+1 =@L+2 LD I0.0@L+3 =@L+4 END@L+5:
+    # 6 cycles, latches 0, 6, 12.  The pin rises in clock 6 (0.06 us) / in scan 1: scan
+    # 1's latch takes the rise; its REFRESH, in that same clock, must not re-latch
+    # (a second latch would find no edge since clock 6 and clear IR).
+    src = "REFRESH\nLD IR0.0\n= Q0.0\nLD I0.0\n= Q0.1"
+    for s in (stim("t_us,I0.0\n0.06,1\n"), stim("scan,I0.0\n1,1\n")):
+        recs = run(src, s, scans=3)
+        assert column(recs, "Q0.0") == [0, 1, 0]
+        assert column(recs, "Q0.1") == [0, 1, 1]
+        assert [r.cycles for r in recs] == [6, 6, 6]
 
 
 def test_refresh_with_scan_stimulus_sees_no_new_edge():
@@ -382,19 +404,19 @@ def test_scan_stimulus_values_hold():
 
 
 def test_pq_changes_the_pin_at_once_q_at_end():
-    # SET@1 =PQ0.0@2 =Q0.1@3 NOP@4 NOP@5 END@6
+    # SET@0 =PQ0.0@1 =Q0.1@2 NOP@3 NOP@4 END@5; scan 1 (latch 6) changes nothing
     sim = RefSim(prog("SET\n= PQ0.0\n= Q0.1\nNOP\nNOP"), Config())
     recs = sim.run(scans=2)
-    assert sim.output_events == [(2, 0b01), (6, 0b11)]
+    assert sim.output_events == [(1, 0b01), (5, 0b11)]
     assert column(recs, "Q0.0") == [1, 1]
     assert column(recs, "Q0.1") == [1, 1]
 
 
 def test_pq_read_sees_the_pio():
-    # SET@1 =Q0.0@2 LD PQ0.0@3 =PQ0.1@4 LD Q0.1@5 =Q0.2@6 END@7
+    # SET@0 =Q0.0@1 LD PQ0.0@2 =PQ0.1@3 LD Q0.1@4 =Q0.2@5 END@6
     sim = RefSim(prog("SET\n= Q0.0\nLD PQ0.0\n= PQ0.1\nLD Q0.1\n= Q0.2"), Config())
     recs = sim.run(scans=1)
-    assert sim.output_events == [(4, 0b010), (7, 0b111)]
+    assert sim.output_events == [(3, 0b010), (6, 0b111)]
     assert column(recs, "Q0.2") == [1]
 
 
@@ -417,12 +439,13 @@ def test_watched_words():
 
 
 def test_byte_instruction_runs_in_serial_mode():
-    # latch, L 3 (10 clocks), NOP (1), T MW0 (10), END: 1 + 10 + 1 + 10 + 1 = 23 cycles
+    # L 3 (10 clocks, from the latch clock), NOP (1), T MW0 (10), END: 10 + 1 + 10 + 1
+    # = 22 cycles
     p = prog("NOP\nT MW0")
     p.instrs.insert(0, Instr("L", Operand("const", "INT", value=3), 1, 1, "L 3"))
     sim = RefSim(p, Config())
     (rec,) = sim.run(scans=1)
-    assert rec.cycles == 23 and sim.mw == {0: 3}
+    assert rec.cycles == 22 and sim.mw == {0: 3}
 
 
 @pytest.mark.parametrize("src", ["LD FBI0\n= Q0.0", "SET\n= FBY1"])
@@ -441,23 +464,24 @@ def test_watchdog_on_endless_loop():
 
 
 def test_watchdog_after_good_scans_drops_the_outputs():
-    # SET = LD JC(not taken) -> 6 cycles while I0.0 = 0; from scan 2 an endless loop
+    # SET = LD JC(not taken) + END -> 5 cycles while I0.0 = 0 (latches 0, 5, 10);
+    # from scan 2 an endless loop
     src = "SET\n= Q0.0\nLD I0.0\nl: JC l"
     sim = RefSim(prog(src), Config(), stim("scan,I0.0\n0,0\n2,1\n"), watchdog=1000)
     recs = sim.run(scans=10)
     assert [r.scan for r in recs] == [0, 1]
     assert column(recs, "Q0.0") == [1, 1]
     assert sim.watchdog_fault and sim.fault_scan == 2
-    assert sim.fault_clock == 12 + 1000
+    assert sim.fault_clock == 10 + 1000
     assert sim.outputs == 0
-    assert sim.output_events[-1] == (1012, 0)
+    assert sim.output_events[-1] == (1010, 0)
     assert sim.run(scans=1) == []
 
 
 def test_watchdog_limit_is_inclusive():
-    p = prog("NOP\nNOP")                            # 4 cycles a scan
-    assert refsim_trace(p, Config(), scans=3, watchdog=4)[2] is False
-    _, recs, fault = refsim_trace(p, Config(), scans=3, watchdog=3)
+    p = prog("NOP\nNOP")                            # 3 cycles a scan
+    assert refsim_trace(p, Config(), scans=3, watchdog=3)[2] is False
+    _, recs, fault = refsim_trace(p, Config(), scans=3, watchdog=2)
     assert fault and recs == []
 
 

@@ -3,10 +3,11 @@ out by hand from spec §3 (semantics), §5 (costs) and docs/isa.md "Serial mode 
 Every expected value is written down, never computed by the code under test; the
 derivation is in the comment next to it.
 
-Timing reminders used throughout (default "paper" table): a scan is 1 (latch) + 1 per
-bit instruction + 10 per word instruction (L, T, arithmetic, compares, timers,
-counters) + 1 (END); a byte instruction starting in clock c occupies c .. c+9 and the
-next instruction runs in c+10; a timer's now = floor(c / (1000 * f_MHz)).
+Timing reminders used throughout (default "paper" table): the first instruction of a
+scan runs in its latch clock; a scan is 1 per bit instruction + 10 per word instruction
+(L, T, arithmetic, compares, timers, counters) + 1 (END); a byte instruction starting
+in clock c occupies c .. c+9 and the next instruction runs in c+10; a timer's
+now = floor(c / (1000 * f_MHz)).
 """
 import pytest
 
@@ -48,13 +49,13 @@ def col(records, header):
 
 
 def test_worked_example_subtract_and_compare():
-    # 7 word instructions (70) + `= Q0.0` (1) + latch + END = 73 cycles, t_us 0.73
+    # 7 word instructions (70) + `= Q0.0` (1) + END = 72 cycles, t_us 0.72
     src = "L 10\nL 3\n-I\nT MW0\nL 5\nL 3\n>I\n= Q0.0"
     columns, recs, _ = refsim_trace(program(src), Config(), watch=["MW0"], scans=2)
     assert trace_text(columns, recs, 100) == (
         "scan,t_us,cycles,Q0.0,MW0\n"
-        "0,0.73,73,1,7\n"
-        "1,1.46,73,1,7\n")
+        "0,0.72,72,1,7\n"
+        "1,1.44,72,1,7\n")
 
 
 def test_worked_example_int_wrap_division_modulo():
@@ -65,37 +66,38 @@ def test_worked_example_int_wrap_division_modulo():
     assert col(recs, "MW2") == [-32768]
     assert col(recs, "MW3") == [-3]
     assert col(recs, "MW4") == [-1]
-    assert recs[0].cycles == 142              # 14 word instructions + latch + END
+    assert recs[0].cycles == 141              # 14 word instructions + END
 
 
 def test_worked_example_on_delay_at_100_mhz():
-    # LD, L T#2ms, SD T1, LD T1, = Q0.0: 1 + 1 + 10 + 10 + 1 + 1 + 1 = 25 cycles, so
-    # scan k latches in clock 25k and SD starts in clock 25k + 12 (latch, LD, 10 of L).
-    # 100 MHz: 100 000 clocks per ms.  Scan 0: now = 0, the timer starts.  Q0.0 = 1 in
-    # the first scan with 25k + 12 >= 200 000, i.e. k >= 7999.52: scan 8000
-    # (scan 7999: SD in clock 199 987, now = 1).
+    # LD, L T#2ms, SD T1, LD T1, = Q0.0: 1 + 10 + 10 + 1 + 1 + 1 (END) = 24 cycles, so
+    # scan k latches in clock 24k (LD runs there) and SD starts in clock 24k + 11 (LD,
+    # 10 of L).  100 MHz: 100 000 clocks per ms.  Scan 0: SD in clock 11, now = 0, the
+    # timer starts.  Q0.0 = 1 in the first scan with 24k + 11 >= 200 000, i.e.
+    # k >= 199 989 / 24 = 8332.875: scan 8333 (SD in clock 199 992 + 11 = 200 003,
+    # now = 2); scan 8332: SD in clock 199 968 + 11 = 199 979, now = 1.
     src = "LD I0.0\nL T#2ms\nSD T1\nLD T1\n= Q0.0"
     sim = RefSim(program(src), Config(), stim("scan,I0.0\n0,1\n"))
-    recs = sim.run(scans=8002)
-    assert {r.cycles for r in recs} == {25}
+    recs = sim.run(scans=8335)
+    assert {r.cycles for r in recs} == {24}
     q = col(recs, "Q0.0")
-    assert q[:8000] == [0] * 8000
-    assert q[8000:] == [1, 1]
-    assert recs[8000].end_clock == 25 * 8001          # t_us 2000.25
+    assert q[:8333] == [0] * 8333
+    assert q[8333:] == [1, 1]
+    assert recs[8333].end_clock == 24 * 8334 == 200016    # t_us 2000.16
     assert sim.timers[1].start == 0
 
 
 def test_worked_example_counter():
-    # LD, CU, L C1, T MW0: 1 + 1 + 30 + 1 = 33 cycles; one count, in scan 0
+    # LD, CU, L C1, T MW0: 1 + 30 + 1 (END) = 32 cycles; one count, in scan 0
     recs = run("LD I0.0\nCU C1\nL C1\nT MW0", stim("scan,I0.0\n0,1\n"), scans=4,
                watch=["MW0", "C1"])
     assert col(recs, "MW0") == [1, 1, 1, 1]
     assert col(recs, "C1") == [1, 1, 1, 1]
-    assert {r.cycles for r in recs} == {33}
+    assert {r.cycles for r in recs} == {32}
 
 
 def test_worked_example_trace_header():
-    # latch + LD + 3 bit writes + L (10) + T (10) + END = 26 cycles
+    # LD + 3 bit writes + L (10) + T (10) + END = 25 cycles
     src = """VAR
   Start AT I0.0;
 END_VAR
@@ -111,7 +113,7 @@ T QW2
                                     ["MW0", "Start"], scans=1)
     assert trace_text(columns, recs, 100) == (
         "scan,t_us,cycles,Q0.1,Q0.3,Q1.0,QW2,MW0,Start\n"
-        "0,0.26,26,1,1,1,12,0,1\n")
+        "0,0.25,25,1,1,1,12,0,1\n")
 
 
 # --- spec §5: the Fig. 5 program ------------------------------------------------------
@@ -142,7 +144,7 @@ def test_fig5_serial_cost_is_59():
     assert serial_cost(parse("fig5.il", FIG5)) == 59
 
 
-def test_fig5_runs_in_61_cycles_with_its_logic():
+def test_fig5_runs_in_60_cycles_with_its_logic():
     # Time = MW1 = 0 (never written): preset 0, so SD's status follows its enable Flag
     # at once.  Out = Start_Up AND (IW0 >= MW0 = 0).
     #   scan 0: Start 0            -> Flag 0, Q0.0 0, Q0.1 0
@@ -153,8 +155,8 @@ def test_fig5_runs_in_61_cycles_with_its_logic():
     s = stim("scan,Start,Stop,BLK,SP_cur\n0,0,1,1,5\n1,1\n2,0,,,-3\n3,,0\n",
              symbols=p.symbols)
     columns, recs, _ = refsim_trace(p, Config(), s, ["T1", "M0.0"], scans=4)
-    assert [r.cycles for r in recs] == [61, 61, 61, 61]    # 1 + 9 + 50 + 1
-    assert [r.end_clock for r in recs] == [61, 122, 183, 244]
+    assert [r.cycles for r in recs] == [60, 60, 60, 60]    # 9 + 50 + 1 (END)
+    assert [r.end_clock for r in recs] == [60, 120, 180, 240]
     assert col(recs, "Q0.0") == [0, 1, 1, 0]
     assert col(recs, "Q0.1") == [0, 1, 0, 0]
     assert col(recs, "T1") == [0, 1, 1, 0]
@@ -263,26 +265,29 @@ def test_load_transfer_timers_counters_leave_the_rlo_alone():
 
 
 @pytest.mark.parametrize("change_us, expected", [
-    # L IW0 runs in clock 1 (latch in clock 0); 0.01 us = clock 1, 0.02 us = clock 2
-    ("0.01", [-6, -6]),
-    ("0.02", [5, -6]),
+    # L IW0 (10) + T MW0 (10) + END = 21 cycles: L IW0 runs in the latch clock, clocks
+    # 0..9 of scan 0 and 21..30 of scan 1.  0.21 us = clock 21 (scan 1's first L
+    # clock: seen), 0.22 us = clock 22 (its second clock: too late, scan 1 keeps 5)
+    ("0.21", [5, -6]),
+    ("0.22", [5, 5]),
 ])
 def test_iw_is_read_in_the_first_clock_of_l(change_us, expected):
     recs = run("L IW0\nT MW0", stim(f"t_us,IW0\n0,5\n{change_us},-6\n"), scans=2,
                watch=["MW0", "IW0"])
     assert col(recs, "MW0") == expected
-    assert col(recs, "IW0") == [-6, -6]               # seen at END (clock 21)
-    assert [r.cycles for r in recs] == [22, 22]
+    assert col(recs, "IW0") == [5, -6]                # seen at END (clocks 20 and 41)
+    assert [r.cycles for r in recs] == [21, 21]
 
 
 def test_qw_column_sign_extension_and_read_back():
-    # IW3 = 16#8000 = -32768 -> QW1; L QW1 < 0.  5 word instructions + `=`: 53 cycles
+    # IW3 = 16#8000 = -32768 -> QW1; L QW1 < 0.  5 word instructions + `=` + END:
+    # 52 cycles
     src = "L IW3\nT QW1\nL QW1\nL 0\n<I\n= Q0.0"
     columns, recs, _ = refsim_trace(program(src), Config(), stim("scan,IW3\n0,16#8000\n"),
                                     ["MW0", "QW1"], scans=1)
     assert trace_text(columns, recs, 100) == (
         "scan,t_us,cycles,Q0.0,QW1,MW0,QW1\n"
-        "0,0.53,53,1,-32768,0,-32768\n")
+        "0,0.52,52,1,-32768,0,-32768\n")
 
 
 def test_watched_exchange_channel_shows_0_in_serial_mode():
@@ -300,9 +305,9 @@ def test_exchange_is_parallel_mode_only(src):
 # --- timers -------------------------------------------------------------------------------
 #
 # One template for the four kinds.  Clocks of scan k (latch in clock 60k):
-#   LD I0.0 +1, L T#3ms +2..11, Sx T1 +12..21, LD T1 +22, = Q0.0 +23, L T1 +24..33,
-#   T MW0 +34..43, LD I0.1 +44, R T1 +45..54, 4 NOP +55..58, END +59: 60 cycles.
-# At 0.06 MHz a ms is 60 clocks, so Sx runs at now = floor((60k + 12) / 60) = k.
+#   LD I0.0 +0, L T#3ms +1..10, Sx T1 +11..20, LD T1 +21, = Q0.0 +22, L T1 +23..32,
+#   T MW0 +33..42, LD I0.1 +43, R T1 +44..53, 5 NOP +54..58, END +59: 60 cycles.
+# At 0.06 MHz a ms is 60 clocks, so Sx runs at now = floor((60k + 11) / 60) = k.
 # Q0.0 = status right after Sx, MW0 = elapsed right after Sx, watched T1 = status at
 # the end of the scan (after R T1, which I0.1 enables).
 
@@ -311,7 +316,7 @@ F06 = Config(clock_mhz=0.06)
 
 def timer_prog(kind, preset="T#3ms"):
     return (f"LD I0.0\nL {preset}\n{kind} T1\nLD T1\n= Q0.0\nL T1\nT MW0\n"
-            "LD I0.1\nR T1\nNOP\nNOP\nNOP\nNOP")
+            "LD I0.1\nR T1\nNOP\nNOP\nNOP\nNOP\nNOP")
 
 
 def run_timer(kind, enable, reset, preset="T#3ms"):
@@ -399,31 +404,33 @@ def test_preset_is_the_full_32_bit_accu():
 
 @pytest.mark.parametrize("nops, expected", [
     # SET, L T#3ms, SD T1, LD T1, = Q0.0, NOPs at 0.01 MHz (10 clocks per ms):
-    # 25 + nops cycles; SD starts in clock 12 of each scan.  Scan 0: now 1, start 1.
-    (3, [0, 1, 1]),    # 28-cycle scans: scan 1's SD in clock 40, now 4, d 3
-    (2, [0, 0, 1]),    # 27: clock 39, now 3, d 2 (its last clock, 48, would be 4 ms);
-                       #     scan 2 in clock 66, now 6
+    # 24 + nops cycles (SET in the latch clock); SD starts in clock 11 of each scan.
+    # Scan 0: SD in clock 11, now 1, start 1.
+    (5, [0, 1, 1]),    # 29-cycle scans: scan 1's SD in clock 40, now 4, d 3;
+                       #     scan 2 in clock 69, now 6
+    (4, [0, 0, 1]),    # 28: clock 39, now 3, d 2 (its last clock, 48, would be 4 ms);
+                       #     scan 2 in clock 67, now 6
 ])
 def test_now_is_taken_in_the_first_clock_of_the_timer_instruction(nops, expected):
     cfg = Config(clock_mhz=0.01)
     recs = run("SET\nL T#3ms\nSD T1\nLD T1\n= Q0.0" + "\nNOP" * nops, scans=3, config=cfg)
     assert col(recs, "Q0.0") == expected
-    assert {r.cycles for r in recs} == {25 + nops}
+    assert {r.cycles for r in recs} == {24 + nops}
 
 
 def test_status_and_elapsed_change_only_when_the_timer_executes():
     # At 0.01 MHz.  I0.1 = 1 jumps over SD (scans 1-3).
-    #   SD scan: latch, LD, JC (not taken), LD, L 10, SD 10, LD, =, L 10, T 10, END = 47,
-    #            SD in clock latch + 14
-    #   skip:    latch, LD, JC (taken, 2), LD, =, L 10, T 10, END = 27
-    # scan 0: latch 0, SD in clock 14: now 1, start.  Scans 1-3 (latches 47, 74, 101)
-    # pass 2 ms but show status 0 and elapsed 0.  Scan 4: latch 128, SD in clock 142:
-    # now 14, d 13 -> 1, elapsed min(13, 2) = 2.
+    #   SD scan: LD, JC (not taken), LD, L 10, SD 10, LD, =, L 10, T 10, END = 46,
+    #            LD in the latch clock, SD in clock latch + 13
+    #   skip:    LD, JC (taken, 2), LD, =, L 10, T 10, END = 26
+    # scan 0: latch 0, SD in clock 13: now 1, start.  Scans 1-3 (latches 46, 72, 98)
+    # pass 2 ms but show status 0 and elapsed 0.  Scan 4: latch 124, SD in clock 137:
+    # now 13, d 12 -> 1, elapsed min(12, 2) = 2.
     src = "LD I0.1\nJC skip\nLD I0.0\nL T#2ms\nSD T1\nskip: LD T1\n= Q0.0\nL T1\nT MW0"
     cfg = Config(clock_mhz=0.01)
     s = stim("scan,I0.0,I0.1\n0,1,0\n1,1,1\n4,1,0\n")
     recs = run(src, s, scans=5, watch=["MW0", "T1"], config=cfg)
-    assert [r.cycles for r in recs] == [47, 27, 27, 27, 47]
+    assert [r.cycles for r in recs] == [46, 26, 26, 26, 46]
     assert col(recs, "Q0.0") == [0, 0, 0, 0, 1]
     assert col(recs, "T1") == [0, 0, 0, 0, 1]
     assert col(recs, "MW0") == [0, 0, 0, 0, 2]
@@ -458,8 +465,8 @@ def test_counter_edges_saturation_set_and_reset():
                                 32766, 0, 0, 0]
     assert col(recs, "C1") == [1, 0, 0, 0, 0, 1, 1, 1, 1, 1, 0, 0, 0, 1, 0, 0, 0]
     assert col(recs, "Q0.0") == col(recs, "C1")
-    # 5 LD + `=` (6) + CU CD L S R L T (70) + latch + END
-    assert {r.cycles for r in recs} == {78}
+    # 5 LD + `=` (6) + CU CD L S R L T (70) + END
+    assert {r.cycles for r in recs} == {77}
 
 
 @pytest.mark.parametrize("value, expected", [
@@ -490,15 +497,15 @@ def test_default_cost_table():
 
 
 def test_cost_by_class():
-    # worked example 1 with 3 clocks per word instruction: 7 * 3 + 1 + 2
+    # worked example 1 with 3 clocks per word instruction: 7 * 3 + 1 (`=`) + 1 (END)
     recs = run("L 10\nL 3\n-I\nT MW0\nL 5\nL 3\n>I\n= Q0.0", costs={"word": 3})
-    assert recs[0].cycles == 24
+    assert recs[0].cycles == 23
 
 
 def test_cost_by_mnemonic_wins_over_class():
-    # L 2 + L 2 + *I 40 + T 10 (paper) + latch + END = 56
+    # L 2 + L 2 + *I 40 + T 10 (paper) + END = 55
     recs = run("L 3\nL 4\n*I\nT MW0", costs={"*I": 40, "L": 2}, watch=["MW0"])
-    assert recs[0].cycles == 56 and col(recs, "MW0") == [12]
+    assert recs[0].cycles == 55 and col(recs, "MW0") == [12]
     assert serial_cost(parse("fig5.il", FIG5), {"word": 20}) == 9 + 5 * 20
 
 
@@ -509,8 +516,8 @@ def test_cost_by_firmware_class():
     assert table["+I"] == table["L"] == table["SD"] == table["S C"] == 4
     assert table[">=I"] == table["O <>I"] == 7
     assert table["READ"] == 1
-    # L 4 + L 4 + /I 25 + T 4 + latch + END = 39
-    assert run("L 9\nL 2\n/I\nT MW0", costs={"muldiv": 25, "word": 4})[0].cycles == 39
+    # L 4 + L 4 + /I 25 + T 4 + END = 38
+    assert run("L 9\nL 2\n/I\nT MW0", costs={"muldiv": 25, "word": 4})[0].cycles == 38
 
 
 def test_named_cost_tables():
@@ -528,8 +535,8 @@ def test_bad_cost_table(costs):
 
 
 def test_watchdog_counts_byte_clocks():
-    # L 1, L 2: 1 + 10 + 10 + 1 = 22 cycles
+    # L 1, L 2: 10 + 10 + 1 (END) = 21 cycles
     p = program("L 1\nL 2")
-    assert refsim_trace(p, Config(), scans=2, watchdog=22)[2] is False
-    _, recs, fault = refsim_trace(p, Config(), scans=2, watchdog=21)
+    assert refsim_trace(p, Config(), scans=2, watchdog=21)[2] is False
+    _, recs, fault = refsim_trace(p, Config(), scans=2, watchdog=20)
     assert fault and recs == []

@@ -60,13 +60,14 @@ def test_16_bit_arithmetic(tmp_path, sim):
 def test_on_delay_2ms_at_100mhz(tmp_path):
     """`LD I0.0, L T#2ms, SD T1, LD T1, = Q0.0`, I0.0 = 1 from scan 0: T1 starts in
     scan 0 (now = 0); Q0.0 = 1 from the first scan whose SD executes at t >= 2 ms.
-    A scan is 25 clocks (1 + 3 bit + 2 * 10 + 1), SD executes at clock 25k + 12, so
-    the first is k = 8000 (25 * 8000 + 12 >= 200 000 clocks). Harness only: 200 000
-    clocks; Icarus runs the same firmware in test_timer_kinds."""
+    A scan is 24 clocks (3 bit + 2 * 10 + END), LD I0.0 runs in the latch clock 24k,
+    L in 24k+1..24k+10, SD in 24k + 11, so the first is k = 8333 (24 * 8333 + 11 =
+    200 003 >= 200 000 > 24 * 8332 + 11). Harness only: 200 000 clocks; Icarus runs
+    the same firmware in test_timer_kinds."""
     rows = run(tmp_path, "verilator", "LD I0.0\nL T#2ms\nSD T1\nLD T1\n= Q0.0\n",
-               "scan,I0.0\n0,1\n", scans=8002)
+               "scan,I0.0\n0,1\n", scans=8335)
     q = [r[3] for r in rows[1:]]
-    assert q.index("1") == 8000 and set(q[8000:]) == {"1"}
+    assert q.index("1") == 8333 and set(q[8333:]) == {"1"}
 
 
 @pytest.mark.parametrize("sim", SIMS)
