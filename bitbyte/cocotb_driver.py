@@ -83,6 +83,10 @@ class Firmware:
         if job.pool:
             words = (ctypes.c_uint32 * len(job.pool))(*job.pool)
             lib.bb_load_pool(self.state, words, len(job.pool))
+        self.parallel = job.mode == "parallel"
+        if self.parallel:
+            words = (ctypes.c_uint32 * len(job.byte_prog))(*job.byte_prog)
+            lib.bb_load_program(self.state, words, len(job.byte_prog))
         # The HAL: each callback runs in the firmware's thread and blocks on a coroutine.
         hal = (lib.HalRead(resume(self._read)), lib.HalWrite(resume(self._write)),
                lib.HalSpend(resume(self._spend)), lib.HalWait(resume(self._wait)),
@@ -101,6 +105,9 @@ class Firmware:
             lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
             lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_serial_step.argtypes = [ctypes.c_void_p]
+            lib.bb_run_scan.argtypes = [ctypes.c_void_p]
+            lib.hal_bus_write.argtypes = [ctypes.c_uint8, ctypes.c_uint32]
+            lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.restype = ctypes.c_int16
             lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint8)
@@ -158,9 +165,17 @@ class Firmware:
         return int((get_sim_time("ns") - self.clock0_ns) // PERIOD_NS)
 
     def run_until_stopped(self) -> None:
-        """The firmware's main loop (in the bridged thread)."""
+        """The firmware's main loop (in the bridged thread): serial mode executes
+        dispatched instructions; parallel mode runs its byte part from each scan's
+        latch clock (NEXT) and reports SCAN_DONE."""
+        lib = self._lib
         while not self.stopped.is_set():
-            self._lib.bb_serial_step(self.state)
+            if self.parallel:
+                lib.hal_wait_dispatch()
+                lib.bb_run_scan(self.state)
+                lib.hal_bus_write(0x07, 1)
+            else:
+                lib.bb_serial_step(self.state)
 
 
 async def run_job(dut, job: RunJob) -> dict:
@@ -185,6 +200,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.bus_we_i.value = 1
     await FallingEdge(dut.clk_i)
     dut.bus_we_i.value = 0
+    dut.parallel_i.value = int(job.mode == "parallel")
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 

@@ -42,6 +42,8 @@ class RunJob:
     cols: list[tuple[str, str, int]] = field(default_factory=list)  # (header, kind, index)
     costs: str = "paper"                 # byte processor cost table
     pool: list[int] = field(default_factory=list)   # constant pool words
+    mode: str = "serial"                 # serial | parallel
+    byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -50,9 +52,12 @@ class RunJob:
     def from_json(cls, data: dict) -> "RunJob":
         return cls(**data)
 
-    def to_harness_text(self, prog_path: str, trace_path: str, waves: str | None) -> str:
+    def to_harness_text(self, prog_path: str, trace_path: str, waves: str | None,
+                        byte_prog_path: str | None = None) -> str:
         lines = [f"prog {prog_path}", f"clock_hz {self.clock_hz}",
-                 f"watchdog {self.watchdog}"]
+                 f"watchdog {self.watchdog}", f"mode {self.mode}"]
+        if byte_prog_path:
+            lines.append(f"byte_prog {byte_prog_path}")
         if self.scans is not None:
             lines.append(f"scans {self.scans}")
         if self.until_clock is not None:

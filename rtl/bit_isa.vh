@@ -9,6 +9,7 @@
 `define ISA_AREA        15:12
 `define ISA_INDEX       11:0
 `define ISA_TARGET      15:0
+`define ISA_WAIT_UPDATE 16      // T/C read: wait for this scan's byte-side update
 
 // Opcodes without an operand
 `define OP_NOP          8'h00

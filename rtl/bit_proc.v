@@ -43,6 +43,8 @@ module bit_proc #(
   input  wire [OutBits-1:0]           pio_i,
   input  wire [StatusBits-1:0]        timer_status_i,
   input  wire [StatusBits-1:0]        counter_status_i,
+  input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel)
+  input  wire [StatusBits-1:0]        counter_updated_i,
   // exchange channels: F_Bb k read by bit instructions, F_bB k written by `= FBY k`
   output wire [Channels-1:0]          fbi_rd_req_o,
   input  wire [Channels-1:0]          fbi_rd_data_i,
@@ -56,7 +58,9 @@ module bit_proc #(
   input  wire                         byte_done_i,    // ... and completes this clock
   input  wire                         byte_rlo_i,
   input  wire                         byte_rlo_we_i,
-  output wire                         stall_o,        // execute waits on a channel
+  output wire                         stall_o,        // execute waits for the byte side
+  // parallel mode: END waits until the byte side has finished its part of the scan
+  input  wire                         end_hold_i,
   // output unit write port (Q, PQ)
   output wire                         out_wr_en_o,
   output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
@@ -123,11 +127,19 @@ module bit_proc #(
   wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_cur));
   wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
                     (fby_write && !(|(fby_wr_ready_i & chan_sel)));
-  wire e_stall    = chan_wait || (e_go && is_byte && !byte_done_i);
+  wire end_wait   = e_go && (e_op == `OP_END) && end_hold_i;
+  // A read of `T n` / `C n` marked "after the update" (bit 16, set by the partitioning
+  // compiler when a byte-side instruction on that timer/counter precedes it in the
+  // scan) waits until the byte side has written the status this scan.
+  wire [$clog2(StatusBits)-1:0] tc_idx = e_index[$clog2(StatusBits)-1:0];
+  wire tc_wait    = e_go && is_logic && e_instr_q[`ISA_WAIT_UPDATE] &&
+                    ((e_area == `AREA_T && !timer_updated_i[tc_idx]) ||
+                     (e_area == `AREA_C && !counter_updated_i[tc_idx]));
+  wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && is_byte && !byte_done_i);
   wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
   // A stall is a wait on the other processor's condition; a dispatched instruction's
   // own clocks (serial mode) are its execution time, not a stall.
-  assign stall_o  = chan_wait;
+  assign stall_o  = chan_wait || end_wait || tc_wait;
 
   assign fbi_rd_req_o  = fbi_read  ? chan_sel : {Channels{1'b0}};
   assign fby_wr_req_o  = fby_write ? chan_sel : {Channels{1'b0}};
@@ -138,7 +150,7 @@ module bit_proc #(
   wire jump_taken = e_go && ((e_op == `OP_JU) ||
                              (e_op == `OP_JC  &&  rlo_cur) ||
                              (e_op == `OP_JCN && !rlo_cur));
-  assign end_o     = e_go && (e_op == `OP_END);
+  assign end_o     = e_go && (e_op == `OP_END) && !end_hold_i;
   assign refresh_o = e_go && (e_op == `OP_REFRESH);
   wire   d_is_end  = d_instr[`ISA_OPCODE] == `OP_END;
 
@@ -191,8 +203,8 @@ module bit_proc #(
       `AREA_Q,
       `AREA_PQ: operand = pio_i[e_index[$clog2(OutBits)-1:0]];
       `AREA_M:  operand = m_bypass_q ? m_bypass_val_q : m_rdata;
-      `AREA_T:  operand = timer_status_i[e_index[$clog2(StatusBits)-1:0]];
-      `AREA_C:  operand = counter_status_i[e_index[$clog2(StatusBits)-1:0]];
+      `AREA_T:  operand = timer_status_i[tc_idx];
+      `AREA_C:  operand = counter_status_i[tc_idx];
       `AREA_FB: operand = |(fbi_rd_data_i & chan_sel);
       default:  operand = 1'b0;
     endcase
@@ -301,7 +313,7 @@ module bit_proc #(
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_bits = ^{e_instr_q[23:16], e_index, sp_top};
+  wire unused_bits = ^{e_instr_q[23:17], e_index, sp_top};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

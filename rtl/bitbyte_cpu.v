@@ -23,6 +23,7 @@ module bitbyte_cpu #(
   input  wire [31:0]                  prog_wdata_i,
   // control and status
   input  wire                         run_i,             // RUN/STOP switch
+  input  wire                         parallel_i,        // 0 serial, 1 parallel mode
   input  wire [31:0]                  watchdog_limit_i,  // clocks per scan at most
   output wire                         ready_o,           // stopped, ready to run
   output wire                         fault_o,           // scan watchdog fired
@@ -60,12 +61,13 @@ module bitbyte_cpu #(
   wire        exec_valid;
   // exchange
   wire [StatusBits-1:0] timer_status, counter_status, timer_enable, counter_pulse;
+  wire [StatusBits-1:0] timer_updated, counter_updated;
   wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
   wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
   wire        fby_wr_data, fbi_wr_data, bit_stall;
   wire        byte_req, byte_done, byte_rlo, byte_rlo_we;
   wire [31:0] byte_instr, dispatch_instr, dispatch_ctx;
-  wire        next, done_we;
+  wire        next, dispatch_next, done_we, byte_scan_done;
   wire [1:0]  done_data;
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
@@ -143,6 +145,8 @@ module bitbyte_cpu #(
     .pio_i           (pio),
     .timer_status_i  (timer_status),
     .counter_status_i(counter_status),
+    .timer_updated_i (timer_updated),
+    .counter_updated_i(counter_updated),
     .fbi_rd_req_o    (fbi_rd_req),
     .fbi_rd_data_i   (fbi_rd_data),
     .fbi_rd_ready_i  (fbi_rd_ready),
@@ -155,6 +159,7 @@ module bitbyte_cpu #(
     .byte_rlo_i      (byte_rlo),
     .byte_rlo_we_i   (byte_rlo_we),
     .stall_o         (bit_stall),
+    .end_hold_i      (parallel_i && (latch || !byte_scan_done)),
     .out_wr_en_o     (out_wr_en),
     .out_wr_idx_o    (out_wr_idx),
     .out_wr_val_o    (out_wr_val),
@@ -203,7 +208,7 @@ module bitbyte_cpu #(
     .done_o          (byte_done),
     .done_rlo_o      (byte_rlo),
     .done_rlo_we_o   (byte_rlo_we),
-    .next_o          (next),
+    .next_o          (dispatch_next),
     .instr_o         (dispatch_instr),
     .ctx_o           (dispatch_ctx),
     .done_we_i       (done_we),
@@ -213,6 +218,10 @@ module bitbyte_cpu #(
     .ctl_idx_o       (ctl_idx),
     .ctl_val_o       (ctl_val)
   );
+
+  // NEXT tells the byte processor to start work: a dispatched instruction (serial
+  // mode), or a scan's latch clock (parallel mode: it runs its own part of the scan).
+  assign next = dispatch_next || (parallel_i && latch);
 
   tc_status #(.StatusBits(StatusBits)) u_tc_status (
     .clk_i              (clk_i),
@@ -225,10 +234,13 @@ module bitbyte_cpu #(
     .ctl_is_counter_i   (ctl_is_counter),
     .ctl_idx_i          (ctl_idx),
     .ctl_val_i          (ctl_val),
+    .latch_i            (latch),
     .timer_status_o     (timer_status),
     .counter_status_o   (counter_status),
     .timer_enable_o     (timer_enable),
-    .counter_pulse_o    (counter_pulse)
+    .counter_pulse_o    (counter_pulse),
+    .timer_updated_o    (timer_updated),
+    .counter_updated_o  (counter_updated)
   );
 
   byte_port #(
@@ -248,6 +260,7 @@ module bitbyte_cpu #(
     .latch_i         (latch),
     .exec_i          (exec),
     .fault_i         (fault_o),
+    .byte_scan_done_o(byte_scan_done),
     .next_i          (next),
     .dispatch_instr_i(dispatch_instr),
     .dispatch_ctx_i  (dispatch_ctx),

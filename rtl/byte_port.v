@@ -23,6 +23,8 @@ module byte_port #(
   input  wire                          latch_i,      // a PII latch (clock 0 starts the time base)
   input  wire                          exec_i,
   input  wire                          fault_i,
+  // parallel mode: the byte side reports the end of its part of the scan
+  output reg                           byte_scan_done_o,
   // serial dispatch
   input  wire                          next_i,
   input  wire [31:0]                   dispatch_instr_i,
@@ -63,6 +65,7 @@ module byte_port #(
   localparam [7:0] AddrDone     = 8'h04;
   localparam [7:0] AddrDispMs   = 8'h05;
   localparam [7:0] AddrDispIw   = 8'h06;
+  localparam [7:0] AddrScanDone = 8'h07;
   localparam [7:0] AddrTimeMs   = 8'h08;
   localparam [7:0] AddrTickDiv  = 8'h09;
   localparam [7:0] AddrClock    = 8'h0A;
@@ -181,7 +184,7 @@ module byte_port #(
     end else begin
       case (bus_addr_i)
         AddrId:       bus_rdata_o = IdValue;
-        AddrStatus:   bus_rdata_o = {29'd0, fault_i, exec_i, next_i};
+        AddrStatus:   bus_rdata_o = {28'd0, byte_scan_done_o, fault_i, exec_i, next_i};
         AddrInstr:    bus_rdata_o = dispatch_instr_i;
         AddrCtx:      bus_rdata_o = dispatch_ctx_i;
         AddrDispMs:   bus_rdata_o = disp_ms;
@@ -207,6 +210,13 @@ module byte_port #(
   end
 
   // ---------------------------------------------------------------- registers
+  // SCAN_DONE: set by the byte side's write, cleared when the next scan latches.
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) byte_scan_done_o <= 1'b0;
+    else if (bus_we_i && bus_addr_i == AddrScanDone) byte_scan_done_o <= 1'b1;
+    else if (latch_i) byte_scan_done_o <= 1'b0;
+  end
+
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       tick_div_q    <= 32'd100_000;   // 100 MHz

@@ -6,6 +6,9 @@
 // direction the bit side leaves the enable (timers) and count-pulse (counters) bits
 // that the byte procedures read: the RLO at the moment it dispatches an instruction
 // on that timer or counter.
+// Parallel mode: an `updated` bit per timer/counter records that the byte side wrote
+// its status since this scan's latch, so a bit instruction marked "after the update"
+// (docs/isa.md, bit 16) waits exactly until the byte side's timer instruction has run.
 module tc_status #(
   parameter integer StatusBits = 64  // timers T0.. and counters C0.. (each)
 ) (
@@ -21,10 +24,13 @@ module tc_status #(
   input  wire                          ctl_is_counter_i,
   input  wire [$clog2(StatusBits)-1:0] ctl_idx_i,
   input  wire                          ctl_val_i,
+  input  wire                          latch_i,        // a scan starts: nothing updated yet
   output reg  [StatusBits-1:0]         timer_status_o,
   output reg  [StatusBits-1:0]         counter_status_o,
   output reg  [StatusBits-1:0]         timer_enable_o,
-  output reg  [StatusBits-1:0]         counter_pulse_o
+  output reg  [StatusBits-1:0]         counter_pulse_o,
+  output reg  [StatusBits-1:0]         timer_updated_o,
+  output reg  [StatusBits-1:0]         counter_updated_o
 );
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -32,7 +38,16 @@ module tc_status #(
       counter_status_o <= {StatusBits{1'b0}};
       timer_enable_o   <= {StatusBits{1'b0}};
       counter_pulse_o  <= {StatusBits{1'b0}};
+      timer_updated_o  <= {StatusBits{1'b0}};
+      counter_updated_o <= {StatusBits{1'b0}};
     end else begin
+      if (latch_i) begin
+        timer_updated_o   <= {StatusBits{1'b0}};
+        counter_updated_o <= {StatusBits{1'b0}};
+      end
+      // a write in the latch clock belongs to the new scan: after the clear
+      if (status_we_i && !status_is_counter_i) timer_updated_o[status_idx_i]   <= 1'b1;
+      if (status_we_i &&  status_is_counter_i) counter_updated_o[status_idx_i] <= 1'b1;
       if (status_we_i && !status_is_counter_i) timer_status_o[status_idx_i]   <= status_val_i;
       if (status_we_i &&  status_is_counter_i) counter_status_o[status_idx_i] <= status_val_i;
       if (ctl_we_i && !ctl_is_counter_i) timer_enable_o[ctl_idx_i]  <= ctl_val_i;

@@ -132,6 +132,8 @@ struct RunFile {
   std::vector<Col> cols;
   std::string costs = "paper";                                     // byte processor cost table
   std::vector<uint32_t> pool;                                      // constant pool
+  bool parallel = false;                                           // mode parallel
+  std::string byte_prog;                                           // its byte part (.hex)
 };
 
 static int hex_digit(char c) {  // -1 if c is no hex digit
@@ -212,6 +214,13 @@ static RunFile read_run_file(const char* path) {
         s.words[i] = int16_t(uint16_t(v));
       }
       rf.stim.push_back(s);
+    } else if (k == "mode") {
+      want(1);
+      if (w[1] != "serial" && w[1] != "parallel") die("mode must be serial or parallel");
+      rf.parallel = w[1] == "parallel";
+    } else if (k == "byte_prog") {
+      want(1);
+      rf.byte_prog = w[1];
     } else if (k == "costs") {
       want(1);
       rf.costs = w[1];
@@ -499,6 +508,15 @@ int main(int argc, char** argv) {
   if (!costs) die("unknown cost table '%s'", rf.costs.c_str());
   bb_init(&bb, costs);
   if (!rf.pool.empty()) bb_load_pool(&bb, rf.pool.data(), unsigned(rf.pool.size()));
+  if (rf.parallel) {  // the byte part: the byte processor's own program
+    if (rf.byte_prog.empty()) die("mode parallel needs 'byte_prog'");
+    std::vector<uint32_t> words;
+    for (auto [a, w] : read_hex(rf.byte_prog, BB_PROG_WORDS)) {
+      if (a >= words.size()) words.resize(a + 1, 0);
+      words[a] = w;
+    }
+    if (bb_load_program(&bb, words.data(), unsigned(words.size())) != 0) die("byte part too large");
+  }
   if (rf.clock_hz % 1000) die("clock_hz must be a whole number of kHz (the 1 ms time base)");
 
   TraceOut out;
@@ -595,6 +613,7 @@ int main(int argc, char** argv) {
   top.bus_we_i = 1;
   d.tick();
   top.bus_we_i = 0;
+  top.parallel_i = rf.parallel;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
 
@@ -609,6 +628,13 @@ int main(int argc, char** argv) {
   d.direct = !d.wave;  // the model is initialised by now (first eval() done)
   const auto wall0 = std::chrono::steady_clock::now();
   if (setjmp(run.stop) == 0) {
+    if (rf.parallel) {
+      for (;;) {                     // each scan: its byte part from the latch clock on
+        hal_wait_dispatch();         // NEXT = the latch clock
+        bb_run_scan(&bb);
+        hal_bus_write(0x07, 1);      // SCAN_DONE: the bit side's END may complete
+      }
+    }
     for (;;) bb_serial_step(&bb);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

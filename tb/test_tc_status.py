@@ -17,7 +17,7 @@ N = 64
 @cocotb.test()
 async def random_writes_against_model(dut):
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    for sig in (dut.rst_ni, dut.status_we_i, dut.ctl_we_i):
+    for sig in (dut.rst_ni, dut.status_we_i, dut.ctl_we_i, dut.latch_i):
         sig.value = 0
     await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
