@@ -201,6 +201,7 @@ async def run_job(dut, job: RunJob) -> dict:
     await FallingEdge(dut.clk_i)
     dut.bus_we_i.value = 0
     dut.parallel_i.value = int(job.mode == "parallel")
+    dut.exchange_i.value = ("handshake", "queue", "queue-free").index(job.exchange)
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 

@@ -43,6 +43,7 @@ class RunJob:
     costs: str = "paper"                 # byte processor cost table
     pool: list[int] = field(default_factory=list)   # constant pool words
     mode: str = "serial"                 # serial | parallel
+    exchange: str = "handshake"          # handshake | queue | queue-free
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
 
     def to_json(self) -> dict:
@@ -55,7 +56,8 @@ class RunJob:
     def to_harness_text(self, prog_path: str, trace_path: str, waves: str | None,
                         byte_prog_path: str | None = None) -> str:
         lines = [f"prog {prog_path}", f"clock_hz {self.clock_hz}",
-                 f"watchdog {self.watchdog}", f"mode {self.mode}"]
+                 f"watchdog {self.watchdog}", f"mode {self.mode}",
+                 f"exchange {self.exchange}"]
         if byte_prog_path:
             lines.append(f"byte_prog {byte_prog_path}")
         if self.scans is not None:

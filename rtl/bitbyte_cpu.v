@@ -10,7 +10,8 @@ module bitbyte_cpu #(
   parameter integer OutBytes    = 16,    // binary output bytes: Q/PQ 0.0 .. OutBytes-1.7
   parameter integer MarkerBytes = 256,   // marker bytes: M 0.0 .. MarkerBytes-1.7
   parameter integer StatusBits  = 64,    // timers T0.. and counters C0.. (status bits each)
-  parameter integer Channels    = 4,     // exchange channels FBI k / FBY k
+  parameter integer Channels    = 4,     // exchange channels FBI k / FBY k (handshake)
+  parameter integer QueueDepth  = 8,     // condition queue depth per direction
   parameter integer NestDepth   = 8,     // parenthesis nesting levels
   parameter integer InWords     = 16,    // word inputs IW n (analog)
   parameter integer OutWords    = 16     // word outputs QW n (analog)
@@ -24,6 +25,7 @@ module bitbyte_cpu #(
   // control and status
   input  wire                         run_i,             // RUN/STOP switch
   input  wire                         parallel_i,        // 0 serial, 1 parallel mode
+  input  wire [1:0]                   exchange_i,        // 0 handshake, 1 queue, 2 queue-free
   input  wire [31:0]                  watchdog_limit_i,  // clocks per scan at most
   output wire                         ready_o,           // stopped, ready to run
   output wire                         fault_o,           // scan watchdog fired
@@ -71,7 +73,7 @@ module bitbyte_cpu #(
   wire [1:0]  done_data;
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
-  wire [31:0] byte_flags;
+  wire [31:0] byte_flags, queue_overflows, queue_underflows;
 
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
@@ -170,35 +172,32 @@ module bitbyte_cpu #(
     .exec_valid_o    (exec_valid)
   );
 
-  // Buffered condition flip-flops (Fig. 11): F_bB k carries a condition to the byte
-  // side (`= FBY k` / READ FBY k), F_Bb k to the bit side (WRITE FBI k / `A FBI k`).
-  genvar k;
-  generate
-    for (k = 0; k < Channels; k = k + 1) begin : g_channel
-      cond_ff u_fby (
-        .clk_i     (clk_i),
-        .rst_ni    (rst_ni),
-        .wr_req_i  (fby_wr_req[k]),
-        .wr_data_i (fby_wr_data),
-        .wr_ready_o(fby_wr_ready[k]),
-        .rd_req_i  (fby_rd_req[k]),
-        .rd_data_o (fby_rd_data[k]),
-        .rd_ready_o(fby_rd_ready[k]),
-        .full_o    (fby_full[k])
-      );
-      cond_ff u_fbi (
-        .clk_i     (clk_i),
-        .rst_ni    (rst_ni),
-        .wr_req_i  (fbi_wr_req[k]),
-        .wr_data_i (fbi_wr_data),
-        .wr_ready_o(fbi_wr_ready[k]),
-        .rd_req_i  (fbi_rd_req[k]),
-        .rd_data_o (fbi_rd_data[k]),
-        .rd_ready_o(fbi_rd_ready[k]),
-        .full_o    (fbi_full[k])
-      );
-    end
-  endgenerate
+  // The condition exchange (Fig. 11 flip-flops or Fig. 16 queues, by exchange_i):
+  // F_bB k carries a condition to the byte side (`= FBY k` / READ FBY k), F_Bb k to
+  // the bit side (WRITE FBI k / `A FBI k`).
+  cond_exchange #(.Channels(Channels), .QueueDepth(QueueDepth)) u_exchange (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .exchange_i    (exchange_i),
+    .bit_start_i   (latch),
+    .byte_start_i  (latch),
+    .fby_wr_req_i  (fby_wr_req),
+    .fby_wr_data_i (fby_wr_data),
+    .fby_wr_ready_o(fby_wr_ready),
+    .fby_rd_req_i  (fby_rd_req),
+    .fby_rd_data_o (fby_rd_data),
+    .fby_rd_ready_o(fby_rd_ready),
+    .fby_full_o    (fby_full),
+    .fbi_wr_req_i  (fbi_wr_req),
+    .fbi_wr_data_i (fbi_wr_data),
+    .fbi_wr_ready_o(fbi_wr_ready),
+    .fbi_rd_req_i  (fbi_rd_req),
+    .fbi_rd_data_o (fbi_rd_data),
+    .fbi_rd_ready_o(fbi_rd_ready),
+    .fbi_full_o    (fbi_full),
+    .overflows_o   (queue_overflows),
+    .underflows_o  (queue_underflows)
+  );
 
   dispatch #(.StatusBits(StatusBits)) u_dispatch (
     .req_i           (byte_req),
@@ -285,6 +284,8 @@ module bitbyte_cpu #(
     .in_words_i      (in_words_i),
     .out_words_o     (out_words_o),
     .bit_stall_i     (bit_stall),
+    .queue_overflows_i (queue_overflows),
+    .queue_underflows_i(queue_underflows),
     .stalls_bit_o    (stalls_bit_o),
     .stalls_byte_o   (stalls_byte_o),
     .byte_flags_o    (byte_flags)

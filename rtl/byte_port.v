@@ -54,6 +54,8 @@ module byte_port #(
   output reg  [OutWords*16-1:0]        out_words_o,
   // statistics
   input  wire                          bit_stall_i,  // the bit side waits this clock
+  input  wire [31:0]                   queue_overflows_i,   // {to-bit, to-byte}
+  input  wire [31:0]                   queue_underflows_i,
   output reg  [31:0]                   stalls_bit_o,
   output reg  [31:0]                   stalls_byte_o,
   output reg  [31:0]                   byte_flags_o
@@ -82,6 +84,8 @@ module byte_port #(
   localparam [7:0] AddrStallBit = 8'h60;
   localparam [7:0] AddrStallByt = 8'h61;
   localparam [7:0] AddrFlags    = 8'h62;
+  localparam [7:0] AddrOverflow = 8'h63;
+  localparam [7:0] AddrUnderflw = 8'h64;
   localparam [31:0] IdValue     = 32'hB17B_7E01;
 
   // ---------------------------------------------------------------- time base
@@ -204,6 +208,8 @@ module byte_port #(
         AddrStallBit: bus_rdata_o = stalls_bit_o;
         AddrStallByt: bus_rdata_o = stalls_byte_o;
         AddrFlags:    bus_rdata_o = byte_flags_o;
+        AddrOverflow: bus_rdata_o = queue_overflows_i;
+        AddrUnderflw: bus_rdata_o = queue_underflows_i;
         default:      bus_rdata_o = 32'd0;
       endcase
     end

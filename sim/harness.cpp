@@ -133,6 +133,7 @@ struct RunFile {
   std::string costs = "paper";                                     // byte processor cost table
   std::vector<uint32_t> pool;                                      // constant pool
   bool parallel = false;                                           // mode parallel
+  unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
   std::string byte_prog;                                           // its byte part (.hex)
 };
 
@@ -218,6 +219,12 @@ static RunFile read_run_file(const char* path) {
       want(1);
       if (w[1] != "serial" && w[1] != "parallel") die("mode must be serial or parallel");
       rf.parallel = w[1] == "parallel";
+    } else if (k == "exchange") {
+      want(1);
+      if (w[1] == "handshake") rf.exchange = 0;
+      else if (w[1] == "queue") rf.exchange = 1;
+      else if (w[1] == "queue-free") rf.exchange = 2;
+      else die("exchange must be handshake, queue or queue-free");
     } else if (k == "byte_prog") {
       want(1);
       rf.byte_prog = w[1];
@@ -614,6 +621,7 @@ int main(int argc, char** argv) {
   d.tick();
   top.bus_we_i = 0;
   top.parallel_i = rf.parallel;
+  top.exchange_i = rf.exchange;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
 
@@ -671,6 +679,11 @@ int main(int argc, char** argv) {
     std::printf("cycles/scan      -\nscan time [us]   -  (clock %s MHz)\n", mhz.c_str());
   }
   std::printf("stalls           bit side %u, byte side %u\n", top.stalls_bit_o, top.stalls_byte_o);
+  if (rf.exchange == 2) {
+    const uint32_t ovf = rp->bitbyte_cpu__DOT__queue_overflows, unf = rp->bitbyte_cpu__DOT__queue_underflows;
+    std::printf("queue losses     overflows to-byte %u to-bit %u, underflows to-byte %u to-bit %u\n",
+                ovf & 0xFFFF, ovf >> 16, unf & 0xFFFF, unf >> 16);
+  }
   if (bb_flags(&bb) & BB_FLAG_ARITH) std::printf("byte flags       arithmetic error (/I or MOD by 0)\n");
   const double rate = wall > 0 ? double(n) / wall / 1e6 : 0;
   std::printf("simulated        %s us, %llu clocks, %.*f M clocks/s wall\n", us(n, 1).c_str(),

@@ -19,7 +19,8 @@ async def reset(dut):
                 dut.dispatch_ctx_i, dut.timer_status_i, dut.counter_status_i,
                 dut.timer_enable_i, dut.counter_pulse_i, dut.fby_rd_data_i,
                 dut.fby_rd_ready_i, dut.fby_full_i, dut.fbi_wr_ready_i, dut.fbi_full_i,
-                dut.in_words_i, dut.bit_stall_i):
+                dut.in_words_i, dut.bit_stall_i, dut.queue_overflows_i,
+                dut.queue_underflows_i):
         sig.value = 0
     await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)

@@ -35,6 +35,10 @@ MUTATIONS = [
      "end else if (wr_req_i) begin"),                     # overwrite a full flip-flop
     ("cond_ff", "cond_ff.v", "assign rd_ready_o = full_q;",
      "assign rd_ready_o = 1'b1;"),                          # read an empty one
+    ("cond_queue", "cond_queue.v", "assign wr_ready_o = free_i || !strict_full;",
+     "assign wr_ready_o = 1'b1;"),                          # write into a full queue
+    ("cond_queue", "cond_queue.v", "else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;",
+     "else if (do_rd && wr_req_i) rd_ptr_q <= rd_ptr_q + 1'b1;"),   # read twice
 ]
 
 

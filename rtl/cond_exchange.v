@@ -1,0 +1,124 @@
+`default_nettype none
+// The condition exchange between the two processors, in the setting chosen at run
+// time (exchange_i, `--exchange`):
+//   0 handshake:  Channels buffered condition flip-flops per direction (Fig. 11);
+//                 channel k of the instruction (`= FBY k`, `READ FBY k`, ...) is used
+//   1 queue:      one strict pointer-based queue per direction (Fig. 16); k ignored
+//   2 queue-free: the same queues, free-running (no waits; losses counted)
+// Direction "fby": bit side writes, byte side reads; "fbi": byte writes, bit reads.
+module cond_exchange #(
+  parameter integer Channels   = 4,  // handshake channels per direction
+  parameter integer QueueDepth = 8   // queue depth per direction (a power of two)
+) (
+  input  wire                clk_i,
+  input  wire                rst_ni,
+  input  wire [1:0]          exchange_i,
+  input  wire                bit_start_i,    // the bit side's scan start (its latch)
+  input  wire                byte_start_i,   // the byte side's scan start
+  // F_bB: bit side writes, byte side reads
+  input  wire [Channels-1:0] fby_wr_req_i,
+  input  wire                fby_wr_data_i,
+  output wire [Channels-1:0] fby_wr_ready_o,
+  input  wire [Channels-1:0] fby_rd_req_i,
+  output wire [Channels-1:0] fby_rd_data_o,
+  output wire [Channels-1:0] fby_rd_ready_o,
+  output wire [Channels-1:0] fby_full_o,
+  // F_Bb: byte side writes, bit side reads
+  input  wire [Channels-1:0] fbi_wr_req_i,
+  input  wire                fbi_wr_data_i,
+  output wire [Channels-1:0] fbi_wr_ready_o,
+  input  wire [Channels-1:0] fbi_rd_req_i,
+  output wire [Channels-1:0] fbi_rd_data_o,
+  output wire [Channels-1:0] fbi_rd_ready_o,
+  output wire [Channels-1:0] fbi_full_o,
+  // free-running losses: {to-bit, to-byte}
+  output wire [31:0]         overflows_o,
+  output wire [31:0]         underflows_o
+);
+  wire use_queue = exchange_i != 2'd0;
+  wire free      = exchange_i == 2'd2;
+
+  // ------------------------------------------------------------ handshake channels
+  wire [Channels-1:0] ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full;
+  wire [Channels-1:0] ff_fbi_wr_ready, ff_fbi_rd_data, ff_fbi_rd_ready, ff_fbi_full;
+  genvar k;
+  generate
+    for (k = 0; k < Channels; k = k + 1) begin : g_channel
+      cond_ff u_fby (
+        .clk_i     (clk_i),
+        .rst_ni    (rst_ni),
+        .wr_req_i  (fby_wr_req_i[k] && !use_queue),
+        .wr_data_i (fby_wr_data_i),
+        .wr_ready_o(ff_fby_wr_ready[k]),
+        .rd_req_i  (fby_rd_req_i[k] && !use_queue),
+        .rd_data_o (ff_fby_rd_data[k]),
+        .rd_ready_o(ff_fby_rd_ready[k]),
+        .full_o    (ff_fby_full[k])
+      );
+      cond_ff u_fbi (
+        .clk_i     (clk_i),
+        .rst_ni    (rst_ni),
+        .wr_req_i  (fbi_wr_req_i[k] && !use_queue),
+        .wr_data_i (fbi_wr_data_i),
+        .wr_ready_o(ff_fbi_wr_ready[k]),
+        .rd_req_i  (fbi_rd_req_i[k] && !use_queue),
+        .rd_data_o (ff_fbi_rd_data[k]),
+        .rd_ready_o(ff_fbi_rd_ready[k]),
+        .full_o    (ff_fbi_full[k])
+      );
+    end
+  endgenerate
+
+  // ------------------------------------------------------------ queues
+  wire q_fby_wr_ready, q_fby_rd_data, q_fby_rd_ready, q_fby_full, q_fby_empty;
+  wire q_fbi_wr_ready, q_fbi_rd_data, q_fbi_rd_ready, q_fbi_full, q_fbi_empty;
+  cond_queue #(.Depth(QueueDepth)) u_queue_fby (
+    .clk_i       (clk_i),
+    .rst_ni      (rst_ni),
+    .free_i      (free),
+    .wr_start_i  (bit_start_i),
+    .rd_start_i  (byte_start_i),
+    .wr_req_i    (use_queue && |fby_wr_req_i),
+    .wr_data_i   (fby_wr_data_i),
+    .wr_ready_o  (q_fby_wr_ready),
+    .rd_req_i    (use_queue && |fby_rd_req_i),
+    .rd_data_o   (q_fby_rd_data),
+    .rd_ready_o  (q_fby_rd_ready),
+    .full_o      (q_fby_full),
+    .empty_o     (q_fby_empty),
+    .overflows_o (overflows_o[15:0]),
+    .underflows_o(underflows_o[15:0])
+  );
+  cond_queue #(.Depth(QueueDepth)) u_queue_fbi (
+    .clk_i       (clk_i),
+    .rst_ni      (rst_ni),
+    .free_i      (free),
+    .wr_start_i  (byte_start_i),
+    .rd_start_i  (bit_start_i),
+    .wr_req_i    (use_queue && |fbi_wr_req_i),
+    .wr_data_i   (fbi_wr_data_i),
+    .wr_ready_o  (q_fbi_wr_ready),
+    .rd_req_i    (use_queue && |fbi_rd_req_i),
+    .rd_data_o   (q_fbi_rd_data),
+    .rd_ready_o  (q_fbi_rd_ready),
+    .full_o      (q_fbi_full),
+    .empty_o     (q_fbi_empty),
+    .overflows_o (overflows_o[31:16]),
+    .underflows_o(underflows_o[31:16])
+  );
+
+  // ------------------------------------------------------------ selection
+  assign fby_wr_ready_o = use_queue ? {Channels{q_fby_wr_ready}} : ff_fby_wr_ready;
+  assign fby_rd_data_o  = use_queue ? {Channels{q_fby_rd_data}}  : ff_fby_rd_data;
+  assign fby_rd_ready_o = use_queue ? {Channels{q_fby_rd_ready}} : ff_fby_rd_ready;
+  assign fby_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fby_full} : ff_fby_full;
+  assign fbi_wr_ready_o = use_queue ? {Channels{q_fbi_wr_ready}} : ff_fbi_wr_ready;
+  assign fbi_rd_data_o  = use_queue ? {Channels{q_fbi_rd_data}}  : ff_fbi_rd_data;
+  assign fbi_rd_ready_o = use_queue ? {Channels{q_fbi_rd_ready}} : ff_fbi_rd_ready;
+  assign fbi_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fbi_full} : ff_fbi_full;
+
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_empty = ^{q_fby_empty, q_fbi_empty};
+  // verilator lint_on UNUSEDSIGNAL
+endmodule
+`default_nettype wire

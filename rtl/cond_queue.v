@@ -1,0 +1,138 @@
+`default_nettype none
+// Pointer-based condition queue (paper Fig. 16): one register file per direction, a
+// write pointer advanced by the writer and a read pointer advanced by the reader, so
+// both sides reach it in one clock and conditions come out in the order they went in.
+//
+// Two settings (free_i):
+//  * strict (0): a FIFO. The writer stalls while it is full, the reader while it is
+//    empty; nothing is lost, duplicated or reordered.
+//  * free-running (1), the paper's: nobody waits. Each pointer returns to slot 0 at
+//    its owner's scan start, so slot i holds the i-th condition of the scan. A slot
+//    is `fresh` from its write to its read: writing a fresh slot overwrites it and
+//    counts an overflow, reading a stale one returns its last value and counts an
+//    underflow. The counts are sticky (they saturate).
+module cond_queue #(
+  parameter integer Depth = 8  // conditions the queue holds (a power of two, >= 2)
+) (
+  input  wire        clk_i,
+  input  wire        rst_ni,
+  input  wire        free_i,       // 0 strict, 1 free-running
+  input  wire        wr_start_i,   // writer's scan start (free-running: pointer to 0)
+  input  wire        rd_start_i,   // reader's scan start
+  input  wire        wr_req_i,
+  input  wire        wr_data_i,
+  output wire        wr_ready_o,
+  input  wire        rd_req_i,
+  output wire        rd_data_o,
+  output wire        rd_ready_o,
+  output wire        full_o,
+  output wire        empty_o,
+  output reg  [15:0] overflows_o,
+  output reg  [15:0] underflows_o
+);
+  localparam integer PtrW = $clog2(Depth);
+
+  reg [Depth-1:0] data_q;
+  reg [Depth-1:0] fresh_q;           // written and not yet read
+  reg [PtrW:0]    wr_ptr_q, rd_ptr_q; // one extra bit: full vs empty in strict mode
+
+  wire [PtrW-1:0] wr_slot = wr_ptr_q[PtrW-1:0];
+  wire [PtrW-1:0] rd_slot = rd_ptr_q[PtrW-1:0];
+  wire            strict_empty = (wr_ptr_q == rd_ptr_q);
+  wire            strict_full  = (wr_slot == rd_slot) && (wr_ptr_q[PtrW] != rd_ptr_q[PtrW]);
+
+  assign full_o     = free_i ? fresh_q[wr_slot] : strict_full;
+  assign empty_o    = free_i ? !fresh_q[rd_slot] : strict_empty;
+  assign wr_ready_o = free_i || !strict_full;
+  assign rd_ready_o = free_i || !strict_empty;
+  assign rd_data_o  = data_q[rd_slot];
+
+  wire do_wr = wr_req_i && wr_ready_o;
+  wire do_rd = rd_req_i && rd_ready_o;
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      data_q       <= {Depth{1'b0}};
+      fresh_q      <= {Depth{1'b0}};
+      wr_ptr_q     <= {(PtrW+1){1'b0}};
+      rd_ptr_q     <= {(PtrW+1){1'b0}};
+      overflows_o  <= 16'd0;
+      underflows_o <= 16'd0;
+    end else begin
+      // Read first, then write: a write and a read of the same slot in one clock
+      // (free-running) leave it fresh with the new condition.
+      if (do_rd) fresh_q[rd_slot] <= 1'b0;
+      if (do_wr) begin
+        data_q[wr_slot]  <= wr_data_i;
+        fresh_q[wr_slot] <= 1'b1;
+      end
+      if (free_i && do_wr && fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot) &&
+          overflows_o != 16'hFFFF)
+        overflows_o <= overflows_o + 16'd1;
+      if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)
+        underflows_o <= underflows_o + 16'd1;
+      // pointers: free-running ones return to slot 0 at their owner's scan start
+      if (free_i && wr_start_i)  wr_ptr_q <= {(PtrW+1){1'b0}};
+      else if (do_wr)            wr_ptr_q <= wr_ptr_q + 1'b1;
+      if (free_i && rd_start_i)  rd_ptr_q <= {(PtrW+1){1'b0}};
+      else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;
+    end
+  end
+
+`ifdef FORMAL
+  // Strict setting (formal/cond_queue.sby): a lossless FIFO, proved by k-induction.
+  reg f_past_valid = 1'b0;
+  always @(posedge clk_i) f_past_valid <= 1'b1;
+  always @(*) if (!f_past_valid) assume (!rst_ni);
+  always @(*) assume (!free_i);
+
+  wire [PtrW:0] f_fill = wr_ptr_q - rd_ptr_q;
+  // the fill level is exact: never more than Depth; full/empty say so
+  always @(*) if (rst_ni) begin
+    assert (f_fill <= Depth);
+    assert (full_o  == (f_fill == Depth));
+    assert (empty_o == (f_fill == 0));
+    assert (wr_ready_o == !full_o && rd_ready_o == !empty_o);
+  end
+  // a side stalls exactly when it must: it advances iff it asks and may
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    assert (wr_ptr_q == $past(wr_ptr_q) + {{PtrW{1'b0}}, $past(wr_req_i && !full_o)});
+    assert (rd_ptr_q == $past(rd_ptr_q) + {{PtrW{1'b0}}, $past(rd_req_i && !empty_o)});
+  end
+  // No loss, duplication or reordering: follow one condition, the f_nth to be
+  // written (any n). It is read as the f_nth read, with the value it was written with.
+  (* anyconst *) reg [7:0] f_nth;
+  reg [7:0] f_writes, f_reads;
+  reg       f_value, f_written;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      f_writes  <= 8'd0;
+      f_reads   <= 8'd0;
+      f_written <= 1'b0;
+    end else begin
+      if (do_wr) f_writes <= f_writes + 8'd1;
+      if (do_rd) f_reads  <= f_reads + 8'd1;
+      if (do_wr && f_writes == f_nth) begin
+        f_value   <= wr_data_i;
+        f_written <= 1'b1;
+      end
+    end
+  end
+  always @(*) if (rst_ni) begin
+    assume (f_writes != 8'hFF);                      // a bounded run (256 conditions)
+    // the pointers count the conditions that went in and out
+    assert (wr_ptr_q == f_writes[PtrW:0] && rd_ptr_q == f_reads[PtrW:0]);
+    assert (f_writes - f_reads <= Depth);
+    assert (f_written == (f_writes > f_nth));
+    // while it is inside, the followed condition sits in its slot, unchanged
+    if (f_written && f_reads <= f_nth) assert (data_q[f_nth[PtrW-1:0]] == f_value);
+  end
+  always @(*) if (rst_ni && do_rd && f_reads == f_nth) begin
+    assert (f_written);
+    assert (rd_data_o == f_value);
+  end
+  always @(posedge clk_i) if (rst_ni) cover (f_reads == 8'd3 && full_o == 1'b0);
+  always @(posedge clk_i) if (rst_ni) cover (full_o && wr_req_i);
+`endif
+endmodule
+`default_nettype wire
