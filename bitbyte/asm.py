@@ -2,8 +2,10 @@
 
 Writes, beside the source or into outdir, `<stem>.hex` (one 8-digit hex word per
 line, address 0 first: the `$readmemh` format), `<stem>.lst` (the listing) and
-`<stem>.json` ({"source", "words", "config", "symbols", "labels"}).  Nothing is
-written when the program has an error: the SourceError propagates to the caller
+`<stem>.json` ({"source", "words", "config", "symbols", "labels"}).  With
+mode="parallel" the program is partitioned first and the files are those of
+bitbyte.partition.assemble_parallel (`<stem>.bit.hex`, `<stem>.byte.hex`, ...).
+Nothing is written when the program has an error: the SourceError propagates to the caller
 (the CLI prints it with `format_error` and exits non-zero).
 """
 from __future__ import annotations
@@ -26,6 +28,9 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     Returns {"hex": path, "lst": path, "json": path, "words": n}.  Raises only
     SourceError for a bad program (OSError if outdir cannot be written).
     """
+    if mode == "parallel":            # two images, partition report: bitbyte.partition
+        from .partition import assemble_parallel
+        return assemble_parallel(path, outdir, config)
     program = parse_file(path, config)
     words, listing_text = encode(program, config, mode)
     pool = constant_pool(program)

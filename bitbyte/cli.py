@@ -70,16 +70,25 @@ def _clock_mhz(text: str) -> Fraction:
     return f
 
 
-def _require_bit_mode(mode: str) -> None:
-    if mode != "serial":
-        raise UsageError(f"--mode {mode} needs the byte processor (not in this release);"
-                         " bit-only programs run in serial mode")
+def _check_mode(mode: str, exchange: str | None) -> str:
+    """The exchange setting for a run: parallel mode defaults to handshake; serial
+    mode ignores --exchange (spec §4); free-running mode is not in this release."""
+    if mode == "free":
+        raise UsageError("--mode free (free-running processors) is not in this release; "
+                         "use --mode serial or --mode parallel")
+    if mode == "serial":
+        return "handshake"
+    exchange = exchange or "handshake"
+    if exchange not in ("handshake", "queue"):
+        raise UsageError(f"--exchange {exchange}: parallel mode runs with handshake or "
+                         "queue (free-running exchanges need --mode free)")
+    return exchange
 
 
 def cmd_asm(args) -> int:
     from .asm import assemble
     result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode)
-    for kind in ("hex", "lst", "json", "pool"):
+    for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
             print(f"wrote {result[kind]}")
     return 0
@@ -87,7 +96,8 @@ def cmd_asm(args) -> int:
 
 def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 scans: int | None = None, until_us: str | None = None,
-                watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper"):
+                watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
+                mode: str = "serial", exchange: str | None = None):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
@@ -119,8 +129,15 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
 
     if costs not in COST_TABLES:
         raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
+    exchange = _check_mode(mode, exchange)
     program = parse_file(program_path, config)
-    words = encode_words(program, config)
+    byte_words: list[int] = []
+    if mode == "parallel":
+        from .partition import partition
+        part = partition(program, config.channels, config=config)
+        words, byte_words, pool = part.bit_words, part.byte_words, part.pool
+    else:
+        words, pool = encode_words(program, config), constant_pool(program)
     stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
             else no_stimulus(config))
     watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
@@ -142,18 +159,18 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                  stim_kind=events[0][0] if events else "none",
                  stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
-                 costs=costs, pool=constant_pool(program))
+                 costs=costs, pool=pool, mode=mode, exchange=exchange,
+                 byte_prog=byte_words)
     return program, columns, job, f
 
 
 def cmd_run(args) -> int:
     from . import trace as tr
 
-    _require_bit_mode(args.mode)
     _, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
-        costs=args.costs)
+        costs=args.costs, mode=args.mode, exchange=args.exchange)
 
     if args.sim == "verilator":
         records, fault, summary = _run_harness(job, columns, args)
@@ -216,7 +233,12 @@ def _run_harness(job, columns, args):
         if waves:
             Path(waves).parent.mkdir(parents=True, exist_ok=True)
         run_file = Path(tmp) / "run.txt"
-        text = job.to_harness_text(str(hex_path), str(trace_path), waves)
+        byte_path = None
+        if job.mode == "parallel":
+            byte_path = Path(tmp) / "byte.hex"
+            byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
+        text = job.to_harness_text(str(hex_path), str(trace_path), waves,
+                                   str(byte_path) if byte_path else None)
         run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
         proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
         if proc.returncode not in (0, EXIT_WATCHDOG):

@@ -2,9 +2,11 @@
 
 Serial mode (the default) encodes bit and byte instructions into the one program:
 the bit processor dispatches the byte ones.  The exchange instructions (READ, WRITE,
-bit instructions on FBI/FBY) belong to parallel mode and are rejected here, as is
-everything in `mode="parallel"` until the partitioning compiler lands: an image that
-silently dropped instructions would run a different program than the one written.
+bit instructions on FBI/FBY) belong to parallel mode and are rejected here, as are
+hand-partitioned programs (BIT:/BYTE: sections) and byte instructions with
+`mode="parallel"`: in parallel mode bitbyte/partition.py splits the program first
+and encodes its two parts with encode_bit_part / encode_byte_part (below); an image
+that silently dropped instructions would run a different program than the one written.
 Constants of `L` that do not fit the 24-bit immediate go to a constant pool
 (`constant_pool`), which the byte processor loads next to the image.
 """
@@ -19,7 +21,8 @@ from .errors import SourceError
 from .program import Instr, Program
 
 BYTE_PROCESSOR = "needs the byte processor"
-PARALLEL = "needs the partitioning compiler (--mode parallel, next release)"
+PARALLEL = "is for the byte processor: in parallel mode the program is partitioned " \
+           "first (bitbyte asm --mode parallel, bitbyte.partition)"
 SERIAL_EXCHANGE = "needs the byte processor in parallel mode: serial mode has one RLO " \
                   "and no exchange channels"
 MODES = ("serial", "parallel")
@@ -40,6 +43,11 @@ def encode_words(program: Program, config: Config = DEFAULT,
                  mode: str = "serial") -> list[int]:
     """One 32-bit word per instruction; SourceError at the first that cannot be."""
     pool = constant_pool(program)
+    for instr in program.instrs:
+        if instr.section:
+            raise _error(program, instr, "a hand-partitioned program (BIT:/BYTE: "
+                                         "sections) runs in parallel mode only: "
+                                         "bitbyte asm --mode parallel")
     return [encode_instr(program, instr, mode, pool) for instr in program.instrs]
 
 
@@ -92,6 +100,59 @@ def _encode_byte_side(program: Program, instr: Instr, mode: str, pool: list[int]
         return isa.pool_word(pool.index(op.value & 0xFFFFFFFF))
     opcode = isa.BYTE_OPCODES[isa.byte_key(m, op.area)]
     return isa.word_operand_word(opcode, op.area, op.index)
+
+
+# --------------------------------------------------------------------------------------
+# Parallel mode: the two parts of a partitioned program (bitbyte/partition.py)
+# --------------------------------------------------------------------------------------
+
+def encode_bit_part(program: Program) -> list[int]:
+    """Words of the bit part of a partitioned program: the bit instructions as in
+    serial mode, plus the exchange operands (`= FBY k`, `LD/A/O... FBI k`: area 9).
+    program.labels are bit-part addresses."""
+    words = []
+    for instr in program.instrs:
+        op = instr.operand
+        if op is not None and op.area in isa.EXCHANGE_AREAS:
+            m = instr.mnemonic
+            if not (m == "=" and op.area == "FBY") and \
+                    not (m in isa.READ_OPS and op.area == "FBI"):
+                raise _error(program, instr, f"`{m} {op.address()}` cannot be encoded: "
+                                             "the bit side writes a channel with `= FBY k` "
+                                             "and reads one with LD/A/O/X... FBI k")
+            words.append(isa.operand_word(isa.OPCODES[m], op.area, op.index))
+        elif isa.is_byte_instruction(instr.mnemonic, op.area if op else None) or \
+                instr.mnemonic in isa.BYTE_PROGRAM_OPCODES:
+            raise _error(program, instr, f"`{instr.mnemonic}` is a byte instruction: "
+                                         "not in the bit part")
+        else:
+            word = encode_instr(program, instr)
+            if getattr(instr, "wait_update", False):
+                word |= 1 << isa.WAIT_UPDATE_BIT     # wait for this scan's T/C update
+            words.append(word)
+    return words
+
+
+def encode_byte_part(program: Program, pool: list[int] | None = None) -> list[int]:
+    """Words of the byte part of a partitioned program: word instructions as in serial
+    mode, `READ FBY k` / `WRITE FBI k`, and the byte program's JU_B / JC_B / JCN_B
+    (targets: program.labels, byte-part addresses) and END_B.  pool: the byte part's
+    constant pool (default constant_pool(program))."""
+    pool = constant_pool(program) if pool is None else pool
+    words = []
+    for instr in program.instrs:
+        m, op = instr.mnemonic, instr.operand
+        if m in isa.BYTE_PROGRAM_OPCODES:
+            opcode = isa.BYTE_PROGRAM_OPCODES[m]
+            words.append(isa.plain_word(opcode) if m == "END_B" else
+                         isa.jump_word(opcode, _jump_target(program, instr)))
+        elif m in isa.EXCHANGE_OPS:
+            words.append(isa.word_operand_word(isa.BYTE_OPCODES[m], op.area, op.index))
+        elif isa.is_byte_instruction(m, op.area if op else None):
+            words.append(_encode_byte_side(program, instr, "serial", pool))
+        else:
+            raise _error(program, instr, f"`{m}` is a bit instruction: not in the byte part")
+    return words
 
 
 def _jump_target(program: Program, instr: Instr) -> int:

@@ -12,6 +12,7 @@ from __future__ import annotations
 OPCODE_SHIFT = 24
 AREA_SHIFT = 12
 INDEX_BITS = 12            # operand index field: byte*8+bit, or n
+WAIT_UPDATE_BIT = 16       # T/C read in a bit part: wait for this scan's update
 TARGET_BITS = 16           # jump target field: an instruction address
 
 # Logic function field f of loads/combines and opening parentheses.
@@ -130,3 +131,11 @@ def pool_word(index: int) -> int:
 
 def word_operand_word(opcode: int, area: str, index: int) -> int:
     return opcode << OPCODE_SHIFT | WORD_AREA_CODES[area] << AREA_SHIFT | index
+
+
+# Parallel mode: the byte program's own control instructions (docs/isa.md, byte program
+# only; firmware_byte/byteproc.h BB_OP_JU_B ... BB_OP_END_B).  Jumps carry the target
+# byte-program address in bits 15..0, as JU/JC/JCN do in the bit program.
+BYTE_PROGRAM_OPCODES: dict[str, int] = {
+    "JU_B": 0xC8, "JC_B": 0xC9, "JCN_B": 0xCA, "END_B": 0xCF,
+}

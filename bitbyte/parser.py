@@ -39,8 +39,17 @@ Decisions where the spec is silent (see also the tests):
 * Instr.labels keeps the labels as written (for the listing); Program.labels is keyed
   by the upper-case name.  Operand.text is the operand exactly as written, quotes
   included.  The appended END has line = last line + 1, col 1 and an empty source.
-* `BIT:` / `BYTE:` sections (hand-partitioned programs) and VAR_GLOBAL are later
-  features; both are rejected with a message saying so.
+* `BIT:` / `BYTE:` (hand-partitioned programs, parallel mode only): a line starting
+  with `BIT:` or `BYTE:` starts a section; its instructions are tagged with it
+  (Instr.section) and go verbatim into that processor's part (bitbyte.partition).
+  Once a program has sections, every instruction must be in one; a section may appear
+  more than once.  A BIT: section holds bit instructions, `= FBY k` and reads of
+  `FBI k` (not `S`/`R FBY k`: a channel write must not depend on the RLO); a BYTE:
+  section holds word instructions, `READ FBY k`, `WRITE FBI k`, `JU`/`JC`/`JCN` (the
+  byte program's jumps on F_B) and `END`.  A jump reaches only labels of its own
+  section.  Labels pending at a section switch mark an END appended to the section
+  they follow (as labels at the end of the file do); a parenthesis may not stay open
+  across a switch.  VAR_GLOBAL is a later feature, rejected with a message saying so.
 """
 from __future__ import annotations
 
@@ -319,6 +328,7 @@ class Parser:
         self.jumps: list[tuple[Instr, Token]] = []   # label references, resolved last
         self.open_parens: list[Instr] = []
         self.after_open: Instr | None = None
+        self.section = ""                 # "", "BIT" or "BYTE" (hand-partitioned)
 
     # -- token stream -------------------------------------------------------------
 
@@ -359,6 +369,8 @@ class Parser:
                 self.next()
             elif tok.kind == "SEMI":
                 self.skip_line()
+            elif tok.is_word("BIT", "BYTE") and self.peek(2).kind == "COLON":
+                self.parse_section_header()
             elif self.peek(2).kind == "COLON":
                 self.parse_statement()          # a label, even one named like a keyword
             elif tok.is_word("VAR"):
@@ -381,7 +393,55 @@ class Parser:
             line = self.src.last_line() + 1
             self.add_instr(Instr("END", None, line, 1, ""), appended=True)
         self.check_size(self.instrs[-1], appended=True)
+        self.check_jump_sections()
         return Program(self.src.path, self.instrs, dict(self.labels), dict(self.symbols))
+
+    # -- BIT: / BYTE: sections (hand-partitioned programs) ----------------------------
+
+    def parse_section_header(self) -> None:
+        """`BIT:` or `BYTE:`: the instructions that follow belong to that part."""
+        tok = self.next()
+        self.next()                                      # the colon
+        name = tok.text.upper()
+        where = f"`{tok.text}:` at {tok.line}:{tok.col}"
+        if self.open_parens:
+            raise self.unclosed(self.open_parens[-1], where)
+        if self.section == "" and (self.instrs or self.pending_labels):
+            raise self.error(tok, f"`{tok.text}:` after instructions outside any section: "
+                                  "in a hand-partitioned program every instruction "
+                                  "stands in a BIT: or BYTE: section")
+        if self.pending_labels:                          # they mark the section's end
+            self.add_instr(Instr("END", None, tok.line, tok.col, ""), appended=True)
+        self.after_open = None
+        self.section = name
+        if not self.peek().ends_statement:
+            self.parse_statement()
+
+    def check_section(self, instr: Instr) -> None:
+        """What a BIT: / BYTE: section may hold (module docstring)."""
+        m, op = instr.mnemonic, instr.operand
+        byte = is_byte_mnemonic(m, op)
+        if self.section == "BIT":
+            if byte:
+                raise self.error_at(instr, f"`{m}` is a byte instruction: it cannot stand "
+                                           "in a BIT: section")
+            if m in ("S", "R") and op is not None and op.area == "FBY":
+                raise self.error_at(instr, f"operand of the wrong kind: `{m} FBY{op.index}`"
+                                           ": only `= FBY k` writes a channel (a write "
+                                           "must not depend on the RLO)")
+        elif self.section == "BYTE" and not byte and m not in ("JU", "JC", "JCN", "END"):
+            raise self.error_at(instr, f"`{m}` is a bit instruction: it cannot stand in a "
+                                       "BYTE: section (word instructions, READ, WRITE, "
+                                       "JU/JC/JCN on F_B and END)")
+
+    def check_jump_sections(self) -> None:
+        """A jump of a hand-partitioned program reaches only its own section."""
+        for instr, tok in self.jumps:
+            target = self.instrs[self.labels[instr.operand.label]]
+            if target.section != instr.section:
+                raise self.error(tok, f"unknown label `{tok.text}` in this {instr.section}: "
+                                      f"section (it is in the {target.section}: section; "
+                                      "each processor jumps in its own part)")
 
     def unknown_label_error(self) -> SourceError | None:
         for instr, tok in self.jumps:
@@ -498,8 +558,8 @@ class Parser:
 
     def define_label(self, tok: Token) -> None:
         if tok.is_word("BIT", "BYTE"):
-            raise self.error(tok, f"`{tok.text}:` sections (hand-partitioned programs) "
-                                  "need the parallel-mode toolchain (next release)")
+            raise self.error(tok, f"`{tok.text}:` starts a section (hand-partitioned "
+                                  "program): it stands at the start of its line")
         if tok.kind != "WORD" or not is_identifier(tok.text):
             raise self.error(tok, f"invalid label name `{tok.text}`")
         reason = reserved_reason(tok.text)
@@ -704,6 +764,9 @@ class Parser:
     def add_instr(self, instr: Instr, appended: bool = False) -> None:
         """Append, attach pending labels, follow the parenthesis structure."""
         self.check_parens(instr, appended)
+        instr.section = self.section
+        if self.section and not appended:
+            self.check_section(instr)
         instr.labels = self.pending_labels
         for name in self.pending_labels:
             self.labels[name.upper()] = len(self.instrs)
@@ -755,6 +818,18 @@ class Parser:
 # --------------------------------------------------------------------------------------
 # Helpers without parser state
 # --------------------------------------------------------------------------------------
+
+BYTE_MNEMONICS = frozenset(
+    ("L", "T", "+I", "-I", "*I", "/I", "MOD", "SD", "SS", "SP", "SF", "CU", "CD", "READ",
+     "WRITE") + COMPARES + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
+
+
+def is_byte_mnemonic(mnemonic: str, op: Operand | None) -> bool:
+    """A byte-processor instruction (`S C n`, `R C n`, `R T n` included)?"""
+    if mnemonic in ("S", "R"):
+        return op is not None and op.area in ("T", "C")
+    return mnemonic in BYTE_MNEMONICS
+
 
 def duration_parts(body: str) -> list[tuple[int, str]] | None:
     """[(1, "m"), (30, "s")] for "1m30s"; None if malformed or out of order."""

@@ -64,6 +64,8 @@ class Instr:
     "FP", "FN", "JU", "JC", "JCN", "NOP", "REFRESH", "END", and the byte mnemonics
     ("L", "T", "+I", ... "SD", "CU", "READ", "WRITE", ...).
     line/col are 1-based and point at the mnemonic; source is the whole source line.
+    section is "" in an ordinary (mixed) program, "BIT" or "BYTE" for an instruction
+    of a hand-partitioned program's `BIT:` / `BYTE:` section (parallel mode only).
     """
 
     mnemonic: str
@@ -72,6 +74,7 @@ class Instr:
     col: int
     source: str = ""
     labels: list[str] = field(default_factory=list)
+    section: str = ""
 
 
 @dataclass

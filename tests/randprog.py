@@ -8,6 +8,7 @@ a jump never enters or leaves a parenthesis. A few backward jumps loop for a whi
 from __future__ import annotations
 
 import random
+import re
 
 READ_AREAS = ["I", "I", "I", "PI", "IR", "IF", "Q", "PQ", "M", "M", "M", "T", "C"]
 WRITE_AREAS = ["Q", "Q", "PQ", "M", "M"]
@@ -242,3 +243,138 @@ def random_mixed_watch(seed: int) -> list[str]:
     pick = [f"MW{n}" for n in range(8)] + [f"T{n}" for n in range(8)] + \
         [f"C{n}" for n in range(8)] + ["QW0", "IW1", "M0.1"]
     return rng.sample(pick, rng.randrange(1, 6))
+
+
+# ------------------------------------------------------------------ parallel-mode programs
+# Mixed programs with the shapes the partitioning compiler (bitbyte/partition.py) treats
+# specially, on top of the mixed blocks: compares feeding timers/counters directly (the
+# RLO on the byte side at an update), A/O compares inside parentheses, jumps right after
+# compares, loops with word code (on a toggled marker or on a compare), a status read at
+# the top of a loop whose bottom updates it, a conditional END, REFRESH after word code.
+# Every loop ends within 3 iterations.
+
+class ParallelGen(MixedGen):
+    def cmp_lines(self, combine: str = "") -> list[str]:
+        rng = self.rng
+        head = f"  {combine} " if combine else "  "
+        return [self.load(), self.load(), f"{head}{rng.choice(COMPARES)}".replace("   ", "  ")]
+
+    def new_label(self) -> str:
+        label = f"P{self.nlabels}"
+        self.nlabels += 1
+        return label
+
+    def parallel_block(self, index: int, nblocks: int) -> None:
+        rng = self.rng
+        r = rng.random()
+        c, t = rng.randrange(4), rng.randrange(4)
+        out = self.operand(WRITE_AREAS)
+        if r < 0.14:                     # compare straight into an update, after a read
+            if rng.random() < 0.6:
+                self.lines += [f"  {rng.choice(['LD', 'A', 'ON'])} C{c}", f"  = {out}"]
+            self.lines += self.cmp_lines()
+            self.lines.append(f"  {rng.choice(['CU', 'CD', 'S', 'R'])} C{c}")
+            if rng.random() < 0.5:
+                self.lines += [f"  L T#{rng.randrange(0, 12)}ms", self.load()]
+                self.lines += self.cmp_lines() + [f"  {rng.choice(TIMERS)} T{t}"]
+            self.lines += [f"  {rng.choice(['A', 'X', 'LD'])} C{c}",
+                           f"  = {self.operand(WRITE_AREAS)}"]
+        elif r < 0.28:                   # compares inside parentheses
+            self.chain(0)
+            self.lines += [f"  {rng.choice(OPENS)}", f"  LD {self.operand()}"]
+            self.lines += self.cmp_lines(rng.choice(["A", "O", ""]))
+            if rng.random() < 0.5:
+                self.lines += self.cmp_lines(rng.choice(["A", "O"]))
+            self.lines += ["  )", f"  = {out}"]
+        elif r < 0.42 and index + 1 < nblocks:   # a jump on a compare
+            label = self.new_label()
+            self.pending.append((rng.randrange(index + 1, nblocks + 1), label))
+            self.lines += self.cmp_lines(rng.choice(["", "", "A", "O"]))
+            self.lines.append(f"  {rng.choice(['JC', 'JCN', 'JU'])} {label}")
+        elif r < 0.52:                   # a loop with word code on a toggled marker
+            label, m = self.new_label(), f"M{rng.randrange(8, 12)}.{rng.randrange(8)}"
+            w = rng.randrange(4)
+            self.lines += [f"{label}: L MW{w}", "  L 1", "  +I", f"  T MW{w}"]
+            if rng.random() < 0.5:
+                self.lines += self.cmp_lines() + [f"  = {out}"]
+            self.lines += [f"  LD {m}", "  NOT", f"  = {m}", f"  JC {label}"]
+        elif r < 0.60:                   # a loop on a compare (at most 3 turns)
+            label = self.new_label()
+            self.lines += [f"{label}: L MW7", "  L 1", "  +I", "  T MW7", "  L MW7", "  L 3",
+                           "  MOD", "  L 0", "  <>I", f"  JC {label}"]
+        elif r < 0.70:                   # status read at the top, update at the bottom
+            label, m = self.new_label(), f"M{rng.randrange(12, 14)}.{rng.randrange(8)}"
+            area, n = rng.choice([("C", c), ("T", t)])
+            update = f"CU C{c}" if area == "C" else f"{rng.choice(TIMERS)} T{t}"
+            self.lines += [f"{label}: {rng.choice(['LD', 'LDN'])} {area}{n}",
+                           f"  A {self.operand()}", f"  = {out}"]
+            if area == "T":
+                self.lines.append(f"  L T#{rng.randrange(0, 12)}ms")
+            self.lines += [f"  LD {self.operand()}", f"  {update}",
+                           f"  LD {m}", "  NOT", f"  = {m}", f"  JC {label}"]
+        elif r < 0.78 and index + 1 < nblocks:   # a conditional end of the scan
+            label = self.new_label()
+            self.pending.append((index + 1, label))
+            self.chain(0)
+            self.lines += [f"  JCN {label}", f"  L {rng.randrange(100)}",
+                           f"  T MW{rng.randrange(4)}", "  END"]
+        elif r < 0.86:                   # REFRESH after word code, then edge flags
+            self.lines += [f"  L {rng.randrange(100)}", f"  T MW{rng.randrange(4)}",
+                           "  REFRESH", f"  LD IR{rng.randrange(2)}.{rng.randrange(8)}",
+                           f"  O IF{rng.randrange(2)}.{rng.randrange(8)}", f"  = {out}"]
+        elif r < 0.93:                   # compare left in the RLO for what follows
+            self.lines += self.cmp_lines(rng.choice(["", "A", "O"]))
+        else:                            # use the RLO the previous block left
+            kind = rng.random()
+            if kind < 0.4:
+                self.lines.append(f"  CU C{c}")
+            elif kind < 0.6:
+                self.lines += [f"  L T#{rng.randrange(0, 12)}ms", f"  {rng.choice(TIMERS)} T{t}"]
+            elif kind < 0.8:
+                self.lines += self.cmp_lines(rng.choice(["A", "O"]))
+            self.lines.append(f"  = {out}")
+
+    def block(self, index: int, nblocks: int) -> None:
+        if self.rng.random() < 0.4:
+            for target, label in [p for p in self.pending if p[0] == index]:
+                self.lines.append(f"{label}:")
+                self.pending.remove((target, label))
+            self.parallel_block(index, nblocks)
+        else:
+            super().block(index, nblocks)
+
+
+def random_parallel_program(seed: int) -> str:
+    return ParallelGen(random.Random(seed)).program()
+
+
+TIMER_LINE = re.compile(r"^\s*(?:\w+:\s*)?(?:SD|SS|SP|SF|R\s+T\s*\d+)\b", re.IGNORECASE)
+
+
+def strip_timers(text: str) -> str:
+    """Drop SD/SS/SP/SF and R T n (a label on such a line moves to its own line):
+    timers depend on time, which differs between serial and parallel mode."""
+    out = []
+    for line in text.split("\n"):
+        if TIMER_LINE.match(line):
+            label = re.match(r"^\s*(\w+):", line)
+            if label:
+                out.append(f"{label.group(1)}:")
+            continue
+        out.append(line)
+    return "\n".join(out)
+
+
+def random_scan_stimulus(seed: int, scans: int) -> str:
+    """Input bits and IW0..IW3 keyed by scan only: inputs are constant within a scan,
+    so PI, IW and REFRESH read the same values in every mode."""
+    rng = random.Random(seed ^ 0x5CA7)
+    cols = [f"I{b}.{n}" for b in range(IN_BYTES) for n in range(8)] + \
+        [f"IW{n}" for n in range(4)]
+    rows = ["scan," + ",".join(cols)]
+    for s in sorted(rng.sample(range(scans), rng.randrange(1, scans))):
+        rows.append(f"{s}," + ",".join(
+            [str(rng.randrange(2)) for _ in range(8 * IN_BYTES)] +
+            [str(rng.choice([0, 1, -1, 5, 100, 32767, rng.randrange(-500, 500)]))
+             for _ in range(4)]))
+    return "\n".join(rows) + "\n"

@@ -305,7 +305,7 @@ def test_var_global_waits_for_the_linker():
     ("L T#5d\n", 1, 3, "malformed duration"),
     ("L 2#101\n", 1, 3, "malformed constant"),
     ("L 12ab\n", 1, 3, "malformed constant"),
-    ("BIT:\nLD I0.0\n", 1, 1, "parallel-mode"),
+    ("LD I0.0\nBIT:\nLD I0.1\n", 2, 1, "outside any section"),
 ])
 def test_other_malformed_input(text, line, col, substring):
     check(text, line, col, substring)

@@ -1,0 +1,95 @@
+"""Random mixed programs in parallel mode: the partitioned program on the hardware
+(bit part on the bit processor, byte part on the firmware, with the handshake
+flip-flops or the strict queues) leaves the same trace as the reference interpreter
+in serial mode — every column but t_us and cycles, which differ by design (spec §2).
+Timers are left out (their time base differs between the modes) and inputs change
+only between scans."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from bitbyte import cli
+from bitbyte.refsim import refsim_trace
+from bitbyte.sim_cocotb import run_jobs
+from bitbyte.stimulus import load_stimulus
+from bitbyte.trace import read_trace_rows
+from randprog import (random_mixed_program, random_mixed_watch, random_parallel_program,
+                      random_scan_stimulus, strip_timers)
+
+PROGRAMS = int(os.environ.get("BITBYTE_PARALLEL_PROGRAMS", "100"))
+COCOTB = int(os.environ.get("BITBYTE_PARALLEL_COCOTB", "30"))
+SCANS = 10
+WATCHDOG = 50_000
+BASE_SEED = int(os.environ["BITBYTE_SEED"])
+
+
+def outputs(records):
+    """What must agree between the modes: scan number and every traced value."""
+    return [(r.scan, tuple(sorted(r.values.items()))) for r in records]
+
+
+class Case:
+    def __init__(self, tmp: Path, index: int):
+        self.seed = BASE_SEED * 1000 + 500 + index
+        maker = random_parallel_program if index % 2 else random_mixed_program
+        self.il = tmp / f"par{self.seed}.il"
+        self.stim = tmp / f"par{self.seed}.csv"
+        self.il.write_text(strip_timers(maker(self.seed)))
+        self.stim.write_text(random_scan_stimulus(self.seed, SCANS))
+        self.watch = ",".join(w for w in random_mixed_watch(self.seed) if not w.startswith("T"))
+        kw = dict(stimulus=str(self.stim), watch=self.watch, scans=SCANS, watchdog=WATCHDOG)
+        self.program, self.columns, _, _ = cli.prepare_run(str(self.il), **kw)
+        self.jobs = {ex: cli.prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
+                     for ex in ("handshake", "queue")}
+        stim = load_stimulus(str(self.stim), self.program.symbols)
+        _, records, fault = refsim_trace(self.program, stimulus=stim,
+                                         watch=self.watch.split(",") if self.watch else [],
+                                         scans=SCANS, watchdog=WATCHDOG)
+        self.expected = (outputs(records), fault)
+
+    def check(self, records, fault, how):
+        assert (outputs(records), fault) == self.expected, (
+            f"{how}: program seed {self.seed} ({self.il}) differs from serial mode")
+
+
+@pytest.fixture(scope="module")
+def cases(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("parallel")
+    print(f"parallel programs: BITBYTE_SEED={BASE_SEED}, {PROGRAMS} programs")
+    return [Case(tmp, i) for i in range(PROGRAMS)]
+
+
+def test_cases_exercise_the_exchange(cases):
+    """Most random programs do move conditions between the sides (else weak)."""
+    def crosses(words):
+        return any(w >> 24 < 0x80 and (w >> 12) & 0xF == 9 for w in words)
+    moved = sum(crosses(c.jobs["handshake"].prog) for c in cases)
+    assert moved > len(cases) // 2, f"only {moved} of {len(cases)} programs transfer"
+
+
+@pytest.mark.parametrize("exchange", ["handshake", "queue"])
+def test_parallel_on_harness(cases, exchange, tmp_path, capsys):
+    for case in cases:
+        trace = tmp_path / f"{case.seed}.csv"
+        argv = ["run", str(case.il), "--mode", "parallel", "--exchange", exchange,
+                "--stimulus", str(case.stim), "--scans", str(SCANS),
+                "--watchdog", str(WATCHDOG), "--trace", str(trace)]
+        if case.watch:
+            argv += ["--watch", case.watch]
+        rc = cli.main(argv)
+        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
+        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
+                   f"harness, parallel, {exchange}")
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_parallel_on_cocotb(cases, sim):
+    """Handshake and queue alternate over the programs, one cocotb session."""
+    picked = cases[:COCOTB]
+    jobs = [c.jobs["queue" if i % 2 else "handshake"] for i, c in enumerate(picked)]
+    for i, (case, result) in enumerate(zip(picked, run_jobs(jobs, sim))):
+        case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
+                   f"cocotb {sim}, parallel, {'queue' if i % 2 else 'handshake'}")
