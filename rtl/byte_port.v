@@ -240,6 +240,43 @@ module byte_port #(
     end
   end
 
+`ifdef FORMAL
+  // Bus protocol properties (formal/byte_port.sby, k-induction).
+  reg f_past_valid = 1'b0;
+  always @(posedge clk_i) f_past_valid <= 1'b1;
+  always @(*) if (!f_past_valid) assume (!rst_ni);
+  always @(*) assume (!(bus_re_i && bus_we_i));          // one access per clock
+
+  // An access waits only on a condition channel the build has, and exactly while
+  // that channel cannot take / give a condition.
+  always @(*) if (rst_ni && !bus_ready_o) assert ((is_fby_rd || is_fbi_wr) && chan_ok);
+  always @(*) if (rst_ni && is_fby_rd && chan_ok)
+    assert (bus_ready_o == |(fby_rd_ready_i & chan_sel));
+  always @(*) if (rst_ni && is_fbi_wr && chan_ok)
+    assert (bus_ready_o == |(fbi_wr_ready_i & chan_sel));
+  // A channel is asked only by an access to it; strobes name exactly one channel.
+  always @(*) begin
+    assert ((fby_rd_req_o == {Channels{1'b0}}) || (is_fby_rd && $onehot(fby_rd_req_o)));
+    assert ((fbi_wr_req_o == {Channels{1'b0}}) || (is_fbi_wr && $onehot(fbi_wr_req_o)));
+    assert (!done_we_o || (bus_we_i && bus_addr_i == AddrDone));
+    assert (!tc_we_o || (bus_we_i && bus_addr_i == AddrTcBit));
+  end
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    // every clock an access is refused is one byte-side stall, and no other clock is
+    if (stalls_byte_o != 32'd0 || $past(stalls_byte_o) != 32'hFFFF_FFFF)
+      assert (stalls_byte_o == $past(stalls_byte_o) +
+              {31'd0, ($past(bus_re_i) || $past(bus_we_i)) && !$past(bus_ready_o)});
+    // SCAN_DONE: set by its write, cleared by the next latch, held otherwise
+    if ($past(bus_we_i) && $past(bus_addr_i) == AddrScanDone) assert (byte_scan_done_o);
+    else if ($past(latch_i)) assert (!byte_scan_done_o);
+    else assert (byte_scan_done_o == $past(byte_scan_done_o));
+    // the time base counts every clock from the first latch on
+    if ($past(started_q) || $past(latch_i)) assert (clock_q == $past(clock_q) + 32'd1);
+    else assert (clock_q == $past(clock_q));
+  end
+  always @(posedge clk_i) if (rst_ni) cover (stalls_byte_o == 32'd2);
+`endif
+
   // verilator lint_off UNUSEDSIGNAL
   wire unused_bus = ^{bus_wdata_i[31:9], bus_wdata_i[7], bus_wdata_i[5:0]};
   // verilator lint_on UNUSEDSIGNAL

@@ -65,5 +65,32 @@ module marker_area #(
   // instruction of a scan runs in its latch clock).
   assign bit_rd_data_o  = bit_start_i  ? byte_visible : bit_snap_q;
   assign byte_rd_data_o = byte_start_i ? bit_visible  : byte_snap_q;
+
+`ifdef FORMAL
+  // formal/marker_area.sby proves these for all time by k-induction.
+  reg f_past_valid = 1'b0;
+  always @(posedge clk_i) f_past_valid <= 1'b1;
+  always @(*) if (!f_past_valid) assume (!rst_ni);
+  always @(posedge clk_i) if (f_past_valid) assume ($stable(write_buffer_i));
+
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    // a reader's view moves only at its own scan start (the "update" of Fig. 17)
+    if (!$past(bit_start_i))  assert (bit_snap_q  == $past(bit_snap_q));
+    if (!$past(byte_start_i)) assert (byte_snap_q == $past(byte_snap_q));
+    // ... and then it is what the writer had made visible
+    if ($past(bit_start_i))   assert (bit_snap_q  == $past(byte_visible));
+    if ($past(byte_start_i))  assert (byte_snap_q == $past(bit_visible));
+    // a side's cells change only by its own writes: no cross-writes, no arbitration
+    if ($past(bit_wr_i) == {Cells{1'b0}})  assert (bit_work_q  == $past(bit_work_q));
+    if ($past(byte_wr_i) == {Cells{1'b0}}) assert (byte_work_q == $past(byte_work_q));
+    // write buffer: what a reader can see changes only at the writer's scan end, and
+    // then to the whole of that scan's writes
+    if ($past(write_buffer_i) && !$past(byte_end_i)) assert (byte_pub_q == $past(byte_pub_q));
+    if ($past(write_buffer_i) && !$past(bit_end_i))  assert (bit_pub_q  == $past(bit_pub_q));
+    if ($past(byte_end_i)) assert (byte_pub_q == byte_work_q);
+    if ($past(bit_end_i))  assert (bit_pub_q  == bit_work_q);
+  end
+  always @(posedge clk_i) if (rst_ni) cover (write_buffer_i && bit_snap_q != byte_work_q);
+`endif
 endmodule
 `default_nettype wire

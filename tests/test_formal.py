@@ -39,6 +39,13 @@ MUTATIONS = [
      "assign wr_ready_o = 1'b1;"),                          # write into a full queue
     ("cond_queue", "cond_queue.v", "else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;",
      "else if (do_rd && wr_req_i) rd_ptr_q <= rd_ptr_q + 1'b1;"),   # read twice
+    ("marker_area", "marker_area.v", "if (bit_start_i)  bit_snap_q  <= byte_visible;",
+     "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
+    ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
+     "byte_pub_q <= byte_work_d;"),                         # publishes half a scan
+    ("byte_port", "byte_port.v",
+     "if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;",
+     "if (bus_re_i && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;"),  # misses
 ]
 
 
