@@ -82,3 +82,30 @@ formal: $(VENV_STAMP) ## prove every formal/*.sby (SymbiYosys, k-induction)
 
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache
+
+# ------------------------------------------------------------------ synthesis (synth/)
+# Feasibility reports: Yosys + nextpnr for iCE40 HX8K/UP5K and ECP5-25 (speed 8), Yosys
+# cell counts for Xilinx 7-series and generic gates, a parameter sweep. Writes
+# docs/synthesis.md and docs/synthesis_resources.png; logs stay in synth/build/.
+# Not part of `make test` (about 10 minutes on 2 cores).
+.PHONY: synth synth-quick
+
+synth: $(VENV_STAMP)  ## synthesis + place and route, all targets and the sweep -> docs/synthesis.md
+	$(VENV)/bin/python synth/run_synth.py --jobs $(JOBS)
+
+synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no sweep, ~3 min)
+	$(VENV)/bin/python synth/run_synth.py --quick --jobs $(JOBS)
+
+# ------------------------------------------------------------------ benchmarks (bench/)
+# Scan time, response time and simulator speed (issue 8): the examples, a generated
+# Table-1-sized program and a word-share sweep (bench/gen_programs.py, fixed seed),
+# 1000 random input edges per mode against the analytical bound, the harness and cocotb
+# speeds. Every mode of BENCH_MODES that `bitbyte run --mode` runs is measured; the
+# others are listed as not available. Writes docs/performance.md and docs/perf_*.png
+# from scratch; raw data in build/bench/. Not part of `make test` (a few minutes).
+.PHONY: bench
+BENCH_MODES ?= serial,parallel,free
+BENCH_EDGES ?= 1000
+
+bench: $(HARNESS)     ## scan time, response time, simulator speed -> docs/performance.md
+	$(VENV)/bin/python bench/run_bench.py --modes $(BENCH_MODES) --edges $(BENCH_EDGES)
