@@ -73,11 +73,14 @@ def _clock_mhz(text: str) -> Fraction:
 def _check_mode(mode: str, exchange: str | None) -> str:
     """The exchange setting for a run: parallel mode defaults to handshake; serial
     mode ignores --exchange (spec §4); free-running mode is not in this release."""
-    if mode == "free":
-        raise UsageError("--mode free (free-running processors) is not in this release; "
-                         "use --mode serial or --mode parallel")
     if mode == "serial":
         return "handshake"
+    if mode == "free":
+        exchange = exchange or "marker"
+        if exchange not in ("marker", "queue-free"):
+            raise UsageError(f"--exchange {exchange}: free-running processors never wait; "
+                             "use marker or queue-free")
+        return exchange
     exchange = exchange or "handshake"
     if exchange not in ("handshake", "queue"):
         raise UsageError(f"--exchange {exchange}: parallel mode runs with handshake or "
@@ -132,9 +135,12 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     exchange = _check_mode(mode, exchange)
     program = parse_file(program_path, config)
     byte_words: list[int] = []
-    if mode == "parallel":
+    if mode in ("parallel", "free"):
         from .partition import partition
-        part = partition(program, config.channels, config=config)
+        # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
+        free = mode == "free"
+        part = partition(program, config.channels, config=config, status_sync=not free,
+                         hardware_wait=not free)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
     else:
         words, pool = encode_words(program, config), constant_pool(program)
@@ -234,7 +240,7 @@ def _run_harness(job, columns, args):
             Path(waves).parent.mkdir(parents=True, exist_ok=True)
         run_file = Path(tmp) / "run.txt"
         byte_path = None
-        if job.mode == "parallel":
+        if job.mode in ("parallel", "free"):
             byte_path = Path(tmp) / "byte.hex"
             byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,

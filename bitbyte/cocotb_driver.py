@@ -84,7 +84,8 @@ class Firmware:
             words = (ctypes.c_uint32 * len(job.pool))(*job.pool)
             lib.bb_load_pool(self.state, words, len(job.pool))
         self.parallel = job.mode == "parallel"
-        if self.parallel:
+        self.free = job.mode == "free"
+        if self.parallel or self.free:
             words = (ctypes.c_uint32 * len(job.byte_prog))(*job.byte_prog)
             lib.bb_load_program(self.state, words, len(job.byte_prog))
         # The HAL: each callback runs in the firmware's thread and blocks on a coroutine.
@@ -174,6 +175,9 @@ class Firmware:
                 lib.hal_wait_dispatch()
                 lib.bb_run_scan(self.state)
                 lib.hal_bus_write(0x07, 1)
+            elif self.free:                    # its own scans, back to back
+                lib.bb_run_scan(self.state)
+                lib.hal_bus_write(0x07, 1)
             else:
                 lib.bb_serial_step(self.state)
 
@@ -201,7 +205,9 @@ async def run_job(dut, job: RunJob) -> dict:
     await FallingEdge(dut.clk_i)
     dut.bus_we_i.value = 0
     dut.parallel_i.value = int(job.mode == "parallel")
-    dut.exchange_i.value = ("handshake", "queue", "queue-free").index(job.exchange)
+    dut.free_i.value = int(job.mode == "free")
+    dut.marker_write_buffer_i.value = 0
+    dut.exchange_i.value = ("handshake", "queue", "queue-free", "marker").index(job.exchange)
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 

@@ -42,8 +42,8 @@ class RunJob:
     cols: list[tuple[str, str, int]] = field(default_factory=list)  # (header, kind, index)
     costs: str = "paper"                 # byte processor cost table
     pool: list[int] = field(default_factory=list)   # constant pool words
-    mode: str = "serial"                 # serial | parallel
-    exchange: str = "handshake"          # handshake | queue | queue-free
+    mode: str = "serial"                 # serial | parallel | free
+    exchange: str = "handshake"          # handshake | queue | queue-free | marker
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
 
     def to_json(self) -> dict:

@@ -24,7 +24,9 @@ module bitbyte_cpu #(
   input  wire [31:0]                  prog_wdata_i,
   // control and status
   input  wire                         run_i,             // RUN/STOP switch
-  input  wire                         parallel_i,        // 0 serial, 1 parallel mode
+  input  wire                         parallel_i,        // parallel mode: parts meet at END
+  input  wire                         free_i,            // free-running mode: they never meet
+  input  wire                         marker_write_buffer_i,  // marker area: publish at scan end
   input  wire [1:0]                   exchange_i,        // 0 handshake, 1 queue, 2 queue-free
   input  wire [31:0]                  watchdog_limit_i,  // clocks per scan at most
   output wire                         ready_o,           // stopped, ready to run
@@ -69,7 +71,7 @@ module bitbyte_cpu #(
   wire        fby_wr_data, fbi_wr_data, bit_stall;
   wire        byte_req, byte_done, byte_rlo, byte_rlo_we;
   wire [31:0] byte_instr, dispatch_instr, dispatch_ctx;
-  wire        next, dispatch_next, done_we, byte_scan_done;
+  wire        next, dispatch_next, done_we, byte_scan_done, byte_scan_end;
   wire [1:0]  done_data;
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
@@ -180,7 +182,12 @@ module bitbyte_cpu #(
     .rst_ni        (rst_ni),
     .exchange_i    (exchange_i),
     .bit_start_i   (latch),
-    .byte_start_i  (latch),
+    .bit_end_i     (end_exec),
+    // the byte side's scans: at the latch in parallel mode, its own SCAN_DONE writes
+    // (one scan ends, the next begins) when it runs free
+    .byte_start_i  (free_i ? byte_scan_end : latch),
+    .byte_end_i    (free_i ? byte_scan_end : end_exec),
+    .marker_write_buffer_i(marker_write_buffer_i),
     .fby_wr_req_i  (fby_wr_req),
     .fby_wr_data_i (fby_wr_data),
     .fby_wr_ready_o(fby_wr_ready),
@@ -260,6 +267,7 @@ module bitbyte_cpu #(
     .exec_i          (exec),
     .fault_i         (fault_o),
     .byte_scan_done_o(byte_scan_done),
+    .byte_scan_end_o (byte_scan_end),
     .next_i          (next),
     .dispatch_instr_i(dispatch_instr),
     .dispatch_ctx_i  (dispatch_ctx),

@@ -25,6 +25,7 @@ module byte_port #(
   input  wire                          fault_i,
   // parallel mode: the byte side reports the end of its part of the scan
   output reg                           byte_scan_done_o,
+  output wire                          byte_scan_end_o,   // SCAN_DONE written this clock
   // serial dispatch
   input  wire                          next_i,
   input  wire [31:0]                   dispatch_instr_i,
@@ -216,6 +217,8 @@ module byte_port #(
   end
 
   // ---------------------------------------------------------------- registers
+  assign byte_scan_end_o = bus_we_i && bus_addr_i == AddrScanDone;
+
   // SCAN_DONE: set by the byte side's write, cleared when the next scan latches.
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) byte_scan_done_o <= 1'b0;

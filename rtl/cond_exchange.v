@@ -5,6 +5,8 @@
 //                 channel k of the instruction (`= FBY k`, `READ FBY k`, ...) is used
 //   1 queue:      one strict pointer-based queue per direction (Fig. 16); k ignored
 //   2 queue-free: the same queues, free-running (no waits; losses counted)
+//   3 marker:     the dual-port marker area with auxiliary buffer (Fig. 17): cell k
+//                 per direction, written any time, read from the reader's snapshot
 // Direction "fby": bit side writes, byte side reads; "fbi": byte writes, bit reads.
 module cond_exchange #(
   parameter integer Channels   = 4,  // handshake channels per direction
@@ -14,7 +16,10 @@ module cond_exchange #(
   input  wire                rst_ni,
   input  wire [1:0]          exchange_i,
   input  wire                bit_start_i,    // the bit side's scan start (its latch)
+  input  wire                bit_end_i,      // the bit side's scan end (END)
   input  wire                byte_start_i,   // the byte side's scan start
+  input  wire                byte_end_i,     // the byte side's scan end
+  input  wire                marker_write_buffer_i,  // marker: writers publish at scan end
   // F_bB: bit side writes, byte side reads
   input  wire [Channels-1:0] fby_wr_req_i,
   input  wire                fby_wr_data_i,
@@ -35,8 +40,10 @@ module cond_exchange #(
   output wire [31:0]         overflows_o,
   output wire [31:0]         underflows_o
 );
-  wire use_queue = exchange_i != 2'd0;
-  wire free      = exchange_i == 2'd2;
+  wire use_queue  = exchange_i == 2'd1 || exchange_i == 2'd2;
+  wire use_marker = exchange_i == 2'd3;
+  wire use_ff     = exchange_i == 2'd0;
+  wire free       = exchange_i == 2'd2;
 
   // ------------------------------------------------------------ handshake channels
   wire [Channels-1:0] ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full;
@@ -47,10 +54,10 @@ module cond_exchange #(
       cond_ff u_fby (
         .clk_i     (clk_i),
         .rst_ni    (rst_ni),
-        .wr_req_i  (fby_wr_req_i[k] && !use_queue),
+        .wr_req_i  (fby_wr_req_i[k] && use_ff),
         .wr_data_i (fby_wr_data_i),
         .wr_ready_o(ff_fby_wr_ready[k]),
-        .rd_req_i  (fby_rd_req_i[k] && !use_queue),
+        .rd_req_i  (fby_rd_req_i[k] && use_ff),
         .rd_data_o (ff_fby_rd_data[k]),
         .rd_ready_o(ff_fby_rd_ready[k]),
         .full_o    (ff_fby_full[k])
@@ -58,10 +65,10 @@ module cond_exchange #(
       cond_ff u_fbi (
         .clk_i     (clk_i),
         .rst_ni    (rst_ni),
-        .wr_req_i  (fbi_wr_req_i[k] && !use_queue),
+        .wr_req_i  (fbi_wr_req_i[k] && use_ff),
         .wr_data_i (fbi_wr_data_i),
         .wr_ready_o(ff_fbi_wr_ready[k]),
-        .rd_req_i  (fbi_rd_req_i[k] && !use_queue),
+        .rd_req_i  (fbi_rd_req_i[k] && use_ff),
         .rd_data_o (ff_fbi_rd_data[k]),
         .rd_ready_o(ff_fbi_rd_ready[k]),
         .full_o    (ff_fbi_full[k])
@@ -107,15 +114,36 @@ module cond_exchange #(
     .underflows_o(underflows_o[31:16])
   );
 
+  // ------------------------------------------------------------ marker area
+  wire [Channels-1:0] m_bit_rd, m_byte_rd;
+  marker_area #(.Cells(Channels)) u_marker (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .write_buffer_i(marker_write_buffer_i),
+    .bit_start_i   (bit_start_i),
+    .bit_end_i     (bit_end_i),
+    .bit_wr_i      (use_marker ? fby_wr_req_i : {Channels{1'b0}}),
+    .bit_wr_data_i (fby_wr_data_i),
+    .bit_rd_data_o (m_bit_rd),
+    .byte_start_i  (byte_start_i),
+    .byte_end_i    (byte_end_i),
+    .byte_wr_i     (use_marker ? fbi_wr_req_i : {Channels{1'b0}}),
+    .byte_wr_data_i(fbi_wr_data_i),
+    .byte_rd_data_o(m_byte_rd)
+  );
+
   // ------------------------------------------------------------ selection
-  assign fby_wr_ready_o = use_queue ? {Channels{q_fby_wr_ready}} : ff_fby_wr_ready;
-  assign fby_rd_data_o  = use_queue ? {Channels{q_fby_rd_data}}  : ff_fby_rd_data;
-  assign fby_rd_ready_o = use_queue ? {Channels{q_fby_rd_ready}} : ff_fby_rd_ready;
-  assign fby_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fby_full} : ff_fby_full;
-  assign fbi_wr_ready_o = use_queue ? {Channels{q_fbi_wr_ready}} : ff_fbi_wr_ready;
-  assign fbi_rd_data_o  = use_queue ? {Channels{q_fbi_rd_data}}  : ff_fbi_rd_data;
-  assign fbi_rd_ready_o = use_queue ? {Channels{q_fbi_rd_ready}} : ff_fbi_rd_ready;
-  assign fbi_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fbi_full} : ff_fbi_full;
+  wire [Channels-1:0] ones = {Channels{1'b1}};
+  assign fby_wr_ready_o = use_queue ? {Channels{q_fby_wr_ready}} : use_marker ? ones : ff_fby_wr_ready;
+  assign fby_rd_data_o  = use_queue ? {Channels{q_fby_rd_data}}  : use_marker ? m_byte_rd : ff_fby_rd_data;
+  assign fby_rd_ready_o = use_queue ? {Channels{q_fby_rd_ready}} : use_marker ? ones : ff_fby_rd_ready;
+  assign fby_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fby_full} :
+                          use_marker ? {Channels{1'b0}} : ff_fby_full;
+  assign fbi_wr_ready_o = use_queue ? {Channels{q_fbi_wr_ready}} : use_marker ? ones : ff_fbi_wr_ready;
+  assign fbi_rd_data_o  = use_queue ? {Channels{q_fbi_rd_data}}  : use_marker ? m_bit_rd : ff_fbi_rd_data;
+  assign fbi_rd_ready_o = use_queue ? {Channels{q_fbi_rd_ready}} : use_marker ? ones : ff_fbi_rd_ready;
+  assign fbi_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fbi_full} :
+                          use_marker ? {Channels{1'b0}} : ff_fbi_full;
 
   // verilator lint_off UNUSEDSIGNAL
   wire unused_empty = ^{q_fby_empty, q_fbi_empty};

@@ -133,6 +133,7 @@ struct RunFile {
   std::string costs = "paper";                                     // byte processor cost table
   std::vector<uint32_t> pool;                                      // constant pool
   bool parallel = false;                                           // mode parallel
+  bool free_running = false;                                       // mode free
   unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
   std::string byte_prog;                                           // its byte part (.hex)
 };
@@ -217,13 +218,16 @@ static RunFile read_run_file(const char* path) {
       rf.stim.push_back(s);
     } else if (k == "mode") {
       want(1);
-      if (w[1] != "serial" && w[1] != "parallel") die("mode must be serial or parallel");
+      if (w[1] != "serial" && w[1] != "parallel" && w[1] != "free")
+        die("mode must be serial, parallel or free");
       rf.parallel = w[1] == "parallel";
+      rf.free_running = w[1] == "free";
     } else if (k == "exchange") {
       want(1);
       if (w[1] == "handshake") rf.exchange = 0;
       else if (w[1] == "queue") rf.exchange = 1;
       else if (w[1] == "queue-free") rf.exchange = 2;
+      else if (w[1] == "marker") rf.exchange = 3;
       else die("exchange must be handshake, queue or queue-free");
     } else if (k == "byte_prog") {
       want(1);
@@ -459,6 +463,7 @@ struct Run {
 };
 
 static Run* g_run;  // the HAL's view of the simulation
+static uint64_t g_byte_scans;  // free-running mode: the byte side's completed scans
 
 // ------------------------------------------------------------------ the HAL (hal.h)
 extern "C" uint32_t hal_bus_read(uint8_t addr) {
@@ -515,8 +520,8 @@ int main(int argc, char** argv) {
   if (!costs) die("unknown cost table '%s'", rf.costs.c_str());
   bb_init(&bb, costs);
   if (!rf.pool.empty()) bb_load_pool(&bb, rf.pool.data(), unsigned(rf.pool.size()));
-  if (rf.parallel) {  // the byte part: the byte processor's own program
-    if (rf.byte_prog.empty()) die("mode parallel needs 'byte_prog'");
+  if (rf.parallel || rf.free_running) {  // the byte part: the byte processor's own program
+    if (rf.byte_prog.empty()) die("mode parallel/free needs 'byte_prog'");
     std::vector<uint32_t> words;
     for (auto [a, w] : read_hex(rf.byte_prog, BB_PROG_WORDS)) {
       if (a >= words.size()) words.resize(a + 1, 0);
@@ -621,6 +626,7 @@ int main(int argc, char** argv) {
   d.tick();
   top.bus_we_i = 0;
   top.parallel_i = rf.parallel;
+  top.free_i = rf.free_running;
   top.exchange_i = rf.exchange;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
@@ -641,6 +647,13 @@ int main(int argc, char** argv) {
         hal_wait_dispatch();         // NEXT = the latch clock
         bb_run_scan(&bb);
         hal_bus_write(0x07, 1);      // SCAN_DONE: the bit side's END may complete
+      }
+    }
+    if (rf.free_running) {
+      for (;;) {                     // its own scans, back to back, never waiting
+        bb_run_scan(&bb);
+        hal_bus_write(0x07, 1);      // SCAN_DONE: its next scan begins
+        ++g_byte_scans;
       }
     }
     for (;;) bb_serial_step(&bb);
@@ -679,6 +692,8 @@ int main(int argc, char** argv) {
     std::printf("cycles/scan      -\nscan time [us]   -  (clock %s MHz)\n", mhz.c_str());
   }
   std::printf("stalls           bit side %u, byte side %u\n", top.stalls_bit_o, top.stalls_byte_o);
+  if (rf.free_running)
+    std::printf("byte side        %llu scans (free-running)\n", (unsigned long long)g_byte_scans);
   if (rf.exchange == 2) {
     const uint32_t ovf = rp->bitbyte_cpu__DOT__queue_overflows, unf = rp->bitbyte_cpu__DOT__queue_underflows;
     std::printf("queue losses     overflows to-byte %u to-bit %u, underflows to-byte %u to-bit %u\n",

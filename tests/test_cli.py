@@ -102,7 +102,7 @@ def test_usage_errors_exit_2(tmp_path):
     assert bitbyte("run", EXAMPLE, "--scans", "0").returncode == 2
     assert bitbyte("run", EXAMPLE, "--clock-mhz", "fast").returncode == 2
     assert bitbyte("run", EXAMPLE, "--watch", "Q99.0").returncode == 2
-    assert bitbyte("run", EXAMPLE, "--mode", "free").returncode == 2
+    assert bitbyte("run", EXAMPLE, "--mode", "free", "--exchange", "handshake").returncode == 2
     assert bitbyte("run", EXAMPLE, "--mode", "parallel", "--exchange", "marker").returncode == 2
     assert bitbyte("frobnicate").returncode == 2
 
