@@ -54,6 +54,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--waves")
     r.add_argument("--sim", choices=["verilator", "icarus"], default="verilator")
     r.add_argument("--clock-mhz", type=str, default="100")
+    r.add_argument("--channels", type=int, default=None,
+                   help="parallel/free mode: exchange channels per direction the "
+                        "partitioning compiler uses (1..4, default 4; Fig. 14/15 tasks)")
     r.add_argument("--costs", default="paper",
                    help="byte processor cost table: paper (default) or c320")
     return p
@@ -100,7 +103,8 @@ def cmd_asm(args) -> int:
 def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 scans: int | None = None, until_us: str | None = None,
                 watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
-                mode: str = "serial", exchange: str | None = None):
+                mode: str = "serial", exchange: str | None = None,
+                channels: int | None = None):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
@@ -139,7 +143,10 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
         from .partition import partition
         # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
         free = mode == "free"
-        part = partition(program, config.channels, config=config, status_sync=not free,
+        if channels is not None and not 1 <= channels <= config.channels:
+            raise UsageError(f"--channels must be 1..{config.channels}")
+        part = partition(program, channels or config.channels, config=config,
+                         status_sync=not free,
                          hardware_wait=not free)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
     else:
@@ -176,7 +183,8 @@ def cmd_run(args) -> int:
     _, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
-        costs=args.costs, mode=args.mode, exchange=args.exchange)
+        costs=args.costs, mode=args.mode, exchange=args.exchange,
+        channels=args.channels)
 
     if args.sim == "verilator":
         records, fault, summary = _run_harness(job, columns, args)
