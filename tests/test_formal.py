@@ -43,6 +43,10 @@ MUTATIONS = [
      "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
     ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
      "byte_pub_q <= byte_work_d;"),                         # publishes half a scan
+    ("hsem", "hsem.v", "wire grant_any = !locked_o && any_req;",
+     "wire grant_any = any_req;"),                          # grant while held
+    ("hsem", "hsem.v", "end else if (locked_o && release_i[owner_o]) begin",
+     "end else if (locked_o && |release_i) begin"),         # anybody frees it
     ("byte_port", "byte_port.v",
      "if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;",
      "if (bus_re_i && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;"),  # misses
