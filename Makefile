@@ -87,13 +87,13 @@ clean:          ## remove build products (keeps .venv)
 # Feasibility reports: Yosys + nextpnr for iCE40 HX8K/UP5K and ECP5-25 (speed 8), Yosys
 # cell counts for Xilinx 7-series and generic gates, a parameter sweep. Writes
 # docs/synthesis.md and docs/synthesis_resources.png; logs stay in synth/build/.
-# Not part of `make test` (about 10 minutes on 2 cores).
+# Not part of `make test` (11 to 18 minutes on 2 cores; synth-quick about 3 to 5).
 .PHONY: synth synth-quick
 
 synth: $(VENV_STAMP)  ## synthesis + place and route, all targets and the sweep -> docs/synthesis.md
 	$(VENV)/bin/python synth/run_synth.py --jobs $(JOBS)
 
-synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no sweep, ~3 min)
+synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no sweep, 3 to 5 min)
 	$(VENV)/bin/python synth/run_synth.py --quick --jobs $(JOBS)
 
 # ------------------------------------------------------------------ benchmarks (bench/)

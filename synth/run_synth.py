@@ -684,7 +684,7 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
         w("")
     w("## Reproduce")
     w("")
-    w("`make synth` (about 10 minutes on 2 cores; the first call of each YoWASP tool "
+    w("`make synth` (about 21 CPU-minutes: 11 to 18 minutes on 2 cores, depending on what else runs; the first call of each YoWASP tool "
       "compiles it, about 35 s) or `make synth-quick` (default parameters only). Logs, "
       "netlists and nextpnr reports stay in `synth/build/` (not tracked). "
       "`python synth/run_synth.py --help` lists the options.")

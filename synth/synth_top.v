@@ -11,7 +11,7 @@
 //   SPI 0x04/0x05 byte-side bus        bus_addr_i, bus_wdata_i, bus_we_i, bus_re_i, bus_rdata_o, bus_ready_o
 //   74HC165 input chain                in_pins_i
 //   74HC595 output chain               out_pins_o
-//   pin (input synchroniser)           run_i, parallel_i
+//   pin (input synchroniser)           run_i, parallel_i, free_i, marker_write_buffer_i
 //   pin (output flip-flop)             ready_o, fault_o, scan_done_o
 //   SPI 0x02 host registers            exchange_i, watchdog_limit_i, in_words_i
 //   SPI 0x03 read-back                 scan_count_o, scan_cycles_o, scan_cycles_max_o, out_words_o, stalls_bit_o, stalls_byte_o
@@ -42,6 +42,8 @@ module synth_top #(
   output wire dout_sdata,
   input  wire run,
   input  wire parallel,
+  input  wire free,
+  input  wire marker_write_buffer,
   output reg  ready,
   output reg  fault,
   output reg  scan_done
@@ -62,6 +64,8 @@ module synth_top #(
   wire [31:0] c_prog_wdata_i;
   wire c_run_i;
   wire c_parallel_i;
+  wire c_free_i;
+  wire c_marker_write_buffer_i;
   wire [1:0] c_exchange_i;
   wire [31:0] c_watchdog_limit_i;
   wire c_ready_o;
@@ -159,9 +163,9 @@ module synth_top #(
     .sclk_o(dout_sclk), .rclk_o(dout_rclk), .sdata_o(dout_sdata));
 
   // single-bit inputs: pins through two-flop synchronisers
-  synth_sync #(.Width(2)) u_pin_sync (
-    .clk_i(clk), .d_i({run, parallel}),
-    .q_o({c_run_i, c_parallel_i}));
+  synth_sync #(.Width(4)) u_pin_sync (
+    .clk_i(clk), .d_i({run, parallel, free, marker_write_buffer}),
+    .q_o({c_run_i, c_parallel_i, c_free_i, c_marker_write_buffer_i}));
 
   // single-bit outputs: pins from output flip-flops
   always @(posedge clk or negedge rst_s_n) begin
@@ -196,6 +200,8 @@ module synth_top #(
     .prog_wdata_i(c_prog_wdata_i),
     .run_i(c_run_i),
     .parallel_i(c_parallel_i),
+    .free_i(c_free_i),
+    .marker_write_buffer_i(c_marker_write_buffer_i),
     .exchange_i(c_exchange_i),
     .watchdog_limit_i(c_watchdog_limit_i),
     .ready_o(c_ready_o),
