@@ -1,4 +1,4 @@
-"""`bitbyte` command line (spec §4): `asm` and `run`.
+"""`bitbyte` command line (spec §4, §7): `asm`, `run` and `link`.
 
 Every user error ends as `file:line:col: message` (or a one-line message for command
 line mistakes) and a non-zero exit status, never a traceback:
@@ -59,6 +59,10 @@ def _parser() -> argparse.ArgumentParser:
                         "partitioning compiler uses (1..4, default 4; Fig. 14/15 tasks)")
     r.add_argument("--costs", default="paper",
                    help="byte processor cost table: paper (default) or c320")
+
+    k = sub.add_parser("link", help="check a multi-core plant (PLANT.toml) and print its "
+                                    "shared-memory map and copy plan")
+    k.add_argument("plant")
     return p
 
 
@@ -120,8 +124,8 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     config = Config(clock_mhz=float(f))
     if scans is not None and scans < 1:
         raise UsageError("--scans must be at least 1")
-    if watchdog < 2:
-        raise UsageError("--watchdog must be at least 2 clocks")
+    if not 2 <= watchdog < 2 ** 32:
+        raise UsageError("--watchdog must be 2 .. 2^32-1 clocks")
     until_clock = None
     if until_us is not None:
         try:
@@ -149,6 +153,8 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                          status_sync=not free,
                          hardware_wait=not free)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
+        if free and exchange == "marker":
+            _one_cell_per_condition(program, part, channels or config.channels)
     else:
         words, pool = encode_words(program, config), constant_pool(program)
     stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
@@ -177,8 +183,34 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     return program, columns, job, f
 
 
+def cmd_link(args) -> int:
+    from .plant import format_map, link, load_plant
+    print(format_map(link(load_plant(args.plant))), end="")
+    return 0
+
+
+def _one_cell_per_condition(program, part, cells: int) -> None:
+    """The marker area holds one condition per cell and a reader snapshots it once a
+    scan: two conditions of one scan in one cell would mix. Free-running mode with
+    the marker exchange therefore needs a cell per transfer and direction."""
+    seen: dict[str, int] = {}
+    for t in part.transfers:
+        seen[t.direction] = seen.get(t.direction, 0) + 1
+        if seen[t.direction] > cells:
+            line = next((i.source for i in program.instrs if i.line == t.line), "")
+            raise SourceError(program.path, t.line, t.col,
+                              f"more than {cells} conditions cross "
+                              f"{'bit -> byte' if t.direction == 'to_byte' else 'byte -> bit'} in one "
+                              f"scan: the marker area has {cells} cells per direction "
+                              "(use --exchange queue-free, or fewer crossings)", line)
+
+
 def cmd_run(args) -> int:
     from . import trace as tr
+
+    if args.program.lower().endswith(".toml"):
+        raise UsageError("running a plant needs the multi-core system (not in this "
+                         "release)")
 
     _, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
@@ -255,6 +287,9 @@ def _run_harness(job, columns, args):
                                    str(byte_path) if byte_path else None)
         run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
         proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
+        if not args.trace:        # the temporary trace is gone after the run: do not show it
+            proc.stdout = "".join(l for l in proc.stdout.splitlines(keepends=True)
+                                  if not l.startswith("trace "))
         if proc.returncode not in (0, EXIT_WATCHDOG):
             raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
         records = read_trace_rows(trace_path, columns)
@@ -264,7 +299,7 @@ def _run_harness(job, columns, args):
 def main(argv: list[str] | None = None) -> int:
     try:
         args = _parser().parse_args(argv)
-        return cmd_asm(args) if args.command == "asm" else cmd_run(args)
+        return {"asm": cmd_asm, "run": cmd_run, "link": cmd_link}[args.command](args)
     except SourceError as e:
         print(format_error(e), file=sys.stderr)
         return EXIT_SOURCE

@@ -49,7 +49,15 @@ Decisions where the spec is silent (see also the tests):
   byte program's jumps on F_B) and `END`.  A jump reaches only labels of its own
   section.  Labels pending at a section switch mark an END appended to the section
   they follow (as labels at the end of the file do); a parenthesis may not stay open
-  across a switch.  VAR_GLOBAL is a later feature, rejected with a message saying so.
+  across a switch.
+* `VAR_GLOBAL ... END_VAR` (spec §7, multi-core plants): declarations
+  `Name AT M10.0 : WRITE;` / `Name AT MW20 : READ;`, with the same layout rules as
+  VAR (`;` or the end of the line ends one, several per line).  The local copy is a
+  bit in M or a word in MW (anything else: operand of the wrong kind); the name is a
+  symbol of the program like a VAR symbol (same name rules, no duplicates); two
+  shared variables may not share one local copy.  They are kept in source order in
+  Program.globals; the plant-wide rules (one writer, same kind) are the linker's
+  (bitbyte.plant).  A single-core `asm`/`run` treats them as ordinary symbols.
 """
 from __future__ import annotations
 
@@ -58,7 +66,7 @@ from dataclasses import dataclass, replace
 
 from .config import DEFAULT, Config
 from .errors import SourceError
-from .program import Instr, Operand, Program
+from .program import GlobalVar, Instr, Operand, Program
 
 # --------------------------------------------------------------------------------------
 # Vocabulary
@@ -71,6 +79,8 @@ AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 PAREN_OPENERS = ("A", "AN", "O", "ON", "X", "XN")             # + "(" -> "A(" ...
 COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
 KEYWORDS = ("VAR", "END_VAR", "VAR_GLOBAL", "AT", "BIT", "BYTE")
+ACCESS_WORDS = ("READ", "WRITE")                              # VAR_GLOBAL attribute
+GLOBAL_AREAS = {"M": "bit", "MW": "word"}                     # local copy -> kind
 
 MAX_DURATION_MS = 2 ** 31 - 1
 DURATION_UNITS = ("h", "m", "s", "ms")                        # largest first
@@ -329,6 +339,7 @@ class Parser:
         self.open_parens: list[Instr] = []
         self.after_open: Instr | None = None
         self.section = ""                 # "", "BIT" or "BYTE" (hand-partitioned)
+        self.globals: list[GlobalVar] = []
 
     # -- token stream -------------------------------------------------------------
 
@@ -373,10 +384,8 @@ class Parser:
                 self.parse_section_header()
             elif self.peek(2).kind == "COLON":
                 self.parse_statement()          # a label, even one named like a keyword
-            elif tok.is_word("VAR"):
+            elif tok.is_word("VAR", "VAR_GLOBAL"):
                 self.parse_var_block()
-            elif tok.is_word("VAR_GLOBAL"):
-                raise self.error(tok, "VAR_GLOBAL needs the multi-core linker (bitbyte link)")
             elif tok.is_word("END_VAR"):
                 raise self.error(tok, "END_VAR without VAR")
             else:
@@ -394,7 +403,8 @@ class Parser:
             self.add_instr(Instr("END", None, line, 1, ""), appended=True)
         self.check_size(self.instrs[-1], appended=True)
         self.check_jump_sections()
-        return Program(self.src.path, self.instrs, dict(self.labels), dict(self.symbols))
+        return Program(self.src.path, self.instrs, dict(self.labels), dict(self.symbols),
+                       list(self.globals))
 
     # -- BIT: / BYTE: sections (hand-partitioned programs) ----------------------------
 
@@ -461,22 +471,33 @@ class Parser:
     # -- declarations ---------------------------------------------------------------
 
     def parse_var_block(self) -> None:
-        """VAR decl; decl; ... END_VAR  (declarations end at `;` or end of line)."""
+        """VAR (or VAR_GLOBAL) decl; decl; ... END_VAR  (declarations end at `;` or
+        end of line)."""
         var_tok = self.next()
+        keyword = var_tok.text.upper()
+        is_global = keyword == "VAR_GLOBAL"
         while True:
             tok = self.peek()
             if tok.kind == "EOF":
-                raise self.error(var_tok, "missing END_VAR: this VAR is never closed")
+                raise self.error(var_tok, f"missing END_VAR: this {keyword} is never "
+                                          "closed")
             if tok.kind in ("EOL", "SEMI"):
                 self.next()
             elif tok.is_word("END_VAR"):
                 self.next()
                 return
+            elif is_global and self.global_without_at(tok):
+                self.parse_declaration(is_global)         # reports the missing AT
             elif tok.is_word("VAR", "VAR_GLOBAL") or self.looks_like_statement(tok):
-                raise self.error(tok, f"missing END_VAR: the VAR at "
+                raise self.error(tok, f"missing END_VAR: the {keyword} at "
                                       f"{var_tok.line}:{var_tok.col} is still open here")
             else:
-                self.parse_declaration()
+                self.parse_declaration(is_global)
+
+    def global_without_at(self, tok: Token) -> bool:
+        """`Name : WRITE` inside VAR_GLOBAL: a declaration missing its AT, not a label."""
+        return (tok.kind in ("WORD", "STRING") and self.peek(2).kind == "COLON"
+                and self.peek(3).is_word(*ACCESS_WORDS))
 
     def looks_like_statement(self, tok: Token) -> bool:
         """Inside VAR: a label or an instruction means END_VAR was forgotten."""
@@ -486,18 +507,21 @@ class Parser:
         return (tok.kind == "WORD" and tok.text.upper() in MNEMONICS
                 and not after.is_word("AT"))
 
-    def parse_declaration(self) -> None:
-        """`Name AT address` followed by `;` or the end of the line."""
+    def parse_declaration(self, is_global: bool = False) -> None:
+        """`Name AT address` (VAR_GLOBAL: `Name AT address : READ|WRITE`) followed
+        by `;` or the end of the line."""
+        form = "`Name AT address : READ|WRITE;`" if is_global else "`Name AT address;`"
         name_tok = self.next()
-        name = self.declared_name(name_tok)
+        name = self.declared_name(name_tok, form)
         at = self.next()
         if not at.is_word("AT"):
             raise self.error(at, f"expected `AT` after `{name}` in a declaration "
-                                 "(`Name AT address;`)")
+                                 f"({form})")
         if self.peek().ends_statement:
             raise self.error(at, f"missing operand: `{name} AT` needs an address")
         addr_tok = self.next()
         operand = self.parse_address(addr_tok, declaring=True)
+        access = self.parse_access(name, operand, addr_tok) if is_global else ""
         end = self.peek()
         if end.kind == "SEMI":
             self.next()
@@ -505,11 +529,48 @@ class Parser:
             raise self.error(end, f"extra operand `{end.text}` in the declaration of "
                                   f"`{name}`: expected `;`")
         self.define_symbol(name, name_tok, operand)
+        if is_global:
+            self.globals.append(GlobalVar(
+                name.upper(), GLOBAL_AREAS[operand.area], access, operand,
+                name_tok.line, name_tok.col, self.src.line_text(name_tok.line), name))
 
-    def declared_name(self, tok: Token) -> str:
+    def parse_access(self, name: str, operand: Operand, addr_tok: Token) -> str:
+        """The `: READ` / `: WRITE` of a VAR_GLOBAL declaration, after checking that
+        the local copy is an M bit or an MW word and no other shared variable's."""
+        if operand.area not in GLOBAL_AREAS:
+            raise self.error(addr_tok, f"operand of the wrong kind: the local copy of a "
+                                       f"shared variable is a bit in M or a word in MW, "
+                                       f"not {describe(operand)}")
+        for other in self.globals:
+            if other.operand.address() == operand.address():
+                raise self.error(addr_tok, f"duplicate local copy: `{operand.text}` "
+                                           f"already holds the shared variable "
+                                           f"`{other.text}` (declared at {other.line}:"
+                                           f"{other.col})")
+        colon = self.peek()
+        if colon.kind != "COLON":
+            line, col = self.src.position(self.pos)      # right after the address
+            what = "found the end of the declaration" if colon.ends_statement \
+                else f"found `{colon.text}`"
+            raise self.src.error(line, col, f"missing `:` after the address of `{name}`: "
+                                            f"a VAR_GLOBAL declaration is `Name AT "
+                                            f"address : READ|WRITE;` ({what})")
+        self.next()
+        word = self.peek()
+        if word.ends_statement:
+            raise self.error(colon, f"missing access after `:` in the declaration of "
+                                    f"`{name}`: READ or WRITE")
+        self.next()
+        if not word.is_word(*ACCESS_WORDS):
+            raise self.error(word, f"unknown access `{word.text}` for `{name}`: READ "
+                                   "(another core writes it) or WRITE (this core "
+                                   "writes it)")
+        return word.text.upper()
+
+    def declared_name(self, tok: Token, form: str = "`Name AT address;`") -> str:
         """The name of a declaration (bare or quoted), checked for reserved words."""
         if tok.kind not in ("WORD", "STRING") or not is_identifier(tok.text):
-            raise self.error(tok, f"expected a declaration `Name AT address;`, "
+            raise self.error(tok, f"expected a declaration {form}, "
                                   f"found `{tok.text}`")
         reason = reserved_reason(tok.text)
         if reason:

@@ -77,16 +77,40 @@ class Instr:
     section: str = ""
 
 
+@dataclass(frozen=True)
+class GlobalVar:
+    """One `VAR_GLOBAL` declaration (spec §7): `Name AT M10.0 : WRITE;`.
+
+    name: the plant-wide name, upper case (it is also a symbol of the program).
+    kind: "bit" (local copy in M) or "word" (local copy in MW).
+    access: "WRITE" (this core publishes it) or "READ" (another core does).
+    operand: the local copy.  line/col: 1-based, at the name; source: the whole
+    source line.  text: the name as written.
+    """
+
+    name: str
+    kind: str
+    access: str
+    operand: Operand
+    line: int
+    col: int
+    source: str = ""
+    text: str = ""
+
+
 @dataclass
 class Program:
     """A checked program.
 
     instrs: in program order; a final END is appended by the parser when missing.
     labels: upper-case label -> index into instrs of the instruction it marks.
-    symbols: upper-case symbol -> Operand it stands for.
+    symbols: upper-case symbol -> Operand it stands for (VAR_GLOBAL names included).
+    globals: the VAR_GLOBAL declarations in source order (empty for a single-core
+    program); the linker (bitbyte.plant) reads them, the encoder does not.
     """
 
     path: str
     instrs: list[Instr]
     labels: dict[str, int] = field(default_factory=dict)
     symbols: dict[str, Operand] = field(default_factory=dict)
+    globals: list[GlobalVar] = field(default_factory=list)

@@ -120,7 +120,8 @@ module bit_proc #(
   // Execute holds its instruction while a channel is empty/full (the buffered
   // condition flip-flops' handshake) or the byte processor works on a dispatched
   // instruction; nothing of the instruction takes effect until the clock it completes.
-  wire [Channels-1:0] chan_sel = ({20'd0, e_index} < Channels)
+  // (the index fits when its bits above a channel number are 0: no wide compare)
+  wire [Channels-1:0] chan_sel = (e_index[11:$clog2(Channels)] == 0)
       ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[$clog2(Channels)-1:0]) : {Channels{1'b0}};
   wire on_channel = e_area == `AREA_FB;
   wire fbi_read   = e_go && on_channel && is_logic;
@@ -131,10 +132,13 @@ module bit_proc #(
   // A read of `T n` / `C n` marked "after the update" (bit 16, set by the partitioning
   // compiler when a byte-side instruction on that timer/counter precedes it in the
   // scan) waits until the byte side has written the status this scan.
+  // The updated bits are cleared at the end of the latch clock: a read executing in
+  // that clock must not see the previous scan's bits.
   wire [$clog2(StatusBits)-1:0] tc_idx = e_index[$clog2(StatusBits)-1:0];
+  wire t_updated  = !latch_i && timer_updated_i[tc_idx];
+  wire c_updated  = !latch_i && counter_updated_i[tc_idx];
   wire tc_wait    = e_go && is_logic && e_instr_q[`ISA_WAIT_UPDATE] &&
-                    ((e_area == `AREA_T && !timer_updated_i[tc_idx]) ||
-                     (e_area == `AREA_C && !counter_updated_i[tc_idx]));
+                    ((e_area == `AREA_T && !t_updated) || (e_area == `AREA_C && !c_updated));
   wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && is_byte && !byte_done_i);
   wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
   // A stall is a wait on the other processor's condition; a dispatched instruction's

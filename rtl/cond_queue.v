@@ -36,8 +36,12 @@ module cond_queue #(
   reg [Depth-1:0] fresh_q;           // written and not yet read
   reg [PtrW:0]    wr_ptr_q, rd_ptr_q; // one extra bit: full vs empty in strict mode
 
-  wire [PtrW-1:0] wr_slot = wr_ptr_q[PtrW-1:0];
-  wire [PtrW-1:0] rd_slot = rd_ptr_q[PtrW-1:0];
+  // Free-running: in its owner's scan-start clock a pointer is already back at slot 0
+  // (the first instruction of a scan may use the queue in that very clock).
+  wire            wr_restart = free_i && wr_start_i;
+  wire            rd_restart = free_i && rd_start_i;
+  wire [PtrW-1:0] wr_slot = wr_restart ? {PtrW{1'b0}} : wr_ptr_q[PtrW-1:0];
+  wire [PtrW-1:0] rd_slot = rd_restart ? {PtrW{1'b0}} : rd_ptr_q[PtrW-1:0];
   wire            strict_empty = (wr_ptr_q == rd_ptr_q);
   wire            strict_full  = (wr_slot == rd_slot) && (wr_ptr_q[PtrW] != rd_ptr_q[PtrW]);
 
@@ -72,9 +76,9 @@ module cond_queue #(
       if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)
         underflows_o <= underflows_o + 16'd1;
       // pointers: free-running ones return to slot 0 at their owner's scan start
-      if (free_i && wr_start_i)  wr_ptr_q <= {(PtrW+1){1'b0}};
+      if (wr_restart)            wr_ptr_q <= {{PtrW{1'b0}}, do_wr};
       else if (do_wr)            wr_ptr_q <= wr_ptr_q + 1'b1;
-      if (free_i && rd_start_i)  rd_ptr_q <= {(PtrW+1){1'b0}};
+      if (rd_restart)            rd_ptr_q <= {{PtrW{1'b0}}, do_rd};
       else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;
     end
   end

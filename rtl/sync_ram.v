@@ -14,6 +14,11 @@ module sync_ram #(
   input  wire [$clog2(Words)-1:0] raddr_i,
   output reg  [Width-1:0]         rdata_o
 );
+  // no_rw_check: a read of the word written in the same clock may return either
+  // value (the users never depend on it: the program is written while stopped, the
+  // marker RAM's collisions are forwarded by bit_proc), so Yosys adds no collision
+  // logic in front of the read port (it was on the ECP5 critical path).
+  (* no_rw_check *)
   reg [Width-1:0] mem [0:Words-1];
 
   always @(posedge clk_i) begin

@@ -76,19 +76,21 @@ async def free_running_counts_losses_exactly(dut):
         ws, rs = rng.random() < 0.08, rng.random() < 0.08
         taken, got = await clock(dut, wr, rd, ws, rs)
         assert taken == (wr is not None)                        # never waits
+        ws_slot = 0 if ws else wp                               # a start clock uses slot 0
+        rs_slot = 0 if rs else rp
         if rd:
-            assert got == data[rp]
-            if not fresh[rp]:
+            assert got == data[rs_slot]
+            if not fresh[rs_slot]:
                 unf += 1
-        same = rd and wr is not None and rp == wp
+        same = rd and wr is not None and rs_slot == ws_slot
         if rd:
-            fresh[rp] = False
+            fresh[rs_slot] = False
         if wr is not None:
-            if fresh[wp] and not same:
+            if fresh[ws_slot] and not same:
                 ovf += 1
-            data[wp], fresh[wp] = wr, True
-        wp = 0 if ws else (wp + (wr is not None)) % DEPTH
-        rp = 0 if rs else (rp + rd) % DEPTH
+            data[ws_slot], fresh[ws_slot] = wr, True
+        wp = (ws_slot + (wr is not None)) % DEPTH
+        rp = (rs_slot + rd) % DEPTH
         assert (int(dut.overflows_o.value), int(dut.underflows_o.value)) == (ovf, unf)
     assert ovf > 10 and unf > 10                                # both provoked
 
@@ -99,8 +101,8 @@ async def free_running_scan_slots(dut):
     of a slow reader still delivers them in order, scan after scan."""
     await reset(dut, free=True)
     for scan_values in ([1, 0, 1], [0, 0, 1], [1, 1, 0]):
-        await clock(dut, wr_start=True, rd_start=True)
-        for v in scan_values:
+        await clock(dut, wr=scan_values[0], wr_start=True, rd_start=True)  # same clock
+        for v in scan_values[1:]:
             await clock(dut, wr=v)
         got = [(await clock(dut, rd=True))[1] for _ in scan_values]
         assert got == scan_values

@@ -69,3 +69,31 @@ def test_bit_only_logic_is_fast_and_crossing_is_bounded(tmp_path, sim, exchange)
     byte_scan = 3 + 10 * 12 + 1          # upper bound of one byte-side scan, clocks
     bound_us = (2 * free_scan + 2 * byte_scan + free_scan) / 100
     assert first(free, lambda q, mw: mw > 0) - 0.3 <= bound_us
+
+
+TWO_COMPARES = "L IW0\nL 0\n>I\n= Q0.0\nL IW1\nL 0\n>I\n= Q0.1\n"
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+@pytest.mark.parametrize("exchange", ["marker", "queue-free"])
+def test_first_instruction_uses_the_exchange(tmp_path, sim, exchange):
+    """The bit part starts with `LD FBI k` (a compare's result): it runs in the latch
+    clock, where the free-running queue's pointer is already back at slot 0 and the
+    marker snapshot is the one being taken (review finding: the queue read the old
+    slot and swapped the two conditions for good)."""
+    il = tmp_path / "c.il"
+    il.write_text(TWO_COMPARES)
+    st = tmp_path / "c.csv"
+    st.write_text("scan,IW0,IW1\n0,1,0\n")
+    trace = tmp_path / "c.trace.csv"
+    assert cli.main(["run", str(il), "--mode", "free", "--exchange", exchange, "--sim", sim,
+                     "--stimulus", str(st), "--scans", "30", "--trace", str(trace)]) == 0
+    last = trace.read_text().splitlines()[-5:]
+    assert all(line.endswith(",1,0") for line in last), last      # Q0.0 = 1, Q0.1 = 0
+
+
+def test_marker_needs_a_cell_per_condition(tmp_path):
+    il = tmp_path / "m.il"
+    il.write_text(TWO_COMPARES * 3)
+    assert cli.main(["run", str(il), "--mode", "free", "--channels", "4"]) == cli.EXIT_SOURCE
+    assert cli.main(["run", str(il), "--mode", "free", "--exchange", "queue-free"]) == 0

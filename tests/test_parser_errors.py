@@ -288,9 +288,42 @@ def test_a_name_may_not_be_a_mnemonic_or_an_address(text, line, col, substring):
     check(text, line, col, substring)
 
 
-def test_var_global_waits_for_the_linker():
-    check("NOP\n  VAR_GLOBAL\n  x AT M0.0 : WRITE;\nEND_VAR\n", 2, 3,
-          "VAR_GLOBAL needs the multi-core linker (bitbyte link)")
+def test_var_global_declares_shared_variables():
+    program = parse("t.il", "NOP\n  VAR_GLOBAL\n  Flag AT M0.0 : WRITE; Cnt AT MW3:read\n"
+                            "END_VAR\nLD Flag\n")
+    assert [(g.name, g.kind, g.access, g.operand.address(), g.line, g.col)
+            for g in program.globals] == [("FLAG", "bit", "WRITE", "M0.0", 3, 3),
+                                           ("CNT", "word", "READ", "MW3", 3, 25)]
+    assert program.symbols["FLAG"].address() == "M0.0"
+    assert program.instrs[1].operand.address() == "M0.0"
+    assert parse("t.il", "VAR Start AT I0.0; END_VAR\nNOP\n").globals == []
+
+
+@pytest.mark.parametrize("text, line, col, substring", [
+    ("VAR_GLOBAL\n  Flag AT M0.0 WRITE;\nEND_VAR\n", 2, 15, "missing `:`"),
+    ("VAR_GLOBAL\n  Flag AT M0.0;\nEND_VAR\n", 2, 15, "missing `:`"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : ;\nEND_VAR\n", 2, 16, "missing access"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : RW;\nEND_VAR\n", 2, 18, "unknown access `RW`"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : READ WRITE\nEND_VAR\n", 2, 23, "extra operand"),
+    ("VAR_GLOBAL\n  Flag : READ;\nEND_VAR\n", 2, 8, "expected `AT`"),
+    ("VAR_GLOBAL\n  Flag AT I0.0 : READ;\nEND_VAR\n", 2, 11, "operand of the wrong kind"),
+    ("VAR_GLOBAL\n  Flag AT QW1 : READ;\nEND_VAR\n", 2, 11, "operand of the wrong kind"),
+    ("VAR_GLOBAL\n  Flag AT T1 : READ;\nEND_VAR\n", 2, 11, "operand of the wrong kind"),
+    ("VAR_GLOBAL\n  Flag AT M256.0 : READ;\nEND_VAR\n", 2, 11, "operand out of range"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : READ; flag AT M0.1 : WRITE\nEND_VAR\n", 2, 24,
+     "duplicate symbol `flag`"),
+    ("VAR Flag AT I0.0; END_VAR\nVAR_GLOBAL\n  Flag AT M0.0 : READ\nEND_VAR\n", 3, 3,
+     "duplicate symbol"),
+    ("VAR_GLOBAL\n  A1 AT M0.0 : READ; B1 AT M0.0 : WRITE\nEND_VAR\n", 2, 28,
+     "duplicate local copy"),
+    ("VAR_GLOBAL\n  LD AT M0.0 : READ\nEND_VAR\n", 2, 3, "is a mnemonic"),
+    ("VAR_GLOBAL\n  M1 AT M0.0 : READ\nEND_VAR\n", 2, 3, "is an address"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : READ;\n", 1, 1, "missing END_VAR"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : READ;\nLD Flag\n", 3, 1, "missing END_VAR"),
+    ("VAR_GLOBAL\n  Flag AT M0.0 : READ;\nVAR\n", 3, 1, "missing END_VAR"),
+])
+def test_var_global_errors(text, line, col, substring):
+    check(text, line, col, substring)
 
 
 @pytest.mark.parametrize("text, line, col, substring", [

@@ -93,3 +93,20 @@ def test_parallel_on_cocotb(cases, sim):
     for i, (case, result) in enumerate(zip(picked, run_jobs(jobs, sim))):
         case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
                    f"cocotb {sim}, parallel, {'queue' if i % 2 else 'handshake'}")
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_status_read_first_in_the_bit_part(tmp_path, sim):
+    """Review finding: a bit-16 status read that is the bit part's first instruction
+    runs in the latch clock and must not see the previous scan's `updated` bits."""
+    il = tmp_path / "s.il"
+    il.write_text("L IW0\nL 0\n>I\nL IW1\nS C1\nLD C1\n= Q0.0\n")
+    st = tmp_path / "s.csv"
+    st.write_text("scan,IW0,IW1\n0,0,0\n1,1,5\n2,0,5\n3,1,0\n4,0,0\n")
+    got = {}
+    for mode in ("serial", "parallel"):
+        trace = tmp_path / f"{mode}.csv"
+        assert cli.main(["run", str(il), "--mode", mode, "--sim", sim, "--stimulus",
+                         str(st), "--scans", "5", "--trace", str(trace)]) == 0
+        got[mode] = [line.split(",")[3] for line in trace.read_text().splitlines()[1:]]
+    assert got["parallel"] == got["serial"] == ["0", "1", "1", "0", "0"]
