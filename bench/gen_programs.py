@@ -427,7 +427,13 @@ def main(argv=None) -> int:
     ]
     write(out / "response.il", "response-time program: Table-1-sized, the output rungs "
           "in the middle", seed, [g1, g2], middle, extra_bits=4)
-    print(f"wrote {out}/table1.il, mix_00..50.il, response.il (seed {seed})")
+    # response_fast.il: fast bit-only logic next to slow word logic (issue 8: the case
+    # free-running mode is for): the response rungs, 40 bit and 60 word instructions
+    g3 = generate(40, 60, seed + 300, jumps=0, tag="F")
+    write(out / "response_fast.il", "response-time program: fast bit-only logic next to "
+          "slow word logic (40 bit, 60 word instructions)", seed, [g3], middle, extra_bits=4)
+    print(f"wrote {out}/table1.il, mix_00..50.il, response.il, response_fast.il "
+          f"(seed {seed})")
     return 0
 
 

@@ -135,8 +135,9 @@ def measure_scan(cases, modes, f) -> dict:
 
 
 # ---------------------------------------------------------------------- response
-def measure_response(modes, f, n_edges: int, out_key: str = "response") -> dict:
-    prog = PROG / "response.il"
+def measure_response(modes, f, n_edges: int, out_key: str = "response",
+                     program: str = "response.il") -> dict:
+    prog = PROG / program
     st = bl.static_counts(prog)
     word_cost = bl.cost_table("paper")["word"]
     i_read = st.find("LD", "P" + gen_programs.RESPONSE_PIN)
@@ -278,7 +279,7 @@ def measure_simspeed(f, quick: bool) -> dict:
 # ---------------------------------------------------------------------- main
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description="make bench")
-    ap.add_argument("--modes", default=os.environ.get("BENCH_MODES", "serial,parallel,free"))
+    ap.add_argument("--modes", default=os.environ.get("BENCH_MODES", "serial,parallel,free:queue-free"))
     ap.add_argument("--edges", type=int, default=int(os.environ.get("BENCH_EDGES", 1000)))
     ap.add_argument("--quick", action="store_true", help="fewer scans (a smoke run)")
     ap.add_argument("--no-cocotb", action="store_true", help="skip the cocotb speed runs")
@@ -312,6 +313,8 @@ def main(argv=None) -> int:
     scan = measure_scan(scan_cases(f, args.quick), modes, f)
     bl.progress(f"response time: {args.edges} edges per mode ...")
     resp = measure_response(modes, f, args.edges)
+    bl.progress(f"response time, fast bit logic next to slow word logic ...")
+    resp_fast = measure_response(modes, f, args.edges, "response_fast", "response_fast.il")
     if args.no_cocotb:
         speed = {}
     else:
@@ -320,7 +323,8 @@ def main(argv=None) -> int:
 
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
     results = dict(clock_mhz=float(f), clock_source=f_src, c320_mhz=float(C320_MHZ),
-                   modes=mode_status, scan=scan, response=resp, simspeed=speed,
+                   modes=mode_status, scan=scan, response=resp,
+                   response_fast=resp_fast, simspeed=speed,
                    seed=SEED, quick=args.quick, load_avg=load, cpus=os.cpu_count(),
                    bench_wall_s=time.perf_counter() - t_start,
                    costs=dict(paper=bl.cost_table("paper"), c320=bl.cost_table("c320")),
