@@ -9,6 +9,8 @@ scan runs in its latch clock; a scan is 1 per bit instruction + 10 per word inst
 in clock c occupies c .. c+9 and the next instruction runs in c+10; a timer's
 now = floor(c / (1000 * f_MHz)).
 """
+from pathlib import Path
+
 import pytest
 
 from bitbyte.config import Config
@@ -118,25 +120,8 @@ T QW2
 
 # --- spec §5: the Fig. 5 program ------------------------------------------------------
 
-FIG5 = """VAR
-  Start AT I0.0; Stop AT I0.1; BLK AT I0.2; Flag AT M0.0; Timer AT T1;
-  Start_Up AT Q0.0; Out AT Q0.1; SP_cur AT IW0; SP_nom AT MW0; Time AT MW1;
-END_VAR
-LD Start
-O Flag
-A Stop
-A BLK
-= Flag
-L Time
-SD Timer
-LD Timer
-= Start_Up
-LD Start_Up
-L SP_cur
-L SP_nom
-A >=I
-= Out
-"""
+# the paper's Fig. 5 with the addresses of spec §5 (one copy of it, in examples/)
+FIG5 = (Path(__file__).resolve().parents[1] / "examples" / "fig5.il").read_text()
 
 
 def test_fig5_serial_cost_is_59():
