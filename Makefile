@@ -24,7 +24,7 @@ EXAMPLE     ?= examples/star_delta.il
 EXAMPLE_STIM?= examples/star_delta.stim.csv
 WAVES       ?= sim/waves/star_delta.fst
 
-.PHONY: help venv deps lint test sim harness formal clean FORCE
+.PHONY: help venv deps lint test sim harness plant-harness formal clean FORCE
 
 help:           ## list the targets
 	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | \
@@ -49,6 +49,7 @@ $(VENV_STAMP): requirements.txt pyproject.toml
 
 lint: $(VENV_STAMP)   ## verilator --lint-only -Wall over rtl/ (must print nothing)
 	@verilator --lint-only -Wall --quiet -Irtl --top-module bitbyte_cpu $(RTL)
+	@verilator --lint-only -Wall --quiet -Irtl --top-module plc_system $(RTL)
 
 harness: $(HARNESS)   ## build the Verilator C++ harness (sim/build/)
 
@@ -57,6 +58,9 @@ $(HARNESS): $(VENV_STAMP) FORCE
 	@$(MAKE) --no-print-directory -C sim harness JOBS=$(JOBS)
 
 FORCE:
+
+plant-harness: $(VENV_STAMP)   ## build the Verilator harness of the multi-core plant
+	@$(MAKE) --no-print-directory -C sim plant JOBS=$(JOBS)
 
 sim: $(HARNESS)       ## run the star-delta example on Verilator, write a waveform, print the summary
 	@mkdir -p $(dir $(WAVES))
@@ -107,5 +111,13 @@ synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no swee
 BENCH_MODES ?= serial,parallel,free:queue-free
 BENCH_EDGES ?= 1000
 
-bench: $(HARNESS)     ## scan time, response time, simulator speed -> docs/performance.md
+bench: $(HARNESS) bench-alloc  ## scan time, response time, simulator speed -> docs/performance.md
 	$(VENV)/bin/python bench/run_bench.py --modes $(BENCH_MODES) --edges $(BENCH_EDGES)
+
+# Task allocation (issue 10, seed 002): the seed's Table I workload, the 10/20 ms
+# discrepancy, cores against networks, heuristic against the optimum (HiGHS checks the
+# exact search), the emitted plant. Writes docs/allocation.md and docs/alloc_*.png
+# (about a minute).
+.PHONY: bench-alloc
+bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocation.md
+	$(VENV)/bin/python bench/alloc_bench.py

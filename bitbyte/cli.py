@@ -18,6 +18,7 @@ import tempfile
 from fractions import Fraction
 from pathlib import Path
 
+from .errors import UsageError  # noqa: F401  (raised by the modules cli calls)
 from .config import Config
 from .errors import SourceError, format_error
 
@@ -26,9 +27,6 @@ ROOT = Path(__file__).resolve().parents[1]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
 DEFAULT_SCANS = 10
 
-
-class UsageError(Exception):
-    """A command-line mistake: printed as `bitbyte: message`, exit 2."""
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -209,8 +207,7 @@ def cmd_run(args) -> int:
     from . import trace as tr
 
     if args.program.lower().endswith(".toml"):
-        raise UsageError("running a plant needs the multi-core system (not in this "
-                         "release)")
+        return cmd_run_plant(args)
 
     _, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
@@ -230,6 +227,30 @@ def cmd_run(args) -> int:
               "outputs forced to 0", file=sys.stderr)
         return EXIT_WATCHDOG
     return 0
+
+
+def cmd_run_plant(args) -> int:
+    """`run PLANT.toml` (spec §7): every core on the multi-core system."""
+    from .plantrun import PlantRunError, run_plant
+    if args.until_us is None:
+        raise UsageError("running a plant needs --until-us T")
+    for opt, given in (("--mode", args.mode != "serial"), ("--exchange", args.exchange),
+                       ("--stimulus", args.stimulus), ("--channels", args.channels),
+                       ("--clock-mhz", args.clock_mhz != "100")):
+        if given:
+            raise UsageError(f"{opt} does not apply to a plant (the plant file sets it)")
+    if args.sim != "verilator":
+        raise UsageError("plants run on the Verilator plant harness in this release "
+                         "(--sim verilator)")
+    try:
+        status, summary, _ = run_plant(args.program, until_us=args.until_us,
+                                       trace=args.trace, watch=args.watch,
+                                       waves=args.waves, watchdog=args.watchdog,
+                                       costs=args.costs)
+    except PlantRunError as e:
+        raise SimError(str(e)) from None
+    print(summary, end="")
+    return EXIT_WATCHDOG if status == 3 else 0
 
 
 def _records_from_rows(columns, rows):

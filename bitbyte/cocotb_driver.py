@@ -107,12 +107,12 @@ class Firmware:
             lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_serial_step.argtypes = [ctypes.c_void_p]
             lib.bb_run_scan.argtypes = [ctypes.c_void_p]
-            lib.hal_bus_write.argtypes = [ctypes.c_uint8, ctypes.c_uint32]
+            lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
             lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.restype = ctypes.c_int16
-            lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint8)
-            lib.HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint8, ctypes.c_uint32)
+            lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint16)
+            lib.HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint16, ctypes.c_uint32)
             lib.HalSpend = ctypes.CFUNCTYPE(None, ctypes.c_uint32)
             lib.HalWait = ctypes.CFUNCTYPE(None)
             lib.HalNow = ctypes.CFUNCTYPE(ctypes.c_uint64)
@@ -187,6 +187,10 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.run_i.value = 0
     dut.in_pins_i.value = 0
     dut.in_words_i.value = 0               # nothing of the previous job carries over
+    dut.mcopy_en_i.value = 0               # a single CPU: no copy engine
+    dut.mcopy_we_i.value = 0
+    dut.mcopy_addr_i.value = 0
+    dut.mcopy_wdata_i.value = 0
     dut.watchdog_limit_i.value = job.watchdog
     for addr, word in enumerate(job.prog):
         await FallingEdge(dut.clk_i)

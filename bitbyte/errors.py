@@ -54,3 +54,9 @@ def format_error(err: SourceError) -> str:
         return f"{err.path}: {err.message}"
     head = f"{err.path}:{err.line}:{err.col}: {err.message}"
     return "\n".join((head, err.source_line, caret_line(err.source_line, err.col)))
+
+
+class UsageError(Exception):
+    """A command-line mistake: printed as `bitbyte: message`, exit 2.  Defined here,
+    not in cli.py, so that modules cli.py calls raise the very class it catches
+    (also when cli.py runs as `python -m bitbyte.cli`, i.e. as __main__)."""

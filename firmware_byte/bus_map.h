@@ -32,6 +32,9 @@
 #define BB_BUS_STALLS_BIT      0x60u
 #define BB_BUS_STALLS_BYTE     0x61u
 #define BB_BUS_BYTE_FLAGS      0x62u  /* RW sticky firmware flags (whole word written) */
+/* Plant cores only (rtl/plc_core.v): word markers MW n, low 16 bits; a read takes 2
+ * clocks (one "not ready" clock: the word RAM is synchronous). */
+#define BB_BUS_MW(n)           (0x100u + (unsigned)(n))
 
 #define BB_BUS_ID_VALUE        0xB17B7E01u
 

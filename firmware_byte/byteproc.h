@@ -156,6 +156,7 @@ typedef struct bb_state {
   int        jumped;         /* the last instruction was a taken jump */
   uint32_t   max_steps;      /* instructions a bb_run_scan may execute, END_B included */
   uint32_t   scan_steps;     /* instructions the last bb_run_scan executed */
+  int        mw_on_bus;      /* MW n lives in the FPGA at bus address MW(n) (plant core) */
 } bb_state;
 
 /* --- set-up ------------------------------------------------------------------------ */
@@ -233,6 +234,12 @@ int bb_step(bb_state *s, uint32_t instr, int *rlo);
  * sticky BB_FLAG_RUNAWAY (one BYTE_FLAGS write) and return.
  * Returns the clocks the scan took. */
 int bb_run_scan(bb_state *s);
+
+/* A core of a multi-core plant (docs/multicore.md) keeps its word markers in the FPGA,
+ * next to the copy engine that moves shared words: with on != 0, L MW n / T MW n are
+ * one bus access of BB_BUS_MW(n) each (the mw[] array is then unused; bb_mw() reads
+ * it, so a plant's harness reads MW from the FPGA). Off after bb_init(). */
+void bb_set_mw_bus(bb_state *s, int on);
 
 /* --- trace accessors (no bus access) ------------------------------------------------ */
 

@@ -10,9 +10,9 @@
 #include "hal.h"
 
 int bb_proc_read(unsigned k) {
-  return (int)(hal_bus_read((uint8_t)BB_BUS_FBY(k)) & 1u);
+  return (int)(hal_bus_read((uint16_t)BB_BUS_FBY(k)) & 1u);
 }
 
 void bb_proc_write(unsigned k, int rlo) {
-  hal_bus_write((uint8_t)BB_BUS_FBI(k), rlo ? 1u : 0u);
+  hal_bus_write((uint16_t)BB_BUS_FBI(k), rlo ? 1u : 0u);
 }

@@ -17,10 +17,10 @@ extern "C" {
 
 /* One bus read of word address `addr` (bus_map.h): at least one clock, one more for
  * every clock the port answers "not ready" (the access is repeated). */
-uint32_t hal_bus_read(uint8_t addr);
+uint32_t hal_bus_read(uint16_t addr);
 
 /* One bus write: at least one clock, as hal_bus_read. */
-void hal_bus_write(uint8_t addr, uint32_t data);
+void hal_bus_write(uint16_t addr, uint32_t data);
 
 /* `clocks` clocks of the procedure's own work (no bus access). hal_spend(0) is a no-op. */
 void hal_spend(uint32_t clocks);

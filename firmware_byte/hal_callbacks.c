@@ -7,8 +7,8 @@
  */
 #include "hal.h"
 
-typedef uint32_t (*bb_hal_read_fn)(uint8_t addr);
-typedef void (*bb_hal_write_fn)(uint8_t addr, uint32_t data);
+typedef uint32_t (*bb_hal_read_fn)(uint16_t addr);
+typedef void (*bb_hal_write_fn)(uint16_t addr, uint32_t data);
 typedef void (*bb_hal_spend_fn)(uint32_t clocks);
 typedef void (*bb_hal_wait_fn)(void);
 typedef uint64_t (*bb_hal_now_fn)(void);
@@ -31,8 +31,8 @@ void bb_hal_set_callbacks(bb_hal_read_fn rd, bb_hal_write_fn wr, bb_hal_spend_fn
   cb_now = now;
 }
 
-uint32_t hal_bus_read(uint8_t addr) { return cb_read ? cb_read(addr) : 0u; }
-void hal_bus_write(uint8_t addr, uint32_t data) { if (cb_write) cb_write(addr, data); }
+uint32_t hal_bus_read(uint16_t addr) { return cb_read ? cb_read(addr) : 0u; }
+void hal_bus_write(uint16_t addr, uint32_t data) { if (cb_write) cb_write(addr, data); }
 void hal_spend(uint32_t clocks) { if (cb_spend && clocks) cb_spend(clocks); }
 void hal_wait_dispatch(void) { if (cb_wait) cb_wait(); }
 uint64_t hal_now(void) { return cb_now ? cb_now() : 0u; }

@@ -112,9 +112,10 @@ int bb_classify(uint32_t instr) {
 static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int serial) {
   switch (area) {
     case BB_AREA_IW:
-      return bb_int16(hal_bus_read(serial ? BB_BUS_DISPATCH_IW : (uint8_t)BB_BUS_IW(n)));
-    case BB_AREA_QW: return bb_int16(hal_bus_read((uint8_t)BB_BUS_QW(n)));  /* no copy */
-    case BB_AREA_MW: return s->mw[n];
+      return bb_int16(hal_bus_read(serial ? BB_BUS_DISPATCH_IW : (uint16_t)BB_BUS_IW(n)));
+    case BB_AREA_QW: return bb_int16(hal_bus_read((uint16_t)BB_BUS_QW(n)));  /* no copy */
+    case BB_AREA_MW:  /* a plant core keeps MW in the FPGA, where its copy engine is */
+      return s->mw_on_bus ? bb_int16(hal_bus_read((uint16_t)BB_BUS_MW(n))) : s->mw[n];
     case BB_AREA_T:  return s->timer[n].elapsed;
     case BB_AREA_C:  return s->counter[n].value;
     default:         return 0;   /* excluded by bb_classify() */
@@ -124,7 +125,9 @@ static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int seria
 /* T w: the low 16 bits of ACCU1. One bus write for QW. */
 static void transfer_word(bb_state *s, unsigned area, unsigned n) {
   if (area == BB_AREA_QW)
-    hal_bus_write((uint8_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
+    hal_bus_write((uint16_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
+  else if (s->mw_on_bus)
+    hal_bus_write((uint16_t)BB_BUS_MW(n), (uint32_t)s->accu1 & 0xFFFFu);
   else
     s->mw[n] = (int16_t)bb_int16((uint32_t)s->accu1);
 }
@@ -298,6 +301,7 @@ int bb_serial_step(bb_state *s) {
 
 /* ------------------------------------------------------------------- accessors */
 
+void bb_set_mw_bus(bb_state *s, int on) { s->mw_on_bus = on != 0; }
 int16_t bb_mw(const bb_state *s, unsigned n) { return n < BB_NUM_MW ? s->mw[n] : 0; }
 
 int32_t bb_timer_elapsed(const bb_state *s, unsigned n) {

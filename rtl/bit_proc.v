@@ -66,6 +66,13 @@ module bit_proc #(
   output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
   output wire                         out_wr_val_o,
   output wire                         out_wr_direct_o,
+  // marker copy port (plant cores: the copy engine, between scans, while the
+  // processor idles; tie copy_en_i to 0 in a single CPU)
+  input  wire                         copy_en_i,      // the copy engine owns the marker RAM
+  input  wire                         copy_we_i,
+  input  wire [$clog2(MarkerBits)-1:0] copy_addr_i,   // read and write address
+  input  wire                         copy_wdata_i,
+  output wire                         copy_rdata_o,   // M[copy_addr_i] of the last clock
   // observation (waveforms, test benches)
   output reg                          rlo_o,
   output wire                         rlo_now_o,      // the RLO execute works with
@@ -168,11 +175,15 @@ module bit_proc #(
   reg           m_bypass_q;             // last clock wrote the address decode read
   reg           m_bypass_val_q;
   wire          m_target_we;            // execute writes an M bit
-  wire          m_we    = clearing || m_target_we;
-  wire [MW-1:0] m_waddr = clearing ? clear_addr_q[MW-1:0] : e_index[MW-1:0];
+  // Between scans the copy engine takes the RAM's ports (nothing executes then).
+  wire          copy_we = copy_en_i && copy_we_i;
+  wire          m_we    = clearing || m_target_we || copy_we;
+  wire [MW-1:0] m_waddr = clearing ? clear_addr_q[MW-1:0] :
+                          copy_en_i ? copy_addr_i : e_index[MW-1:0];
   wire          target_val;
-  wire          m_wdata = clearing ? 1'b0 : target_val;
-  wire [MW-1:0] m_raddr = d_instr[MW-1:0];
+  wire          m_wdata = clearing ? 1'b0 : copy_en_i ? copy_wdata_i : target_val;
+  wire [MW-1:0] m_raddr = copy_en_i ? copy_addr_i : d_instr[MW-1:0];
+  assign copy_rdata_o = m_rdata;
 
   sync_ram #(.Words(MarkerBits), .Width(1)) u_marker_ram (
     .clk_i  (clk_i),

@@ -49,7 +49,15 @@ module bitbyte_cpu #(
   output wire [31:0]                  bus_rdata_o,
   output wire                         bus_ready_o,
   output wire [31:0]                  stalls_bit_o,
-  output wire [31:0]                  stalls_byte_o
+  output wire [31:0]                  stalls_byte_o,
+  // marker copy port (plant cores, rtl/plc_core.v; a single CPU ties copy_en_i to 0):
+  // while the CPU is between scans the copy engine reads and writes M bits here
+  input  wire                         mcopy_en_i,
+  input  wire                         mcopy_we_i,
+  input  wire [$clog2(MarkerBytes*8)-1:0] mcopy_addr_i,
+  input  wire                         mcopy_wdata_i,
+  output wire                         mcopy_rdata_o,
+  output wire                         byte_next_o        // STATUS.NEXT (harnesses wait on it)
 );
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
@@ -76,6 +84,7 @@ module bitbyte_cpu #(
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
   wire [31:0] byte_flags, queue_overflows, queue_underflows;
+  assign byte_next_o = next;
 
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
@@ -168,6 +177,11 @@ module bitbyte_cpu #(
     .out_wr_idx_o    (out_wr_idx),
     .out_wr_val_o    (out_wr_val),
     .out_wr_direct_o (out_wr_direct),
+    .copy_en_i       (mcopy_en_i),
+    .copy_we_i       (mcopy_we_i),
+    .copy_addr_i     (mcopy_addr_i),
+    .copy_wdata_i    (mcopy_wdata_i),
+    .copy_rdata_o    (mcopy_rdata_o),
     .rlo_o           (rlo),
     .rlo_now_o       (rlo_now),
     .exec_pc_o       (exec_pc),

@@ -33,265 +33,7 @@ struct WaveWriter { void dump(uint64_t) {} void close() {} };
 static const char* const kWaveExt = "";
 #endif
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <chrono>
-#include <cstdarg>
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <memory>
-#include <sstream>
-#include <string>
-#include <vector>
-
-typedef unsigned __int128 u128;
-static const char* g_where = "harness";  // prefix of error messages
-
-[[noreturn]] static void die(const char* fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  std::fprintf(stderr, "%s: ", g_where);
-  std::vfprintf(stderr, fmt, ap);
-  std::fputc('\n', stderr);
-  va_end(ap);
-  std::exit(2);
-}
-
-// ------------------------------------------------------------------ decimal output
-// num/den as a decimal: exact when it terminates within `places` digits, otherwise
-// rounded half-up to `places`; trailing zeros and a trailing '.' removed (0.62, 12,
-// 0.333333).  Integer arithmetic only: no float can turn 0.62 into 0.6199999.
-static std::string fmt_ratio(u128 num, u128 den, unsigned places) {
-  u128 scale = 1;
-  for (unsigned i = 0; i < places; ++i) scale *= 10;
-  const u128 scaled = num * scale;  // callers keep this below 2^128
-  u128 v = scaled / den;
-  if (2 * (scaled % den) >= den) ++v;
-  std::string text;  // digits of v, least significant first, then reversed
-  for (unsigned i = 0; i < places || v; ++i, v /= 10) {
-    if (i == places && places) text += '.';
-    text += char('0' + unsigned(v % 10));
-  }
-  if (text.size() == places) text += places ? ".0" : "0";  // v < 1: a leading "0."
-  std::reverse(text.begin(), text.end());
-  if (places) {
-    while (text.back() == '0') text.pop_back();
-    if (text.back() == '.') text.pop_back();
-  }
-  return text;
-}
-
-// The same rule for the per-scan t_us = end_clock * 10^6 / clock_hz at 6 places,
-// in 64-bit arithmetic while end_clock * 10^12 fits (1.8e7 clocks), which is
-// cheaper than fmt_ratio's 128-bit divisions and std::string.
-static char* put_t_us(char* p, uint64_t end_clock, uint64_t clock_hz) {
-  const uint64_t kE12 = 1000000000000ULL;
-  uint64_t v;  // t in units of 10^-6 us
-  if (end_clock <= UINT64_MAX / kE12) {
-    uint64_t scaled = end_clock * kE12;
-    v = scaled / clock_hz;
-    if (2 * (scaled % clock_hz) >= clock_hz) ++v;  // clock_hz < 2^63, checked
-  } else {
-    std::string s = fmt_ratio(u128(end_clock) * 1000000u, clock_hz, 6);
-    std::memcpy(p, s.data(), s.size());
-    return p + s.size();
-  }
-  p = std::to_chars(p, p + 24, v / 1000000).ptr;
-  uint64_t f = v % 1000000;
-  if (f) {
-    *p++ = '.';
-    char d[6];
-    for (int i = 5; i >= 0; --i, f /= 10) d[i] = char('0' + f % 10);
-    int n = 6;
-    while (d[n - 1] == '0') --n;
-    std::memcpy(p, d, n);
-    p += n;
-  }
-  return p;
-}
-
-// ------------------------------------------------------------------ run file
-struct Stim {                                                      // one stimulus row
-  uint64_t key;
-  uint32_t pins[4];                                                // 128 pins, word 0 = I0.0..I3.7
-  bool has_words;
-  int16_t words[16];                                               // IW0..IW15
-};
-struct Col  { std::string header, kind; uint32_t index; };
-
-struct RunFile {
-  std::string prog, trace, waves, gtkw = "sim/bitbyte.gtkw";
-  uint64_t clock_hz = 100000000, watchdog = 100000;
-  int64_t scans = -1, until_clock = -1;                          // -1: not given
-  std::string stim_kind = "none";
-  std::vector<Stim> stim;
-  std::vector<Col> cols;
-  std::string costs = "paper";                                     // byte processor cost table
-  std::vector<uint32_t> pool;                                      // constant pool
-  bool parallel = false;                                           // mode parallel
-  bool free_running = false;                                       // mode free
-  unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
-  std::string byte_prog;                                           // its byte part (.hex)
-};
-
-static int hex_digit(char c) {  // -1 if c is no hex digit
-  if (c >= '0' && c <= '9') return c - '0';
-  c = char(std::tolower((unsigned char)c));
-  return (c >= 'a' && c <= 'f') ? c - 'a' + 10 : -1;
-}
-
-static uint64_t parse_u64(const std::string& s, const char* what) {
-  uint64_t v = 0;
-  auto r = std::from_chars(s.data(), s.data() + s.size(), v, 10);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) die("bad %s '%s'", what, s.c_str());
-  return v;
-}
-
-// Hex pin vector, most significant digit first, any length (leading digits beyond bit
-// 127 must be 0).
-static void parse_pins(const std::string& s, uint32_t pins[4]) {
-  std::memset(pins, 0, 16);
-  unsigned bit = 0;
-  for (auto it = s.rbegin(); it != s.rend(); ++it) {
-    if (*it == '_') continue;
-    const int d = hex_digit(*it);
-    if (d < 0) die("bad hex pin vector '%s'", s.c_str());
-    if (bit >= 128) { if (d) die("pin vector '%s' wider than 128 bits", s.c_str()); continue; }
-    pins[bit / 32] |= uint32_t(d) << (bit % 32);
-    bit += 4;
-  }
-}
-
-static RunFile read_run_file(const char* path) {
-  std::ifstream in(path);
-  if (!in) die("cannot open run file %s", path);
-  RunFile rf;
-  std::string line, where_buf;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    where_buf = std::string(path) + ":" + std::to_string(lineno);
-    g_where = where_buf.c_str();
-    // '#' starts a comment at the line start or after a blank (not inside a header).
-    for (size_t h = line.find('#'); h != std::string::npos; h = line.find('#', h + 1))
-      if (h == 0 || std::isspace((unsigned char)line[h - 1])) { line.erase(h); break; }
-    std::vector<std::string> w;     // the words of the line
-    std::vector<size_t> at;         // where each starts
-    for (size_t i = 0; i < line.size();) {
-      if (std::isspace((unsigned char)line[i])) { ++i; continue; }
-      const size_t j = std::min(line.size(), line.find_first_of(" \t\r", i));
-      at.push_back(i);
-      w.push_back(line.substr(i, j - i));
-      i = j;
-    }
-    if (w.empty()) continue;
-    const std::string& k = w[0];
-    auto want = [&](size_t n) { if (w.size() != n + 1) die("'%s' takes %zu value(s)", k.c_str(), n); };
-    if (k == "prog")             { want(1); rf.prog = w[1]; }
-    else if (k == "trace")       { want(1); rf.trace = w[1]; }
-    else if (k == "waves")       { want(1); rf.waves = w[1]; }
-    else if (k == "gtkw")        { want(1); rf.gtkw = w[1]; }
-    else if (k == "clock_hz")    { want(1); rf.clock_hz = parse_u64(w[1], "clock_hz"); }
-    else if (k == "watchdog")    { want(1); rf.watchdog = parse_u64(w[1], "watchdog"); }
-    else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
-    else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
-    else if (k == "stim_kind") {
-      want(1);
-      if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");
-      rf.stim_kind = w[1];
-    } else if (k == "stim") {
-      // stim KEY HEXPINS [IW0 .. IW15]: the input words, signed decimal, all 16
-      if (w.size() != 3 && w.size() != 19) die("'stim' takes KEY HEXPINS [16 input words]");
-      Stim s{};
-      s.key = parse_u64(w[1], "stim key");
-      if (!rf.stim.empty() && s.key < rf.stim.back().key) die("stim keys must be ascending");
-      parse_pins(w[2], s.pins);
-      s.has_words = w.size() == 19;
-      for (size_t i = 0; s.has_words && i < 16; ++i) {
-        const std::string& t = w[3 + i];
-        long v = std::strtol(t.c_str(), nullptr, 10);
-        if (v < -32768 || v > 65535) die("input word '%s' out of range", t.c_str());
-        s.words[i] = int16_t(uint16_t(v));
-      }
-      rf.stim.push_back(s);
-    } else if (k == "mode") {
-      want(1);
-      if (w[1] != "serial" && w[1] != "parallel" && w[1] != "free")
-        die("mode must be serial, parallel or free");
-      rf.parallel = w[1] == "parallel";
-      rf.free_running = w[1] == "free";
-    } else if (k == "exchange") {
-      want(1);
-      if (w[1] == "handshake") rf.exchange = 0;
-      else if (w[1] == "queue") rf.exchange = 1;
-      else if (w[1] == "queue-free") rf.exchange = 2;
-      else if (w[1] == "marker") rf.exchange = 3;
-      else die("exchange must be handshake, queue or queue-free");
-    } else if (k == "byte_prog") {
-      want(1);
-      rf.byte_prog = w[1];
-    } else if (k == "costs") {
-      want(1);
-      rf.costs = w[1];
-    } else if (k == "pool") {
-      for (size_t i = 1; i < w.size(); ++i)
-        rf.pool.push_back(uint32_t(std::strtoul(w[i].c_str(), nullptr, 16)));
-    } else if (k == "col") {
-      // The header is all the text between `col` and the last two words: `--watch`
-      // operands are named exactly as typed, and "I 0.1" is a valid one.
-      if (w.size() < 4) die("'col' takes HEADER KIND INDEX");
-      const size_t nw = w.size();
-      std::string header = line.substr(at[1], at[nw - 2] - at[1]);
-      header.erase(header.find_last_not_of(" \t") + 1);
-      static const char* kinds[] = {"q", "i", "pi", "ir", "if", "m", "t", "c", "mw", "qw",
-                                    "iw", "zero"};
-      bool ok = false;
-      for (const char* kk : kinds) ok |= (w[nw - 2] == kk);
-      if (!ok) die("unknown column kind '%s'", w[nw - 2].c_str());
-      rf.cols.push_back({header, w[nw - 2], uint32_t(parse_u64(w[nw - 1], "column index"))});
-    } else {
-      die("unknown key '%s'", k.c_str());
-    }
-  }
-  g_where = path;
-  if (rf.prog.empty()) die("no 'prog'");
-  if (rf.scans < 0 && rf.until_clock < 0) die("need 'scans' or 'until_clock'");
-  if (rf.clock_hz == 0 || rf.clock_hz >= (1ULL << 62)) die("clock_hz out of range");
-  if (rf.watchdog > 0xFFFFFFFFULL) die("watchdog exceeds 32 bits");
-  if (rf.stim_kind == "none" && !rf.stim.empty()) die("stim rows with stim_kind none");
-  return rf;
-}
-
-// $readmemh subset: hex words separated by white space, // comments, @ADDR jumps.
-static std::vector<std::pair<uint32_t, uint32_t>> read_hex(const std::string& path, uint32_t words) {
-  std::ifstream in(path);
-  if (!in) die("cannot open program %s", path.c_str());
-  std::vector<std::pair<uint32_t, uint32_t>> image;  // (address, word), in file order
-  uint32_t addr = 0;
-  std::string line;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    if (auto c = line.find("//"); c != std::string::npos) line.erase(c);
-    std::istringstream ls(line);
-    for (std::string t; ls >> t;) {
-      bool jump = (t[0] == '@');
-      uint64_t v = 0;
-      unsigned digits = 0;
-      for (size_t i = jump; i < t.size(); ++i) {
-        if (t[i] == '_') continue;
-        const int d = hex_digit(t[i]);
-        if (d < 0) die("%s:%d: bad hex '%s'", path.c_str(), lineno, t.c_str());
-        v = v * 16 + unsigned(d);
-        if (++digits > 8) die("%s:%d: '%s' wider than 32 bits", path.c_str(), lineno, t.c_str());
-      }
-      if (jump) { addr = uint32_t(v); continue; }
-      if (addr >= words) die("%s:%d: program longer than %u words", path.c_str(), lineno, words);
-      image.push_back({addr++, uint32_t(v)});
-    }
-  }
-  return image;
-}
+#include "harness_common.h"
 
 // ------------------------------------------------------------------ the DUT
 // Verilator's eval() wraps the model's evaluation in runtime housekeeping (deferred
@@ -324,25 +66,6 @@ struct Dut {
     eval();
     t_ps += period_ps;
     if (wave) wave->dump(t_ps);
-  }
-};
-
-// TRACE.csv rows are formatted straight into a large buffer that is written in big
-// blocks, instead of one (locking) stdio call per row.
-struct TraceOut {
-  std::FILE* f = nullptr;
-  std::string path;
-  std::vector<char> buf;
-  size_t used = 0, row_max = 0;  // row_max: longest possible row
-
-  char* row() {
-    if (used + row_max > buf.size()) flush();
-    return buf.data() + used;
-  }
-  void commit(const char* end) { used = size_t(end - buf.data()); }
-  void flush() {
-    if (used && std::fwrite(buf.data(), 1, used, f) != used) die("error writing %s", path.c_str());
-    used = 0;
   }
 };
 
@@ -466,7 +189,7 @@ static Run* g_run;  // the HAL's view of the simulation
 static uint64_t g_byte_scans;  // free-running mode: the byte side's completed scans
 
 // ------------------------------------------------------------------ the HAL (hal.h)
-extern "C" uint32_t hal_bus_read(uint8_t addr) {
+extern "C" uint32_t hal_bus_read(uint16_t addr) {
   Run& r = *g_run;
   for (;;) {
     r.top->bus_addr_i = addr;
@@ -479,7 +202,7 @@ extern "C" uint32_t hal_bus_read(uint8_t addr) {
   }
 }
 
-extern "C" void hal_bus_write(uint8_t addr, uint32_t data) {
+extern "C" void hal_bus_write(uint16_t addr, uint32_t data) {
   Run& r = *g_run;
   for (;;) {
     r.top->bus_addr_i = addr;
@@ -501,6 +224,25 @@ extern "C" void hal_wait_dispatch(void) {
 }
 
 extern "C" uint64_t hal_now(void) { return g_run->n; }
+
+static RunFile read_run_file(const char* path) {
+  std::ifstream in(path);
+  if (!in) die("cannot open run file %s", path);
+  RunFile rf;
+  std::string line, where_buf;
+  std::vector<std::string> w;
+  std::vector<size_t> at;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    where_buf = std::string(path) + ":" + std::to_string(lineno);
+    g_where = where_buf.c_str();
+    split_line(line, w, at);
+    if (w.empty()) continue;
+    if (!parse_run_key(rf, w, at, line)) die("unknown key '%s'", w[0].c_str());
+  }
+  g_where = path;
+  check_run(rf, true);
+  return rf;
+}
 
 int main(int argc, char** argv) {
   if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }

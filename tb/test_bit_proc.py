@@ -41,7 +41,7 @@ class Bench:
                     d.fall_i, d.pio_i, d.timer_status_i, d.counter_status_i,
                     d.timer_updated_i, d.counter_updated_i, d.end_hold_i,
                     d.fbi_rd_data_i, d.fbi_rd_ready_i, d.byte_done_i, d.byte_rlo_i,
-                    d.byte_rlo_we_i):
+                    d.byte_rlo_we_i, d.copy_en_i, d.copy_we_i, d.copy_addr_i, d.copy_wdata_i):
             sig.value = 0
         d.fby_wr_ready_i.value = 0b1111
         d.pii_i.value = pii

@@ -214,11 +214,27 @@ def test_link_command_prints_the_map_and_the_plan():
     assert proc.stdout == format_map(link(load_plant(str(EXAMPLE / "plant.toml"))))
 
 
-def test_run_with_a_plant_is_not_in_this_release():
-    proc = bitbyte("run", EXAMPLE / "plant.toml", "--until-us", "1000")
-    assert proc.returncode == 2
-    assert proc.stderr.strip() == ("bitbyte: running a plant needs the multi-core "
-                                   "system (not in this release)")
+def test_run_plant_command_line(tmp_path):
+    """`run PLANT.toml` runs the plant; what only a single CPU takes is refused."""
+    proc = bitbyte("run", EXAMPLE / "plant.toml", "--until-us", "25000",
+                   "--trace", tmp_path / "T.csv", "--watch", "p2.MW0")
+    assert proc.returncode == 0, proc.stderr
+    assert "core p1" in proc.stdout and "core p2" in proc.stdout
+    p1 = (tmp_path / "T.p1.csv").read_text().splitlines()
+    p2 = (tmp_path / "T.p2.csv").read_text().splitlines()
+    assert p1[0] == "scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun,Q0.0"
+    assert p2[0] == "scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun,Q0.0,MW0"
+    # each core until its first scan that ends at or after 25 ms: 0..3 and 0..1
+    assert len(p1) == 1 + 4 and len(p2) == 1 + 2
+    for args, message in (
+            ((), "running a plant needs --until-us T"),
+            (("--until-us", "10", "--mode", "parallel"), "--mode does not apply to a plant"),
+            (("--until-us", "10", "--watch", "p3.M0.0"), "--watch: 'p3.M0.0' is not"),
+            (("--until-us", "10", "--watch", "MW0"), "--watch: 'MW0' is not")):
+        proc = bitbyte("run", EXAMPLE / "plant.toml", *args)
+        assert proc.returncode == 2, (args, proc.stderr)
+        assert message in proc.stderr, proc.stderr
+        assert "Traceback" not in proc.stderr
 
 
 # ---------------------------------------------------------------------------------------

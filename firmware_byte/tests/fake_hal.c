@@ -46,7 +46,7 @@ static uint32_t sext16(uint32_t v) {
   return (v & 0x8000u) ? (0xFFFF0000u | (v & 0xFFFFu)) : (v & 0xFFFFu);
 }
 
-static void log_access(uint8_t addr, int write, uint32_t data) {
+static void log_access(uint16_t addr, int write, uint32_t data) {
   if (FH.nlog < FH_LOG_MAX) {
     fh_access *a = &FH.log[FH.nlog++];
     a->addr = addr;
@@ -64,7 +64,7 @@ static void stall(uint32_t *n) {     /* not-ready clocks before an access comple
   }
 }
 
-uint32_t hal_bus_read(uint8_t addr) {
+uint32_t hal_bus_read(uint16_t addr) {
   uint32_t v = 0;
   if (addr >= 0x20 && addr < 0x28) stall(&FH.fby_stall[addr - 0x20u]);
   sync_inputs();                     /* the value of the clock the access completes in */
@@ -76,6 +76,8 @@ uint32_t hal_bus_read(uint8_t addr) {
     v = FH.iw[addr - 0x40];
   } else if (addr >= 0x50 && addr < 0x60) {
     v = sext16(FH.qw[addr - 0x50]);
+  } else if (addr >= 0x100 && addr < 0x200) {
+    v = FH.mw[addr - 0x100];       /* raw 16 bits: the firmware sign-extends */
   } else {
     switch (addr) {
       case BB_BUS_ID:             v = BB_BUS_ID_VALUE; break;
@@ -100,7 +102,7 @@ uint32_t hal_bus_read(uint8_t addr) {
   return v;
 }
 
-void hal_bus_write(uint8_t addr, uint32_t data) {
+void hal_bus_write(uint16_t addr, uint32_t data) {
   if (addr >= 0x28 && addr < 0x30) {
     unsigned k = addr - 0x28u;
     stall(&FH.fbi_stall[k]);
@@ -108,6 +110,8 @@ void hal_bus_write(uint8_t addr, uint32_t data) {
     FH.fbi_writes[k]++;
   } else if (addr >= 0x50 && addr < 0x60) {
     FH.qw[addr - 0x50] = (uint16_t)(data & 0xFFFFu);
+  } else if (addr >= 0x100 && addr < 0x200) {
+    FH.mw[addr - 0x100] = (uint16_t)(data & 0xFFFFu);
   } else {
     switch (addr) {
       case BB_BUS_DONE:              /* ends the dispatch: the next one snapshots anew */

@@ -18,7 +18,7 @@
 #define FH_LOG_MAX 4096
 
 typedef struct {
-  uint8_t  addr;
+  uint16_t addr;
   uint8_t  write;     /* 1: write, 0: read */
   uint32_t data;      /* written, or returned */
   uint64_t clock;     /* the clock the access completed in */
@@ -27,6 +27,7 @@ typedef struct {
 typedef struct {
   uint64_t clock;            /* hal_now() */
   uint32_t tick_div;         /* TIME_MS = clock / tick_div */
+  uint16_t mw[256];          /* a plant core's word markers, BB_BUS_MW(n) */
   /* serial dispatch */
   uint32_t dispatch_instr, dispatch_ctx;
   uint64_t dispatch_at;      /* hal_wait_dispatch(): the clock it returns in (if later) */

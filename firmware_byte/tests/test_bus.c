@@ -8,7 +8,7 @@
 #define W 1
 #define ANY 0xFFFFFFFFu   /* data not checked */
 
-typedef struct { uint8_t addr; uint8_t write; uint32_t data; } acc;
+typedef struct { uint16_t addr; uint8_t write; uint32_t data; } acc;
 
 typedef struct {
   const char *name;
@@ -168,7 +168,29 @@ static void test_no_crash_any_opcode(void) {
     }
 }
 
+/* A plant core: MW lives in the FPGA; L / T MW n are one bus access each, values and
+ * sign as with the firmware's own array. */
+static void test_mw_on_bus(void) {
+  fh_reset();
+  bb_init(&S, NULL);
+  bb_set_mw_bus(&S, 1);
+  FH.mw[7] = 0xFFFEu;                       /* -2 */
+  int rlo = 0;
+  fh_clear_log();
+  bb_exec(&S, BB_INSTR(BB_OP_L_WORD, BB_AREA_MW, 7), &rlo);
+  CHECK_EQ(FH.nlog, 1u);
+  CHECK_EQ(FH.log[0].addr, BB_BUS_MW(7));
+  CHECK_EQ(bb_accu1(&S), -2);
+  bb_exec(&S, BB_INSTR_IMM(BB_OP_L_IMM, 0x12345), &rlo);
+  bb_exec(&S, BB_INSTR(BB_OP_T_WORD, BB_AREA_MW, 255), &rlo);
+  CHECK_EQ(FH.mw[255], 0x2345u);            /* the low 16 bits */
+  CHECK_EQ(bb_mw(&S, 255), 0);              /* the firmware's array is not used */
+  CHECK_EQ(FH.log[FH.nlog - 1].addr, BB_BUS_MW(255));
+  CHECK_EQ(FH.log[FH.nlog - 1].write, 1);
+}
+
 void suite_bus(void) {
+  RUN(test_mw_on_bus);
   RUN(test_exec_accesses);
   RUN(test_serial_accesses);
   RUN(test_no_crash_any_opcode);

@@ -1,0 +1,213 @@
+"""`bitbyte run PLANT.toml`: a multi-core plant on the simulated hardware (spec §7).
+
+The linker (`plant.link`) gives every core its program and its precycle / postcycle
+copy lists; this module encodes those lists as the copy-plan words that the core
+sequencer (rtl/core_seq.v) streams, writes the plant harness's run file
+(sim/plant_harness.cpp, sim/README.md "Plants") and runs it: one trace per core,
+`T.<core>.csv`, header `scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun`, then the
+core's Q and QW columns and its watched operands.
+
+Copy-plan words (docs/multicore.md, "The copy engine"):
+  descriptor  bit 31 = 1, bits 23..16 the writing core (ping-pong buffer select)
+  item        bit 31 = 0, bit 30 bit (1) / word (0), bits 29..25 the bit in the
+              shared word, bits 24..12 the shared word, bits 11..0 the local address
+              (M bit number byte*8+bit, or the MW index)
+"""
+from __future__ import annotations
+
+import fcntl
+import math
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+
+from .plant import Copy, SharedMap, link, load_plant
+from .program import Operand
+from .trace import parse_address
+
+ROOT = Path(__file__).resolve().parent.parent
+PLANT_HARNESS = ROOT / "sim" / "build" / "plant" / "Vplc_system"
+PLAN_WORDS = 1024             # rtl/plc_system.v PlanWords
+SHARED_WORDS = 2048           # rtl/plc_system.v SharedWords (per ping-pong buffer)
+HW_CORES = 2                  # the harness is built for plc_system's default Cores
+PROTECT_CODES = {"semaphore": "semaphore", "pingpong": "pingpong", "none": "none"}
+
+
+class PlantRunError(Exception):
+    """A plant the hardware cannot hold (too many cores, plan or shared words)."""
+
+
+def descriptor(writer: int) -> int:
+    return (1 << 31) | ((writer & 0xFF) << 16)
+
+
+def item_word(kind: str, word: int, bit: int | None, local: Operand) -> int:
+    is_bit = kind == "bit"
+    loc = local.bit_number if is_bit else local.index
+    return ((int(is_bit) << 30) | (((bit or 0) & 31) << 25) | ((word & 0x1FFF) << 12)
+            | (loc & 0xFFF))
+
+
+@dataclass
+class CorePlanWords:
+    """One core's plan RAM image and the sequencer's three lengths."""
+    words: list[int] = field(default_factory=list)
+    pre_len: int = 0
+    post_base: int = 0
+    post_len: int = 0
+
+
+def encode_plans(shared_map: SharedMap) -> list[CorePlanWords]:
+    """Every core's copy plan as plan-RAM words, precycle first."""
+    index = {c.name.upper(): i for i, c in enumerate(shared_map.cores)}
+
+    def writer_of(copy: Copy) -> int:
+        return index[shared_map.var(copy.items[0].name).writer.upper()]
+
+    def encode(copies: list[Copy]) -> list[int]:
+        out: list[int] = []
+        for copy in copies:
+            out.append(descriptor(writer_of(copy)))
+            for it in copy.items:
+                local = parse_address(it.local)
+                out.append(item_word(it.kind, it.word, it.bit, local))
+        return out
+
+    plans = []
+    for plan in shared_map.cores:
+        pre, post = encode(plan.precycle), encode(plan.postcycle)
+        if len(pre) + len(post) > PLAN_WORDS:
+            raise PlantRunError(f"core {plan.name}: copy plan of {len(pre) + len(post)} "
+                                f"entries exceeds the plan RAM ({PLAN_WORDS})")
+        plans.append(CorePlanWords(pre + post, len(pre), len(pre), len(post)))
+    return plans
+
+
+def period_clocks(period_us: int, clock_mhz: Fraction) -> int:
+    """The period in clocks, rounded to the nearest clock (exact for whole MHz)."""
+    return math.floor(Fraction(period_us) * clock_mhz + Fraction(1, 2))
+
+
+def ensure_plant_harness() -> Path:
+    """Build sim/build/plant/Vplc_system through the Makefile when missing or stale."""
+    PLANT_HARNESS.parent.mkdir(parents=True, exist_ok=True)
+    with open(PLANT_HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "plant-harness"],
+                              capture_output=True, text=True)
+    if proc.returncode != 0 or not PLANT_HARNESS.exists():
+        raise PlantRunError("building the plant harness failed:\n" + proc.stdout + proc.stderr)
+    return PLANT_HARNESS
+
+
+def split_watch(watch: str, core_names: list[str]) -> dict[str, list[str]]:
+    """`p1.MW20,p2.C0` -> {'P1': ['MW20'], 'P2': ['C0']} (core names case-insensitive)."""
+    from .errors import UsageError
+    out: dict[str, list[str]] = {n.upper(): [] for n in core_names}
+    for part in (w.strip() for w in watch.split(",")):
+        if not part:
+            continue
+        core, dot, operand = part.partition(".")
+        if not dot or core.upper() not in out or not operand.strip():
+            raise UsageError(f"--watch: {part!r} is not CORE.OPERAND with a core of the "
+                             f"plant ({', '.join(core_names)})")
+        out[core.upper()].append(operand.strip())
+    return out
+
+
+def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
+                  watchdog: int = 100_000, costs: str = "paper"):
+    """Link the plant and prepare one RunJob per core (cli.prepare_run does the
+    program, stimulus and trace columns, as for a single CPU).
+
+    Returns (shared_map, jobs, columns, plans, until_clock)."""
+    from .cli import prepare_run
+    from .errors import UsageError
+    plant = load_plant(plant_path)
+    shared_map = link(plant)
+    if len(plant.cores) != HW_CORES:
+        raise UsageError(f"this release simulates plants of {HW_CORES} cores "
+                         f"({plant_path} has {len(plant.cores)})")
+    if shared_map.size_words > SHARED_WORDS:
+        raise PlantRunError(f"{shared_map.size_words} shared words exceed the shared "
+                            f"memory ({SHARED_WORDS})")
+    plans = encode_plans(shared_map)
+    watches = split_watch(watch, [c.name for c in plant.cores])
+    jobs, columns = [], []
+    clock_text = str(plant.clock_mhz)
+    for core in plant.cores:
+        _, cols, job, _ = prepare_run(core.program, stimulus=core.stimulus,
+                                      watch=",".join(watches[core.name.upper()]),
+                                      until_us=until_us, watchdog=watchdog,
+                                      clock_mhz=clock_text, costs=costs)
+        jobs.append(job)
+        columns.append(cols)
+    until_clock = jobs[0].until_clock
+    return shared_map, jobs, columns, plans, until_clock
+
+
+def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Path,
+                  trace_base: str | None, waves: str | None) -> str:
+    plant = shared_map.plant
+    lines = [f"clock_hz {jobs[0].clock_hz}", f"watchdog {jobs[0].watchdog}",
+             f"until_clock {until_clock}", f"protect {PROTECT_CODES[plant.protection]}",
+             f"gtkw {ROOT / 'sim' / 'plant.gtkw'}"]
+    if waves:
+        lines.append(f"waves {waves}")
+    for i, (core, job, plan) in enumerate(zip(plant.cores, jobs, plans)):
+        prog = tmp / f"{core.name}.hex"
+        prog.write_text("".join(f"{w:08x}\n" for w in job.prog))
+        plan_path = tmp / f"{core.name}.plan.hex"
+        plan_path.write_text("".join(f"{w:08x}\n" for w in plan.words))
+        trace = (f"{trace_base}.{core.name}.csv" if trace_base
+                 else str(tmp / f"trace.{core.name}.csv"))
+        job.until_clock, job.scans = None, None
+        text = job.to_harness_text(str(prog), trace, None)
+        lines += [f"core {i}", f"name {core.name}", f"plan {plan_path}",
+                  f"period {period_clocks(core.period_us, plant.clock_mhz)}",
+                  f"pre_len {plan.pre_len}", f"post_base {plan.post_base}",
+                  f"post_len {plan.post_len}"]
+        # the per-core keys of a single CPU's run file, minus the plant-wide ones
+        lines += [l for l in text.splitlines()
+                  if l.split(" ", 1)[0] not in ("clock_hz", "watchdog", "until_clock",
+                                                "scans")]
+    return "\n".join(lines) + "\n"
+
+
+def trace_base_of(trace: str) -> str:
+    """`T.csv` -> `T` (the traces are `T.<core>.csv`)."""
+    return trace[:-4] if trace.lower().endswith(".csv") else trace
+
+
+def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
+              watch: str = "", waves: str | None = None, watchdog: int = 100_000,
+              costs: str = "paper") -> tuple[int, str, dict[str, list[dict[str, str]]]]:
+    """Run a plant on the Verilator plant harness.
+
+    Returns (harness exit status, summary text, {core: rows as dicts of strings})."""
+    import csv
+    shared_map, jobs, _, plans, until_clock = prepare_plant(
+        plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
+    harness = ensure_plant_harness()
+    with tempfile.TemporaryDirectory(prefix="bitbyte-plant-") as tmpdir:
+        tmp = Path(tmpdir)
+        base = str(Path(trace_base_of(trace)).resolve()) if trace else None
+        if waves:
+            waves = str(Path(waves).resolve())
+            Path(waves).parent.mkdir(parents=True, exist_ok=True)
+        run = tmp / "plant.run"
+        run.write_text(run_file_text(shared_map, jobs, plans, until_clock, tmp, base, waves))
+        proc = subprocess.run([str(harness), str(run)], capture_output=True, text=True)
+        if proc.returncode not in (0, 3):
+            raise PlantRunError(f"plant harness failed ({proc.returncode}):\n{proc.stderr}")
+        rows = {}
+        for core in shared_map.plant.cores:
+            path = (f"{base}.{core.name}.csv" if base else str(tmp / f"trace.{core.name}.csv"))
+            with open(path, newline="") as f:
+                rows[core.name] = list(csv.DictReader(f))
+    summary = proc.stdout
+    if proc.returncode == 3:
+        summary += proc.stderr
+    return proc.returncode, summary, rows

@@ -1,0 +1,292 @@
+`default_nettype none
+// Core sequencer of a plant core (docs/multicore.md): when a scan starts, the
+// precycle, the scan itself, the postcycle, and the copy engine that moves the
+// shared variables (seed 000 Fig. 4: read at scan start, write at scan end).
+//
+// Scan k starts at nominal_k = k * period (a common time base, time_i); a core that
+// is still busy then starts right after and counts an overrun. A scan is:
+//   precycle   take the lock (semaphore), copy shared -> local (M bits, MW words)
+//   scan       pulse the CPU's RUN input once; the CPU latches, executes, ends
+//   postcycle  take the lock (semaphore), copy local -> shared, publish (ping-pong)
+// Protection (protect_i): 0 semaphore — every copy holds the hardware lock; a
+// precycle that would wait past the point where the scan can still end within its
+// period is skipped (the core runs on its old local copies, sticky copy_fail); a
+// postcycle always waits. 1 ping-pong — a writer writes the buffer readers do not
+// read and flips it at the end of its postcycle; a reader reads, for each writer,
+// the buffer published when its precycle began. 2 none — no lock (shows tearing).
+//
+// The copy plan (plan RAM, written by the toolchain) is a list of copies, each a
+// descriptor followed by its items; the precycle's list starts at 0 (pre_len_i
+// entries), the postcycle's at post_base_i (post_len_i entries):
+//   descriptor [31] = 1, [23:16] the writing core (ping-pong buffer select)
+//   item       [31] = 0, [30] bit (1) / word (0), [29:25] bit in the shared word,
+//              [24:12] shared word, [11:0] local address (M bit index or MW index)
+// Entries stream through a 3-stage pipeline (fetch the entry, access the source,
+// write the destination), one per clock without stalls: a copy of n items takes
+// 1 + n clocks, a list 2 more to fill and drain. In a postcycle consecutive bit
+// items of one shared word are gathered into one write (the writer owns the word).
+module core_seq #(
+  parameter integer Cores       = 2,     // cores of the plant (writer ids)
+  parameter integer PlanWords   = 1024,  // copy-plan entries (power of two)
+  parameter integer SharedWords = 4096,  // shared 32-bit words SH0.. (power of two)
+  parameter integer MarkerBits  = 2048,  // the core's M bits
+  parameter integer MwWords     = 256    // the core's MW words
+) (
+  input  wire                          clk_i,
+  input  wire                          rst_ni,
+  // copy plan load (while stopped)
+  input  wire                          plan_we_i,
+  input  wire [$clog2(PlanWords)-1:0]  plan_waddr_i,
+  input  wire [31:0]                   plan_wdata_i,
+  // configuration, constant while running
+  input  wire [31:0]                   period_i,     // clocks between scan starts; 0: back to back
+  input  wire [$clog2(PlanWords):0]    pre_len_i,    // precycle entries (from plan address 0)
+  input  wire [$clog2(PlanWords)-1:0]  post_base_i,  // first postcycle entry
+  input  wire [$clog2(PlanWords):0]    post_len_i,   // postcycle entries
+  input  wire [1:0]                    protect_i,    // 0 semaphore, 1 ping-pong, 2 none
+  // time base and plant RUN
+  input  wire                          run_i,        // the plant runs (all cores ready)
+  input  wire [63:0]                   time_i,       // clocks since the plant started
+  // the core's CPU
+  output wire                          cpu_run_o,    // start one scan (the CPU is idle)
+  input  wire                          cpu_ready_i,  // idle between scans
+  input  wire                          cpu_scan_done_i,
+  input  wire [31:0]                   cpu_scan_cycles_i,  // the last scan's clocks
+  // hardware semaphore (hsem.v)
+  output wire                          lock_req_o,
+  output wire                          release_o,
+  input  wire                          grant_i,
+  // shared memory (shared_mem.v): read port, write port, ping-pong selects
+  output wire                          sh_re_o,
+  output wire [$clog2(SharedWords):0]  sh_raddr_o,   // {buffer, word}
+  input  wire [31:0]                   sh_rdata_i,   // the word read the clock before
+  output wire                          sh_we_o,
+  output wire [$clog2(SharedWords):0]  sh_waddr_o,
+  output wire [31:0]                   sh_wdata_o,
+  input  wire [Cores-1:0]              sh_sel_i,     // per writer: the buffer to read
+  output wire                          sh_flip_o,    // ping-pong: publish this core's buffer
+  // local memories: M bits (bit_proc's copy port), MW words (plc_core's word RAM)
+  output wire                          copy_en_o,    // the sequencer owns both ports
+  output wire                          m_we_o,
+  output wire [$clog2(MarkerBits)-1:0] m_addr_o,
+  output wire                          m_wdata_o,
+  input  wire                          m_rdata_i,
+  output wire                          w_we_o,
+  output wire [$clog2(MwWords)-1:0]    w_addr_o,
+  output wire [15:0]                   w_wdata_o,
+  input  wire [15:0]                   w_rdata_i,
+  // status of the last completed scan (valid with cycle_done_o and after)
+  output reg                           cycle_done_o,  // a postcycle ended at this edge
+  output reg  [31:0]                   pre_clocks_o,  // precycle incl. waits
+  output reg  [31:0]                   post_clocks_o, // postcycle incl. waits
+  output reg  [31:0]                   sem_wait_o,    // clocks spent waiting for the lock
+  output reg                           overrun_o,     // this scan started late
+  output reg                           copy_fail_o,   // sticky: a precycle was skipped
+  output reg  [31:0]                   overruns_o,    // scans that started late
+  output reg  [31:0]                   skips_o        // precycles skipped
+);
+  localparam integer PaW = $clog2(PlanWords);
+  localparam integer ShW = $clog2(SharedWords);
+  localparam integer MaW = $clog2(MarkerBits);
+  localparam integer WaW = $clog2(MwWords);
+  localparam integer IdW = (Cores > 1) ? $clog2(Cores) : 1;
+
+  localparam [1:0] ProtSem  = 2'd0;
+  localparam [1:0] ProtPing = 2'd1;
+
+  localparam [2:0] StWait     = 3'd0;  // until the nominal start
+  localparam [2:0] StPreLock  = 3'd1;
+  localparam [2:0] StPreCopy  = 3'd2;
+  localparam [2:0] StRunStart = 3'd3;  // RUN pulse; the CPU latches in the next clock
+  localparam [2:0] StScan     = 3'd4;
+  localparam [2:0] StPostLock = 3'd5;
+  localparam [2:0] StPostCopy = 3'd6;
+
+  reg [2:0]  state_q;
+  reg [63:0] nominal_q;                // nominal start of the next / current scan
+  reg        started_q;                // scan 0 has been scheduled
+
+  // ---------------------------------------------------------------- copy pipeline
+  reg  [PaW:0]   issued_q;             // entries fetched of the current list
+  reg  [PaW-1:0] base_q;
+  reg  [PaW:0]   len_q;
+  reg            post_q;               // the list being copied is a postcycle
+  reg            f_valid_q;            // a plan entry arrives this clock (stage I)
+  reg            c_valid_q;            // stage C holds an item
+  reg            c_bit_q;
+  reg [4:0]      c_pos_q;              // bit position in the shared word
+  reg [ShW-1:0]  c_word_q;
+  // verilator lint_off UNUSEDSIGNAL
+  reg [11:0]     c_local_q;            // M bit index or MW index (fewer bits)
+  // verilator lint_on UNUSEDSIGNAL
+  reg [31:0]     gather_q;             // postcycle: bits of the shared word so far
+  reg [IdW-1:0]  writer_q;             // the current copy's writer
+  reg [Cores-1:0] sel_snap_q;          // ping-pong selects when the precycle began
+  wire [31:0]    entry;
+
+  sync_ram #(.Words(PlanWords), .Width(32)) u_plan_ram (
+    .clk_i  (clk_i),
+    .we_i   (plan_we_i),
+    .waddr_i(plan_waddr_i),
+    .wdata_i(plan_wdata_i),
+    .raddr_i(base_q + issued_q[PaW-1:0]),
+    .rdata_o(entry)
+  );
+
+  wire copying   = (state_q == StPreCopy) || (state_q == StPostCopy);
+  wire fetch     = copying && (issued_q != len_q);
+  wire copy_done = copying && (issued_q == len_q) && !f_valid_q && !c_valid_q;
+
+  // stage I: the entry fetched in the last clock
+  wire           i_item  = f_valid_q && !entry[31];
+  wire           i_desc  = f_valid_q &&  entry[31];
+  wire           i_bit   = entry[30];
+  wire [ShW-1:0] i_word  = entry[12 +: ShW];
+  wire [11:0]    i_local = entry[11:0];
+  // ping-pong: readers read what each writer published last; a writer writes the other
+  wire           rd_buf  = (protect_i == ProtPing) && sel_snap_q[writer_q];
+  wire           own_sel = sh_sel_i[writer_q];
+  wire           wr_buf  = (protect_i == ProtPing) && !own_sel;
+
+  assign sh_re_o    = i_item && !post_q;
+  assign sh_raddr_o = {rd_buf, i_word};
+
+  // stage C: finish the item of the last clock
+  wire        c_pre  = c_valid_q && !post_q;
+  wire        c_post = c_valid_q &&  post_q;
+  wire [31:0] gathered = gather_q | ({31'd0, m_rdata_i} << c_pos_q);
+  // the gathered word is complete unless the next item adds a bit to the same word
+  wire        gather_more = i_item && i_bit && (i_word == c_word_q);
+  assign sh_we_o    = c_post && (!c_bit_q || !gather_more);
+  assign sh_waddr_o = {wr_buf, c_word_q};
+  assign sh_wdata_o = c_bit_q ? gathered : {{16{w_rdata_i[15]}}, w_rdata_i};
+
+  // Local ports: a precycle writes in stage C, a postcycle reads in stage I.
+  assign copy_en_o = copying;
+  assign m_we_o    = c_pre && c_bit_q;
+  assign m_addr_o  = post_q ? i_local[MaW-1:0] : c_local_q[MaW-1:0];
+  assign m_wdata_o = sh_rdata_i[c_pos_q];
+  assign w_we_o    = c_pre && !c_bit_q;
+  assign w_addr_o  = post_q ? i_local[WaW-1:0] : c_local_q[WaW-1:0];
+  assign w_wdata_o = sh_rdata_i[15:0];
+
+  // ---------------------------------------------------------------- control
+  wire lock_wanted = (protect_i == ProtSem);
+  assign lock_req_o = (state_q == StPreLock) || (state_q == StPostLock);
+  assign release_o  = lock_wanted && copy_done;
+  assign sh_flip_o  = (protect_i == ProtPing) && copy_done && post_q;
+  assign cpu_run_o  = (state_q == StRunStart);
+
+  // Fig. 8: waiting is worth it only while the copies and the scan still fit.
+  wire [63:0] need = {{(63-PaW){1'b0}}, pre_len_i} + {{(63-PaW){1'b0}}, post_len_i} +
+                     {32'd0, cpu_scan_cycles_i} + 64'd6;
+  wire give_up = (period_i != 32'd0) &&
+                 (time_i + need > nominal_q + {32'd0, period_i});
+
+  reg [31:0] pre_cnt_q, post_cnt_q, wait_cnt_q;
+  wire       in_pre  = (state_q == StPreLock) || (state_q == StPreCopy) ||
+                       (state_q == StRunStart);
+  wire       in_post = (state_q == StPostLock) || (state_q == StPostCopy) ||
+                       ((state_q == StScan) && cpu_scan_done_i);
+  wire       waiting = lock_req_o && !grant_i;
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q       <= StWait;
+      nominal_q     <= 64'd0;
+      started_q     <= 1'b0;
+      issued_q      <= {(PaW+1){1'b0}};
+      base_q        <= {PaW{1'b0}};
+      len_q         <= {(PaW+1){1'b0}};
+      post_q        <= 1'b0;
+      f_valid_q     <= 1'b0;
+      c_valid_q     <= 1'b0;
+      c_bit_q       <= 1'b0;
+      c_pos_q       <= 5'd0;
+      c_word_q      <= {ShW{1'b0}};
+      c_local_q     <= 12'd0;
+      gather_q      <= 32'd0;
+      writer_q      <= {IdW{1'b0}};
+      sel_snap_q    <= {Cores{1'b0}};
+      pre_cnt_q     <= 32'd0;
+      post_cnt_q    <= 32'd0;
+      wait_cnt_q    <= 32'd0;
+      cycle_done_o  <= 1'b0;
+      pre_clocks_o  <= 32'd0;
+      post_clocks_o <= 32'd0;
+      sem_wait_o    <= 32'd0;
+      overrun_o     <= 1'b0;
+      copy_fail_o   <= 1'b0;
+      overruns_o    <= 32'd0;
+      skips_o       <= 32'd0;
+    end else begin
+      cycle_done_o <= 1'b0;
+      if (in_pre)  pre_cnt_q  <= pre_cnt_q + 32'd1;
+      if (in_post) post_cnt_q <= post_cnt_q + 32'd1;
+      if (waiting) wait_cnt_q <= wait_cnt_q + 32'd1;
+
+      // the pipeline
+      f_valid_q <= fetch;
+      if (fetch) issued_q <= issued_q + 1'b1;
+      if (i_desc) writer_q <= entry[16 +: IdW];
+      c_valid_q <= i_item;
+      if (i_item) begin
+        c_bit_q   <= i_bit;
+        c_pos_q   <= entry[29:25];
+        c_word_q  <= i_word;
+        c_local_q <= i_local;
+      end
+      if (c_post && c_bit_q) gather_q <= sh_we_o ? 32'd0 : gathered;
+
+      case (state_q)
+        StWait: if (run_i && (time_i >= nominal_q || !started_q)) begin
+          // scan 0 starts at time 0; later ones at their nominal start or, late, now
+          overrun_o  <= started_q && (time_i > nominal_q);
+          if (started_q && time_i > nominal_q) overruns_o <= overruns_o + 32'd1;
+          if (!started_q || period_i == 32'd0) nominal_q <= time_i;
+          started_q  <= 1'b1;
+          pre_cnt_q  <= 32'd1;           // the precycle begins in this clock
+          post_cnt_q <= 32'd0;
+          wait_cnt_q <= 32'd0;
+          sel_snap_q <= sh_sel_i;
+          state_q    <= (lock_wanted && pre_len_i != 0) ? StPreLock : StPreCopy;
+          base_q     <= {PaW{1'b0}};
+          len_q      <= pre_len_i;
+          issued_q   <= {(PaW+1){1'b0}};
+          post_q     <= 1'b0;
+        end
+        StPreLock:
+          if (grant_i) state_q <= StPreCopy;
+          else if (give_up) begin
+            copy_fail_o <= 1'b1;
+            skips_o     <= skips_o + 32'd1;
+            state_q     <= StRunStart;
+          end
+        StPreCopy: if (copy_done) state_q <= StRunStart;
+        StRunStart: if (cpu_ready_i) state_q <= StScan;
+        StScan: if (cpu_scan_done_i) begin
+          state_q  <= (lock_wanted && post_len_i != 0) ? StPostLock : StPostCopy;
+          base_q   <= post_base_i;
+          len_q    <= post_len_i;
+          issued_q <= {(PaW+1){1'b0}};
+          post_q   <= 1'b1;
+        end
+        StPostLock: if (grant_i) state_q <= StPostCopy;
+        StPostCopy: if (copy_done) begin
+          state_q       <= StWait;
+          nominal_q     <= nominal_q + {32'd0, period_i};
+          cycle_done_o  <= 1'b1;
+          pre_clocks_o  <= pre_cnt_q;
+          post_clocks_o <= post_cnt_q + 32'd1;
+          sem_wait_o    <= wait_cnt_q;
+        end
+        default: state_q <= StWait;
+      endcase
+    end
+  end
+
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_entry = ^entry;          // not every field is used by every entry kind
+  // verilator lint_on UNUSEDSIGNAL
+endmodule
+`default_nettype wire

@@ -1,0 +1,472 @@
+// Verilator harness for a multi-core plant (rtl/plc_system.v, docs/multicore.md): every
+// core's byte processor runs the same firmware as in harness.cpp, each in a coroutine
+// of its own (ucontext), all in lock step with the one clock. Written by
+// `bitbyte run PLANT.toml`; the run file is described in sim/README.md ("Plants").
+//
+//   Vplc_system RUNFILE
+//
+// Clock n is the plant's time base (plc_system.time_o): core c starts scan k at
+// n = k * period_c. Each clock: every core whose firmware is not asleep runs until it
+// asks for the clock (a bus access, hal_spend, hal_wait_dispatch), the bus inputs of
+// all cores are applied, the clock-low half is evaluated (bus read data), the rising
+// edge follows, finished postcycles write their trace rows.
+#include "Vplc_system.h"
+#include "Vplc_system___024root.h"
+#include "verilated.h"
+#include "verilated_syms.h"
+
+extern "C" {
+#include "byteproc.h"
+#include "hal.h"
+}
+#if VM_TRACE_FST
+#include "verilated_fst_c.h"
+typedef VerilatedFstC WaveWriter;
+#elif VM_TRACE_VCD
+#include "verilated_vcd_c.h"
+typedef VerilatedVcdC WaveWriter;
+#else
+struct WaveWriter { void dump(uint64_t) {} void close() {} };
+#endif
+#include <ucontext.h>
+
+#include "harness_common.h"
+
+// ------------------------------------------------------------------ bit fields of ports
+// Verilator stores a port of up to 8/16/32/64 bits in an integer, wider ones in 32-bit
+// words, least significant first: on a little-endian host all are the same byte array.
+template <class P> static void set_field(P& port, unsigned lsb, unsigned width, uint64_t v) {
+  uint8_t* b = reinterpret_cast<uint8_t*>(&port);
+  for (unsigned i = 0; i < width; ++i) {
+    const unsigned bit = lsb + i;
+    if ((v >> i) & 1) b[bit / 8] |= uint8_t(1u << (bit % 8));
+    else b[bit / 8] &= uint8_t(~(1u << (bit % 8)));
+  }
+}
+template <class P> static uint64_t get_field(const P& port, unsigned lsb, unsigned width) {
+  const uint8_t* b = reinterpret_cast<const uint8_t*>(&port);
+  uint64_t v = 0;
+  for (unsigned i = 0; i < width; ++i) {
+    const unsigned bit = lsb + i;
+    v |= uint64_t((b[bit / 8] >> (bit % 8)) & 1) << i;
+  }
+  return v;
+}
+
+// ------------------------------------------------------------------ the run file
+struct CoreFile {
+  RunFile rf;                      // prog, byte_prog, mode, exchange, costs, pool, stim, col, trace
+  std::string name, plan;
+  uint64_t period = 0, pre_len = 0, post_base = 0, post_len = 0;
+};
+struct PlantFile {
+  uint64_t clock_hz = 100000000, watchdog = 100000;
+  int64_t until_clock = -1;
+  unsigned protect = 0;            // 0 semaphore, 1 pingpong, 2 none
+  std::string waves, gtkw = "sim/plant.gtkw";
+  std::vector<CoreFile> cores;
+};
+
+static PlantFile read_plant_file(const char* path) {
+  std::ifstream in(path);
+  if (!in) die("cannot open run file %s", path);
+  PlantFile pf;
+  std::string line, where_buf;
+  std::vector<std::string> w;
+  std::vector<size_t> at;
+  CoreFile* cur = nullptr;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    where_buf = std::string(path) + ":" + std::to_string(lineno);
+    g_where = where_buf.c_str();
+    split_line(line, w, at);
+    if (w.empty()) continue;
+    const std::string& k = w[0];
+    auto one = [&]() { if (w.size() != 2) die("'%s' takes 1 value", k.c_str()); return w[1]; };
+    if (k == "core") {
+      if (parse_u64(one(), "core") != pf.cores.size()) die("cores must be numbered 0, 1, ... in order");
+      pf.cores.emplace_back();
+      cur = &pf.cores.back();
+    } else if (!cur) {
+      if (k == "clock_hz") pf.clock_hz = parse_u64(one(), "clock_hz");
+      else if (k == "watchdog") pf.watchdog = parse_u64(one(), "watchdog");
+      else if (k == "until_clock") pf.until_clock = int64_t(parse_u64(one(), "until_clock"));
+      else if (k == "waves") pf.waves = one();
+      else if (k == "gtkw") pf.gtkw = one();
+      else if (k == "protect") {
+        const std::string v = one();
+        if (v == "semaphore") pf.protect = 0;
+        else if (v == "pingpong") pf.protect = 1;
+        else if (v == "none") pf.protect = 2;
+        else die("protect must be semaphore, pingpong or none");
+      } else die("unknown plant key '%s' (before the first 'core')", k.c_str());
+    } else if (k == "name") cur->name = one();
+    else if (k == "plan") cur->plan = one();
+    else if (k == "period") cur->period = parse_u64(one(), "period");
+    else if (k == "pre_len") cur->pre_len = parse_u64(one(), "pre_len");
+    else if (k == "post_base") cur->post_base = parse_u64(one(), "post_base");
+    else if (k == "post_len") cur->post_len = parse_u64(one(), "post_len");
+    else if (!parse_run_key(cur->rf, w, at, line)) die("unknown key '%s'", k.c_str());
+  }
+  g_where = path;
+  if (pf.until_clock < 0) die("need 'until_clock'");
+  if (pf.clock_hz == 0 || pf.clock_hz % 1000 || pf.clock_hz >= (1ULL << 62))
+    die("clock_hz must be a whole number of kHz");
+  for (CoreFile& c : pf.cores) {
+    c.rf.clock_hz = pf.clock_hz;
+    c.rf.watchdog = pf.watchdog;
+    check_run(c.rf, false);
+    if (c.rf.free_running) die("a plant core runs in serial or parallel mode");
+    if (c.period > 0xFFFFFFFFULL) die("period exceeds 32 bits");
+  }
+  return pf;
+}
+
+// ------------------------------------------------------------------ cores
+// One core's byte processor: its firmware state and the coroutine it runs in.
+struct Core {
+  unsigned idx = 0;
+  CoreFile* cf = nullptr;
+  bb_state bb;
+  ucontext_t ctx;
+  std::vector<char> stack;
+  enum Want { kStart, kBus, kSleep, kWaitNext } want = kStart;
+  uint64_t wake = 0;
+  // the bus access asked for this clock, and its result after the clock-low half
+  uint16_t addr = 0;
+  uint32_t wdata = 0;
+  bool re = false, we = false, ready = false;
+  uint32_t rdata = 0;
+  // trace and statistics
+  std::FILE* trace = nullptr;
+  std::vector<const uint8_t*> col_base;  // per column: storage, or nullptr (port / zero)
+  uint64_t scans = 0, rows = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
+  uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0;
+  bool finished = false;           // a scan ended at or after until_clock
+  size_t next_stim = 0;
+};
+
+static std::vector<Core> g_cores;
+static Core* g_cur;                // the core whose firmware runs
+static ucontext_t g_sched;         // the scheduler's context
+static uint64_t g_n;               // the clock being prepared (plant time)
+
+static void yield_clock() { swapcontext(&g_cur->ctx, &g_sched); }
+
+extern "C" uint32_t hal_bus_read(uint16_t addr) {
+  Core& c = *g_cur;
+  for (;;) {
+    c.want = Core::kBus;
+    c.addr = addr;
+    c.re = true;
+    c.we = false;
+    yield_clock();
+    if (c.ready) return c.rdata;   // else a not-ready clock: the access repeats
+  }
+}
+
+extern "C" void hal_bus_write(uint16_t addr, uint32_t data) {
+  Core& c = *g_cur;
+  for (;;) {
+    c.want = Core::kBus;
+    c.addr = addr;
+    c.wdata = data;
+    c.we = true;
+    c.re = false;
+    yield_clock();
+    if (c.ready) return;
+  }
+}
+
+extern "C" void hal_spend(uint32_t clocks) {
+  if (!clocks) return;
+  g_cur->want = Core::kSleep;
+  g_cur->wake = g_n + clocks;
+  yield_clock();
+}
+
+extern "C" void hal_wait_dispatch(void) {
+  g_cur->want = Core::kWaitNext;
+  yield_clock();
+}
+
+extern "C" uint64_t hal_now(void) { return g_n; }
+
+// The firmware's main loop, as in harness.cpp: serial dispatches or the byte part.
+static void core_main(int idx) {
+  Core& c = g_cores[size_t(idx)];
+  if (c.cf->rf.parallel) {
+    for (;;) {
+      hal_wait_dispatch();
+      bb_run_scan(&c.bb);
+      hal_bus_write(0x07, 1);      // SCAN_DONE
+    }
+  }
+  for (;;) bb_serial_step(&c.bb);
+}
+
+// ------------------------------------------------------------------ trace columns
+// A column reads core-internal state through Verilator's scope table (harness.vlt
+// makes those signals public), so that one binary serves any core count.
+static const uint8_t* find_var(VerilatedContext* ctx, unsigned core, const std::string& path,
+                               const char* var) {
+  const std::string scope = "TOP.plc_system.g_core[" + std::to_string(core) + "].u_core." + path;
+  const VerilatedScope* s = ctx->scopeFind(scope.c_str());
+  if (!s) die("no scope %s (harness built without it?)", scope.c_str());
+  const VerilatedVar* v = s->varFind(var);
+  if (!v) die("no variable %s in %s", var, scope.c_str());
+  return reinterpret_cast<const uint8_t*>(v->datap());
+}
+
+int main(int argc, char** argv) {
+  if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }
+  PlantFile pf = read_plant_file(argv[1]);
+  std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
+  if (!pf.waves.empty()) ctx->traceEverOn(true);
+  std::unique_ptr<Vplc_system> topp{new Vplc_system{ctx.get(), "TOP"}};
+  Vplc_system& top = *topp;
+  const unsigned hw_cores = unsigned(sizeof(top.scan_count_o) * 8 / 32);
+  if (pf.cores.size() != hw_cores)
+    die("this harness is built for %u cores, the run file has %zu", hw_cores, pf.cores.size());
+
+  std::unique_ptr<WaveWriter> wave;
+  uint64_t t_ps = 0, period_ps = 10000;
+  auto tick_half = [&](int clk) {
+    top.clk_i = clk;
+    top.eval();
+    if (wave) wave->dump(t_ps + (clk ? period_ps : period_ps / 2));
+    if (clk) t_ps += period_ps;
+  };
+  auto tick = [&]() { tick_half(0); tick_half(1); };
+  if (!pf.waves.empty()) {
+#if VM_TRACE
+    period_ps = std::max<uint64_t>(2, (1000000000000ULL + pf.clock_hz / 2) / pf.clock_hz);
+    wave.reset(new WaveWriter);
+    top.trace(wave.get(), 99);
+    wave->set_time_unit("1ps");
+    wave->set_time_resolution("1ps");
+    wave->open(pf.waves.c_str());
+#else
+    die("this harness was built without waves");
+#endif
+  }
+
+  // Plan address width: post_len_i holds Cores fields of (aw + 1) bits.
+  unsigned aw = 0;
+  while ((1u << aw) < 1024u) ++aw;  // PlanWords default (plc_system.v)
+  const unsigned plan_words = 1u << aw;
+  const unsigned prog_words = 4096;
+
+  // ---- reset, programs, plans, configuration
+  top.rst_ni = 0;
+  top.run_i = 0;
+  top.clk_i = 1;
+  top.eval();
+  if (wave) wave->dump(0);
+  tick();
+  for (unsigned c = 0; c < hw_cores; ++c) {
+    CoreFile& cf = pf.cores[c];
+    for (auto [a, word] : read_hex(cf.rf.prog, prog_words)) {
+      top.prog_we_i = 1u << c;
+      top.prog_waddr_i = a;
+      top.prog_wdata_i = word;
+      tick();
+    }
+    top.prog_we_i = 0;
+    if (!cf.plan.empty())
+      for (auto [a, word] : read_hex(cf.plan, plan_words)) {
+        top.plan_we_i = 1u << c;
+        top.plan_waddr_i = a;
+        top.plan_wdata_i = word;
+        tick();
+      }
+    top.plan_we_i = 0;
+    if (cf.pre_len > plan_words || cf.post_base + cf.post_len > plan_words) die("core %u: plan too long", c);
+    set_field(top.period_i, 32 * c, 32, cf.period);
+    set_field(top.pre_len_i, (aw + 1) * c, aw + 1, cf.pre_len);
+    set_field(top.post_base_i, aw * c, aw, cf.post_base);
+    set_field(top.post_len_i, (aw + 1) * c, aw + 1, cf.post_len);
+    set_field(top.parallel_i, c, 1, cf.rf.parallel);
+    set_field(top.exchange_i, 2 * c, 2, cf.rf.exchange);
+  }
+  top.protect_i = pf.protect;
+  top.watchdog_limit_i = uint32_t(pf.watchdog);
+  tick();
+  top.rst_ni = 1;
+  for (int i = 0; !top.ready_o; ++i) {
+    if (i > 1000000) die("ready_o never rose after reset");
+    tick();
+  }
+  for (unsigned c = 0; c < hw_cores; ++c) {  // TICK_DIV on every core, before the start
+    set_field(top.bus_addr_i, 9 * c, 9, 0x09);
+    set_field(top.bus_wdata_i, 32 * c, 32, pf.clock_hz / 1000);
+    set_field(top.bus_we_i, c, 1, 1);
+  }
+  tick();
+  top.bus_we_i = 0;
+  top.run_i = 1;
+  tick();  // the plant starts running: the next clock is clock 0 of the time base
+
+  // ---- cores: firmware, coroutines, traces, columns
+  g_cores.resize(hw_cores);
+  for (unsigned c = 0; c < hw_cores; ++c) {
+    Core& k = g_cores[c];
+    k.idx = c;
+    k.cf = &pf.cores[c];
+    const RunFile& rf = k.cf->rf;
+    const bb_costs* costs = bb_cost_table(rf.costs.c_str());
+    if (!costs) die("unknown cost table '%s'", rf.costs.c_str());
+    bb_init(&k.bb, costs);
+    bb_set_mw_bus(&k.bb, 1);
+    if (!rf.pool.empty()) bb_load_pool(&k.bb, rf.pool.data(), unsigned(rf.pool.size()));
+    if (rf.parallel) {
+      std::vector<uint32_t> words;
+      for (auto [a, word] : read_hex(rf.byte_prog, BB_PROG_WORDS)) {
+        if (a >= words.size()) words.resize(a + 1, 0);
+        words[a] = word;
+      }
+      if (bb_load_program(&k.bb, words.data(), unsigned(words.size())) != 0) die("byte part too large");
+    }
+    k.stack.resize(256 * 1024);
+    getcontext(&k.ctx);
+    k.ctx.uc_stack.ss_sp = k.stack.data();
+    k.ctx.uc_stack.ss_size = k.stack.size();
+    k.ctx.uc_link = &g_sched;
+    makecontext(&k.ctx, reinterpret_cast<void (*)()>(core_main), 1, int(c));
+    for (const Col& col : rf.cols) {
+      const uint8_t* base = nullptr;
+      if (col.kind == "i") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "pii_o");
+      else if (col.kind == "ir") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "rise_o");
+      else if (col.kind == "if") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "fall_o");
+      else if (col.kind == "m") base = find_var(ctx.get(), c, "u_cpu.u_bit_proc.u_marker_ram", "mem");
+      else if (col.kind == "mw") base = find_var(ctx.get(), c, "u_mw_ram", "mem");
+      else if (col.kind == "t") base = find_var(ctx.get(), c, "u_cpu.u_tc_status", "timer_status_o");
+      else if (col.kind == "c") base = find_var(ctx.get(), c, "u_cpu.u_tc_status", "counter_status_o");
+      k.col_base.push_back(base);
+    }
+    if (!rf.trace.empty()) {
+      k.trace = std::fopen(rf.trace.c_str(), "w");
+      if (!k.trace) die("cannot write trace %s", rf.trace.c_str());
+      std::fputs("scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun", k.trace);
+      for (const Col& col : rf.cols) std::fprintf(k.trace, ",%s", col.header.c_str());
+      std::fputc('\n', k.trace);
+    }
+  }
+  const unsigned in_bits = 128, out_bits = 128;
+  auto apply_stim = [&](Core& k, uint64_t key) {  // the last row with KEY <= key, if due
+    const RunFile& rf = k.cf->rf;
+    const Stim* st = nullptr;
+    while (k.next_stim < rf.stim.size() && rf.stim[k.next_stim].key <= key) st = &rf.stim[k.next_stim++];
+    if (!st) return;
+    for (unsigned i = 0; i < 4; ++i) set_field(top.in_pins_i, in_bits * k.idx + 32 * i, 32, st->pins[i]);
+    if (st->has_words)
+      for (unsigned i = 0; i < 16; ++i) set_field(top.in_words_i, 256 * k.idx + 16 * i, 16, uint16_t(st->words[i]));
+  };
+  auto col_value = [&](Core& k, size_t i) -> int {
+    const Col& col = k.cf->rf.cols[i];
+    const uint8_t* b = k.col_base[i];
+    const unsigned c = k.idx, n = col.index;
+    if (col.kind == "q") return int(get_field(top.out_pins_o, out_bits * c + n, 1));
+    if (col.kind == "pi") return int(get_field(top.in_pins_i, in_bits * c + n, 1));
+    if (col.kind == "qw") return int16_t(get_field(top.out_words_o, 256 * c + 16 * n, 16));
+    if (col.kind == "iw") return int16_t(get_field(top.in_words_i, 256 * c + 16 * n, 16));
+    if (col.kind == "m") return b[n] & 1;                  // CData per bit
+    if (col.kind == "mw") return int16_t(reinterpret_cast<const uint16_t*>(b)[n]);
+    if (b) return int((b[n / 8] >> (n % 8)) & 1);         // packed vectors
+    return 0;
+  };
+
+  // ---- the clocks
+  for (Core& k : g_cores) if (k.cf->rf.stim_kind == "scan") apply_stim(k, 0);
+  const uint64_t until = uint64_t(pf.until_clock);
+  bool fault = false;
+  for (g_n = 0;; ++g_n) {
+    for (Core& k : g_cores) {                         // inputs of clock g_n
+      if (k.cf->rf.stim_kind == "clock") apply_stim(k, g_n);
+      const bool run = k.want == Core::kStart || k.want == Core::kBus ||
+                       (k.want == Core::kSleep && g_n >= k.wake) ||
+                       (k.want == Core::kWaitNext && get_field(top.byte_next_o, k.idx, 1));
+      k.re = k.we = false;
+      if (run) { g_cur = &k; swapcontext(&g_sched, &k.ctx); }
+      set_field(top.bus_addr_i, 9 * k.idx, 9, k.addr);
+      set_field(top.bus_wdata_i, 32 * k.idx, 32, k.wdata);
+      set_field(top.bus_re_i, k.idx, 1, k.want == Core::kBus && k.re);
+      set_field(top.bus_we_i, k.idx, 1, k.want == Core::kBus && k.we);
+    }
+    tick_half(0);
+    for (Core& k : g_cores)
+      if (k.want == Core::kBus) {
+        k.ready = get_field(top.bus_ready_o, k.idx, 1);
+        k.rdata = uint32_t(get_field(top.bus_rdata_o, 32 * k.idx, 32));
+      }
+    tick_half(1);
+    bool all_done = true;
+    for (Core& k : g_cores) {
+      const unsigned c = k.idx;
+      if (get_field(top.fault_o, c, 1)) fault = true;
+      if (get_field(top.scan_done_o, c, 1) && k.cf->rf.stim_kind == "scan")
+        apply_stim(k, get_field(top.scan_count_o, 32 * c, 32));  // from the next latch on
+      if (get_field(top.cycle_done_o, c, 1) && !k.finished) {
+        const uint64_t cycles = get_field(top.scan_cycles_o, 32 * c, 32);
+        const uint64_t pre = get_field(top.pre_clocks_o, 32 * c, 32);
+        const uint64_t post = get_field(top.post_clocks_o, 32 * c, 32);
+        const uint64_t wait = get_field(top.sem_wait_o, 32 * c, 32);
+        const unsigned over = unsigned(get_field(top.overrun_o, c, 1));
+        k.cyc_min = std::min(k.cyc_min, cycles);
+        k.cyc_max = std::max(k.cyc_max, cycles);
+        k.cyc_sum += cycles;
+        k.pre_max = std::max(k.pre_max, pre);
+        k.post_max = std::max(k.post_max, post);
+        k.wait_sum += wait;
+        k.overruns += over;
+        if (k.trace) {
+          char buf[64];
+          char* e = put_t_us(buf, g_n + 1, pf.clock_hz);
+          std::fprintf(k.trace, "%llu,%.*s,%llu,%llu,%llu,%llu,%u,%u", (unsigned long long)k.scans,
+                       int(e - buf), buf, (unsigned long long)cycles, (unsigned long long)pre,
+                       (unsigned long long)post, (unsigned long long)wait,
+                       unsigned(get_field(top.copy_fail_o, c, 1)), over);
+          for (size_t i = 0; i < k.cf->rf.cols.size(); ++i) std::fprintf(k.trace, ",%d", col_value(k, i));
+          std::fputc('\n', k.trace);
+        }
+        ++k.scans;
+        if (g_n + 1 >= until) k.finished = true;
+      }
+      all_done = all_done && k.finished;
+    }
+    if (fault || all_done) { ++g_n; break; }
+  }
+
+  for (Core& k : g_cores)
+    if (k.trace && std::fclose(k.trace) != 0) die("error writing %s", k.cf->rf.trace.c_str());
+  if (wave) wave->close();
+  top.final();
+  if (fault) {
+    for (Core& k : g_cores)
+      if (get_field(top.fault_o, k.idx, 1))
+        std::fprintf(stderr, "scan watchdog: core %s scan %llu exceeded %llu clocks\n", k.cf->name.c_str(),
+                     (unsigned long long)k.scans, (unsigned long long)pf.watchdog);
+  }
+
+  // ---- summary
+  auto us = [&](u128 clocks_num, u128 den) { return fmt_ratio(clocks_num * 1000000u, den * pf.clock_hz, 6); };
+  std::printf("plant            %zu cores, protection %s, clock %s MHz\n", g_cores.size(),
+              pf.protect == 0 ? "semaphore" : pf.protect == 1 ? "pingpong" : "none",
+              fmt_ratio(pf.clock_hz, 1000000, 6).c_str());
+  for (Core& k : g_cores) {
+    const unsigned c = k.idx;
+    std::printf("core %-11s scans %llu", k.cf->name.c_str(), (unsigned long long)k.scans);
+    if (k.scans)
+      std::printf(", cycles min %llu mean %s max %llu, pre max %llu, post max %llu, sem_wait %llu",
+                  (unsigned long long)k.cyc_min, fmt_ratio(k.cyc_sum, k.scans, 3).c_str(),
+                  (unsigned long long)k.cyc_max, (unsigned long long)k.pre_max,
+                  (unsigned long long)k.post_max, (unsigned long long)k.wait_sum);
+    std::printf(", overruns %llu, skipped precycles %llu, copy_fail %u\n",
+                (unsigned long long)get_field(top.overruns_o, 32 * c, 32),
+                (unsigned long long)get_field(top.skips_o, 32 * c, 32),
+                unsigned(get_field(top.copy_fail_o, c, 1)));
+  }
+  std::printf("simulated        %s us, %llu clocks\n", us(g_n, 1).c_str(), (unsigned long long)g_n);
+  if (!pf.waves.empty())
+    std::printf("waves            %s   (gtkwave %s %s)\n", pf.waves.c_str(), pf.waves.c_str(), pf.gtkw.c_str());
+  return fault ? 3 : 0;
+}
