@@ -9,6 +9,8 @@ value a reader shows for a shared variable in scan j must be one its writer publ
 from __future__ import annotations
 
 import shutil
+import subprocess
+import sys
 from fractions import Fraction
 from pathlib import Path
 
@@ -74,6 +76,14 @@ def test_seed_6_1_example(tmp_path, layout):
     p1, p2 = rows["p1"], rows["p2"]
     assert (tmp_path / "T.p1.csv").read_text().splitlines()[0] == (
         "scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun,Q0.0,MW20,M10.0,M10.1")
+    # a plant core's scan takes exactly as long as the same program on a single CPU
+    # (the copies are outside it; MW on the bus fits in the word instructions' cost)
+    for core, rows_ in (("p1", p1), ("p2", p2)):
+        single = subprocess.run([sys.executable, "-m", "bitbyte.cli", "run",
+                                 str(tmp_path / f"{core}.il"), "--scans", "2"],
+                                capture_output=True, text=True, cwd=ROOT)
+        want = single.stdout.split("cycles/scan")[1].split()[1]
+        assert {r["cycles"] for r in rows_} == {want}, (core, want)
     # periods: scan k of p1 ends within its 10 ms period, p2 within 100 ms; no overrun
     for rows_, period in ((p1, 10000), (p2, 100000)):
         for r in rows_:
