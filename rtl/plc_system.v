@@ -7,7 +7,7 @@ module plc_system #(
   parameter integer Cores       = 2,     // cores (at least 2)
   parameter integer ProgWords   = 4096,  // program memory per core, instructions
   parameter integer PlanWords   = 1024,  // copy-plan entries per core
-  parameter integer SharedWords = 512,   // shared 32-bit words (per ping-pong buffer)
+  parameter integer SharedWords = 2048,  // shared 32-bit words (per ping-pong buffer)
   parameter integer InBytes     = 16,    // binary inputs per core
   parameter integer OutBytes    = 16,    // binary outputs per core
   parameter integer InWords     = 16,    // input words per core
