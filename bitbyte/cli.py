@@ -1,4 +1,4 @@
-"""`bitbyte` command line (spec §4, §7): `asm`, `run` and `link`.
+"""`bitbyte` command line (spec §4, §7, §8): `asm`, `run`, `link` and `alloc`.
 
 Every user error ends as `file:line:col: message` (or a one-line message for command
 line mistakes) and a non-zero exit status, never a traceback:
@@ -6,6 +6,7 @@ line mistakes) and a non-zero exit status, never a traceback:
   2  command-line usage error
   3  scan watchdog (the run stopped; completed scans are still traced)
   4  simulator failure (build or run)
+  5  alloc: the tasks do not fit on the cores (the reason on stderr)
 """
 from __future__ import annotations
 
@@ -23,6 +24,7 @@ from .config import Config
 from .errors import SourceError, format_error
 
 EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
+EXIT_NO_FIT = 5
 ROOT = Path(__file__).resolve().parents[1]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
 DEFAULT_SCANS = 10
@@ -61,6 +63,27 @@ def _parser() -> argparse.ArgumentParser:
     k = sub.add_parser("link", help="check a multi-core plant (PLANT.toml) and print its "
                                     "shared-memory map and copy plan")
     k.add_argument("plant")
+
+    al = sub.add_parser("alloc", help="allocate periodic tasks (TASKS.csv) to cores "
+                                      "(spec section 8, seed 002)")
+    al.add_argument("tasks", nargs="?")
+    al.add_argument("--generate", choices=["becker2015"],
+                    help="instead of TASKS.csv: seed 002's synthetic workload (Table I)")
+    al.add_argument("--networks", type=int, help="--generate: number of networks")
+    al.add_argument("--seed", type=int, default=0, help="--generate: random seed")
+    al.add_argument("--save-tasks", metavar="TASKS.csv",
+                    help="--generate: also write the generated tasks as a task file")
+    al.add_argument("--cores", type=int, help="cores available (--generate: 16)")
+    al.add_argument("--mem", type=int, default=4096, help="bytes per core (4096)")
+    al.add_argument("--alpha", default="0.001145", help="read time, ms per byte")
+    al.add_argument("--beta", default="0.001145", help="write time, ms per byte")
+    al.add_argument("--algorithm", choices=["ffd", "best"], default="best")
+    al.add_argument("--clock-mhz", type=str, default="100",
+                    help="clock for WCETs from programs and for --emit (100)")
+    al.add_argument("--mode", choices=["serial", "parallel"], default="serial",
+                    help="WCET of a program: serial or parallel scan (serial)")
+    al.add_argument("--json", metavar="OUT.json")
+    al.add_argument("--emit", metavar="PLANT.toml")
     return p
 
 
@@ -184,6 +207,62 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
 def cmd_link(args) -> int:
     from .plant import format_map, link, load_plant
     print(format_map(link(load_plant(args.plant))), end="")
+    return 0
+
+
+def cmd_alloc(args) -> int:
+    """Spec §8: read or generate the tasks, allocate, print the table; --json is
+    written even when the tasks do not fit (exit 5), --emit only when they do."""
+    import json
+    from . import alloc as al
+
+    f = _clock_mhz(args.clock_mhz)
+    rates = {}
+    for opt in ("alpha", "beta"):
+        try:
+            rates[opt] = Fraction(getattr(args, opt))
+        except (ValueError, ZeroDivisionError):
+            raise UsageError(f"--{opt}: not a number: {getattr(args, opt)!r}") from None
+        if rates[opt] < 0:
+            raise UsageError(f"--{opt} must not be negative")
+    if args.mem < 1:
+        raise UsageError("--mem must be at least 1 byte")
+    if args.cores is not None and args.cores < 1:
+        raise UsageError("--cores must be at least 1")
+    if args.generate:
+        if args.tasks:
+            raise UsageError("give TASKS.csv or --generate, not both")
+        if args.networks is None or args.networks < 1:
+            raise UsageError("--generate needs --networks K (K >= 1)")
+        tasks = al.generate_becker2015(args.networks, args.seed)
+        cores = al.BECKER_CORES if args.cores is None else args.cores
+        if args.save_tasks:
+            Path(args.save_tasks).write_text(al.tasks_csv(tasks))
+    else:
+        if not args.tasks:
+            raise UsageError("alloc needs TASKS.csv or --generate becker2015")
+        if args.cores is None:
+            raise UsageError("alloc TASKS.csv needs --cores N")
+        if args.networks is not None or args.save_tasks:
+            raise UsageError("--networks and --save-tasks go with --generate")
+        tasks = al.load_tasks(args.tasks, f, args.mode)
+        cores = args.cores
+    platform = al.Platform(cores, args.mem, rates["alpha"], rates["beta"])
+    al.check_fits(tasks, platform)
+    try:
+        result = al.allocate(tasks, platform, args.algorithm)
+        print(al.format_table(result), end="")
+        if args.json:
+            Path(args.json).write_text(json.dumps(al.to_json(result), indent=1) + "\n")
+        if not result.ok:
+            print(f"bitbyte: alloc: {result.reason()}"
+                  + ("; no plant written" if args.emit else ""), file=sys.stderr)
+            return EXIT_NO_FIT
+        if args.emit:
+            for path in al.emit_plant(result, args.emit, f):
+                print(f"wrote {path}")
+    except al.UsageProblem as e:
+        raise UsageError(str(e)) from None
     return 0
 
 
@@ -320,7 +399,8 @@ def _run_harness(job, columns, args):
 def main(argv: list[str] | None = None) -> int:
     try:
         args = _parser().parse_args(argv)
-        return {"asm": cmd_asm, "run": cmd_run, "link": cmd_link}[args.command](args)
+        return {"asm": cmd_asm, "run": cmd_run, "link": cmd_link,
+                "alloc": cmd_alloc}[args.command](args)
     except SourceError as e:
         print(format_error(e), file=sys.stderr)
         return EXIT_SOURCE
