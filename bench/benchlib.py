@@ -172,6 +172,9 @@ def partition_report(program: Path | str, outdir: Path) -> dict | None:
                      ("to_bit", r"transfers byte -> bit:\s+(\d+)")):
         m = re.search(pat, text)
         out[key] = int(m.group(1)) if m else None
+    m = re.search(r"bit-side schedule: (\d+) rungs moved .*?(\d+) -> (\d+) clocks", text,
+                  re.DOTALL)
+    out["schedule"] = [int(g) for g in m.groups()] if m else None
     out["report"] = str(rep.relative_to(ROOT)) if rep.is_relative_to(ROOT) else str(rep)
     return out
 

@@ -62,8 +62,16 @@ def derive(res: dict) -> dict:
     """Everything the summary states, computed once."""
     f = res["clock_mhz"]
     c320 = res["costs"]["c320"]
-    w, b = c320["word"], c320["binary"]
-    d = {"f": f, "w": w, "b": b}
+    mcu = res.get("mcu")
+    if mcu is None or "S" not in mcu.get("per_kind", {}):   # an older results.json
+        sys.path.insert(0, str(HERE))
+        import mcu_baseline
+        mcu = mcu_baseline.bit_cost(HERE / "programs" / "table1.il")
+        res["mcu"], res["mcu_listing"] = mcu, mcu_baseline.listing()
+        res["mcu_bit_costs"] = sorted(set(res["mcu_bit_costs"]) | {
+            mcu["b"], mcu["b_native"], mcu["b_25mhz"]})
+    w, b = c320["word"], mcu["b"]
+    d = {"f": f, "w": w, "b": b, "mcu": mcu}
     t1 = res["scan"]["table1"]
     d["t1"] = t1
     ser = t1["runs"].get("serial/paper", {})
@@ -78,6 +86,8 @@ def derive(res: dict) -> dict:
     d["b_for_10_default"] = (10 * t1["static_paper"] - nw * w) / nb
     d["b_for_10_same"] = (10 * t1["static_c320"] - nw * w) / nb
     d["ratio_same_limit"] = (nb * w + nw * w) / t1["static_c320"]   # b = w
+    d["baseline_native"] = nb * mcu["b_native"] + nw * w
+    d["ratio_native"] = d["baseline_native"] / t1["static_paper"]
     c = t1["runs"].get("serial/c320", {})
     d["t1_c320"] = c
     par = t1["runs"].get("parallel/paper")
@@ -229,8 +239,12 @@ def plot_baseline(res, d, path):
     ax.axhline(10, color="k", ls="--", lw=1)
     ax.text(1, 10.3, "goal 10×", fontsize=8)
     ax.axvline(d["b"], color="#8c564b", ls=":", lw=1)
-    ax.text(d["b"] + 0.7, 14, f"b = {d['b']}\n(c320 binary\nclass)", fontsize=8,
+    ax.text(d["b"] + 0.7, 13, f"b = {d['b']}\n(8051\ninterpreter)", fontsize=8,
             color="#8c564b", va="center")
+    nat = d["mcu"]["b_native"]
+    ax.axvline(nat, color="#7f7f7f", ls=":", lw=1)
+    ax.text(nat + 0.7, 16, f"b = {nat}\n(native\n8051 code)", fontsize=8,
+            color="#7f7f7f", va="center")
     ax.set_xlabel("MCU cost of one bit instruction b [clocks]")
     ax.set_ylabel("single-MCU time / this CPU's time")
     ax.set_title(f"Table-1-sized program ({nb} bit + {nw} word), serial mode, "
@@ -337,21 +351,28 @@ def markdown(res, d) -> str:
                      f"baseline counts every instruction once, the median scan skips the "
                      f"blocks its jumps skip, {100 * skip:.0f} % of the straight line in "
                      f"serial mode).")
-    add(f"* **Single-processor baseline** (the byte processor alone running every "
-        f"instruction: {d['w']} clocks per word instruction, {d['b']} per bit "
-        f"instruction, see §2): {fmt(d['baseline'])} clocks for the Table-1 program. "
+    mcu = d["mcu"]
+    goal10 = "met" if d["ratio_default"] >= 10 else "not met"
+    add(f"* **Single-processor baseline** (the paper's byte processor, an 80C320, alone "
+        f"running every instruction: {d['w']} clocks of 0.1 µs per word instruction "
+        f"from Table 1, **{d['b']} per bit instruction** counted from an 8051 "
+        f"interpreter loop on a {mcu['mcu_mhz']:g} MHz DS80C320, "
+        f"{mcu['mcu_clocks']:.0f} MCU clocks = {mcu['us']:.2f} µs, see §2): "
+        f"{fmt(d['baseline'])} clocks for the Table-1 program. "
         f"Ratio baseline / this CPU, both counting every instruction once: "
         f"**{d['ratio_default']:.1f}×** against the default "
-        f"configuration (paper weights, {fmt(t1['static_paper'])} clocks) and "
-        f"**{d['ratio_same']:.2f}×** against this CPU with the same byte processor "
-        f"(c320, {fmt(t1['static_c320'])} clocks). **Goal ≥ 10×: not met** with the "
-        f"documented bit cost of {d['b']} clocks. It is met against the default "
-        f"configuration once the MCU needs ≥ {d['b_for_10_default']:.0f} clocks per bit "
-        f"instruction; with the same byte processor it cannot be met in any mode "
-        f"(the {t1['n_word']} word instructions alone take "
-        f"{fmt(t1['n_word'] * d['w'])} clocks on it, of the serial scan's "
-        f"{fmt(t1['static_c320'])}; even a bit instruction as dear as a word one gives "
-        f"{d['ratio_same_limit']:.1f}×)." + par_ratio)
+        f"configuration (paper weights, {fmt(t1['static_paper'])} clocks): **goal ≥ "
+        f"10×: {goal10}**. Two honest qualifications: against this CPU with the same "
+        f"byte processor (c320, {fmt(t1['static_c320'])} clocks) the ratio is "
+        f"**{d['ratio_same']:.2f}×** (the {t1['n_word']} word instructions alone take "
+        f"{fmt(t1['n_word'] * d['w'])} clocks on it; even a bit instruction as dear as "
+        f"a word one gives {d['ratio_same_limit']:.1f}×), and an MCU running the IL "
+        f"compiled to native 8051 code instead of interpreting it needs only about "
+        f"{mcu['b_native']} clocks per bit instruction ({mcu['us_native']:.2f} µs), "
+        f"which gives {d['ratio_native']:.1f}× (not met; the goal needs "
+        f"≥ {d['b_for_10_default']:.0f} clocks per bit instruction) — though such an "
+        f"MCU would not spend {d['w']} clocks on a word instruction either."
+        + par_ratio)
     if d["speedup"]:
         par = t1["runs"]["parallel/paper"]
         goal = "met" if d["speedup"] >= 1.55 else "not met"
@@ -475,6 +496,57 @@ def markdown(res, d) -> str:
                        f"{p_['to_bit']}" if p_.get("bit_part") is not None else "– | –")
                     + f" | {est} |")
         add("")
+        sched = (t1.get("partition") or {}).get("schedule")
+        par1 = t1["runs"].get("parallel/paper", {})
+        add("**Where the parallel scan waits, and what the compiler does about it** "
+            f"(Table-1 program). The byte side has the most work ({t1['n_word']} word "
+            f"instructions = {fmt(10 * t1['n_word'])} clocks; the bit part has "
+            f"{fmt((t1.get('partition') or {}).get('bit_part'))} instructions), so every "
+            "clock the byte side waits for a condition from the bit side adds to the "
+            "scan. "
+            "The run of 2026-11-25 measured 1 447 clocks (speed-up 1.43) with 374 "
+            "clocks of bit-side and 291 of byte-side waiting per scan. Two causes, "
+            "both in the partitioning compiler (`bitbyte/partition.py`; docs/toolchain.md):\n")
+        add("1. *Status syncs far from their update.* Each bit-side read of a timer or "
+            "counter status that an update precedes got a channel round trip right "
+            "before it (`= FBY` / `READ`, `WRITE` / `LD FBI`), so the bit side "
+            "waited there until the byte side had done *all* its work up to that "
+            "point, not just the update (e.g. `AN T1` on line 374 waited for the "
+            "byte side to reach line 374, although `SD T1` is on line 215). But any "
+            "byte → bit transfer after the update already holds the bit side until "
+            "the byte side has passed it; the compiler now tracks, along the control "
+            "flow (forward jumps joined, loop heads conservative), which updates are "
+            "not yet followed by such a transfer and syncs only those reads (and "
+            "symmetrically for updates after reads). On the Table-1 program 11 of "
+            "the 26 byte → bit and 10 of the 37 bit → byte transfers go.")
+        extra = ""
+        if sched:
+            extra = (f" Here it moves {sched[0]} rungs; its straight-line model gives "
+                     f"{fmt(sched[1])} → {fmt(sched[2])} clocks.")
+        add("2. *Program order on the bit side.* A rung that needs a compare result "
+            "(`LD FBI k`, `A FBI k`) stopped the bit side until the byte side got "
+            "there, and the independent rungs behind it waited too; meanwhile the "
+            "byte side ran into its next `READ FBY` (a timer enable, a counter pulse) "
+            "before the bit side had computed it. The compiler now list-schedules "
+            "the rungs of the bit part inside each basic block (a rung = from an RLO "
+            "load at parenthesis depth 0 to the next one, so its RLO is its own): "
+            "rungs whose condition is not there yet step back, independent rungs run "
+            "meanwhile, and the rungs a `= FBY` depends on go first when the byte "
+            "side would otherwise wait for it. The byte part and the order of the "
+            "transfers are unchanged; data dependencies (bits written / read), the "
+            "queue order and the status syncs keep every scan serial-equivalent "
+            "(timer-free traces are identical to serial mode's: "
+            "`tests/test_partition.py`, `tests/test_random_parallel.py`), and each "
+            "block's order is checked deadlock-free against a one-place exchange, "
+            "which covers every handshake channel count and queue depth." + extra)
+        if par1.get("median"):
+            st = par1.get("stalls_per_scan") or [0, 0]
+            q = t1["runs"].get("parallel:queue/paper", {})
+            qtxt = (f" With the strict queues (`parallel:queue`, depth 8): "
+                    f"{fmt(q['median'])} clocks median." if q.get("median") else "")
+            add(f"\nNow (handshake flip-flops, 4 channels per direction): "
+                f"{fmt(par1['median'])} clocks median, waits {st[0]:.0f} (bit side) / "
+                f"{st[1]:.0f} (byte side) clocks per scan.{qtxt}\n")
 
     # ---- 2 baseline and Table 1
     add("## 2. Against a single processor and the paper's Table 1\n")
@@ -486,14 +558,40 @@ def markdown(res, d) -> str:
         "(`firmware_byte/costs.c`): Table 1's row *80C320 – serial mode*, 1050 bit + 280 "
         "byte instructions in 1.7 ms, minus 0.1 µs per bit instruction, leaves 5.70 µs "
         "per byte instruction = 57 clocks of 0.1 µs;")
-    add(f"* bit instruction: **{d['b']} clocks** — the same table's binary class: the "
-        "paper gives no MCU bit-instruction time, so the word cost is divided by the "
-        "paper's 10 : 1 word/bit ratio (S7-315-2DP, 1 µs / 0.1 µs, paper §4): 57 / 10 "
-        "→ 6 (0.6 µs). That is a figure in the MCU's favour: an 8-bit MCU interpreting "
-        "IL spends several machine cycles on fetching and dispatching any instruction; "
-        "a dearer bit instruction only raises the ratios, so under this model they are "
-        "lower bounds. "
-        f"Other choices of b: table and `perf_baseline.png`.\n")
+    mcu = d["mcu"]
+    pk = mcu["per_kind"]
+    add(f"* bit instruction: **{d['b']} clocks** — counted, since the paper gives no "
+        "MCU bit-instruction time: the 80C320 runs each IL instruction as a procedure "
+        "(paper §2), so a bit instruction costs what an 8051 interpreter loop spends "
+        "on it: fetch the opcode, dispatch through a jump table, fetch the operand "
+        "(image byte address, bit mask), do the bit operation on the process image "
+        "with the RLO in the carry flag (`bench/mcu_baseline.py`, listing below). "
+        "Clocks per 8051 opcode: the DS80C320's published instruction timing (Dallas "
+        "*High-Speed Microcontroller User's Guide*, as tabulated in "
+        "github.com/cyrozap/8051-timing-db, `cycles_DS80C320_published.csv`; 4 clocks "
+        f"per machine cycle). Dispatch {mcu['next']} clocks + operand {mcu['operand']} "
+        f"+ the operation: LD {pk['LD']:.0f}, LDN {pk['LDN']:.0f}, A / AN / X "
+        f"{pk['A']:.0f}, O / ON {pk['O']:.0f}, = {pk['=']:.0f}, S {pk['S']:.0f}, "
+        f"R {pk['R']:.0f} MCU clocks (mean of the two paths, operand bit or RLO 0 / "
+        "1; edges, parentheses and jumps, which need more, are counted at the mean of "
+        "these, in the MCU's favour). Over the Table-1 program's mix: "
+        f"{mcu['mcu_clocks']:.1f} MCU clocks; at {mcu['mcu_mhz']:g} MHz, the "
+        f"DS80C320's maximum clock (the paper does not give its 80C320's clock; a "
+        f"slower one only makes b dearer: {mcu['b_25mhz']} at 25 MHz), that is "
+        f"{mcu['us']:.2f} µs = **{d['b']} clocks of 0.1 µs**. Every other choice "
+        "favours the MCU too: image in internal RAM, bit masks precomputed, dual data "
+        "pointer for the jump table, dispatch inlined in every handler, no MOVX "
+        f"stretch cycles. *Lower bound*: the same IL compiled to native 8051 code "
+        f"(`MOV A,dir` + `ANL C,ACC.n` etc., no interpreter) costs "
+        f"{mcu['mcu_clocks_native']:.1f} MCU clocks = {mcu['us_native']:.2f} µs = "
+        f"{mcu['b_native']} clocks per bit instruction; that MCU would not take "
+        f"{d['w']} clocks per word instruction either, so it is not the like-for-like "
+        "baseline, but its ratio is in the table below. (The previous report used "
+        "6 = 57 / 10, the paper's S7 word : bit ratio applied to the 80C320's word "
+        "cost: no source for an MCU, close to the native-code figure.)\n")
+    add("<details><summary>The interpreter loop and its clocks (DS80C320)</summary>\n")
+    add(res.get("mcu_listing", "") + "\n")
+    add("</details>\n")
     add("Both sides are counted in the same clock, so the ratio does not depend on the "
         "clock. *Same byte processor* compares with this CPU running the `c320` table, "
         "i.e. it measures only what the bit processor adds; *default* compares with the "
@@ -514,8 +612,12 @@ def markdown(res, d) -> str:
     add("| b [clocks] | where from | baseline [clocks] | ratio vs default | ratio, same "
         "byte processor |")
     add("|---|---|---|---|---|")
-    why = {6: "c320 binary class (used above)", 12: "2 × that",
+    why = {6: "57 / 10 (the previous report's figure)", 12: "2 × that",
            29: "half a word instruction", 57: "as dear as a word instruction"}
+    why[d["mcu"]["b_native"]] = "native 8051 code (lower bound)"
+    why[d["b"]] = (f"8051 interpreter, {d['mcu']['mcu_mhz']:g} MHz DS80C320 "
+                   "(used above)")
+    why[d["mcu"]["b_25mhz"]] = "8051 interpreter, 25 MHz DS80C320"
     for b in res["mcu_bit_costs"]:
         base = t1["n_bit"] * b + t1["n_word"] * d["w"]
         add(f"| {b} | {why.get(b, '')} | {fmt(base)} | {base / t1['static_paper']:.1f}× | "
@@ -549,7 +651,7 @@ def markdown(res, d) -> str:
         add(f"| this CPU, serial, 80C320 byte processor (c320) | {t1['n_bit']} / "
             f"{t1['n_word']} | {c['median'] * 0.1:.0f} µs ({fmt(c['median'])} clocks of "
             f"0.1 µs) | measured (median) |")
-    add(f"| single MCU baseline ({d['w']}/word, {d['b']}/bit) | {t1['n_bit']} / "
+    add(f"| single MCU baseline ({d['w']}/word, {d['b']}/bit: 8051 interpreter) | {t1['n_bit']} / "
         f"{t1['n_word']} | {d['baseline'] * 0.1:.0f} µs ({fmt(d['baseline'])} clocks of "
         f"0.1 µs) | model |")
     add("")

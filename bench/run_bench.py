@@ -30,13 +30,16 @@ sys.path.insert(0, str(HERE.parent))
 
 import benchlib as bl                     # noqa: E402
 import gen_programs                       # noqa: E402
+import mcu_baseline                       # noqa: E402
 
 ROOT = bl.ROOT
 EX = ROOT / "examples"
 PROG = HERE / "programs"
 SEED = gen_programs.DEFAULT_SEED
 C320_MHZ = Fraction(10)     # the c320 table's unit: 1 clock = 0.1 us (costs.c)
-MCU_BIT_COSTS = (6, 12, 29, 57)   # sensitivity of the baseline to its bit cost
+# sensitivity of the baseline to its bit cost (c320 clocks of 0.1 µs); the counted
+# figures (bench/mcu_baseline.py: native code, interpreter at 33 and 25 MHz) are added
+MCU_BIT_COSTS = (6, 12, 29, 57)
 
 
 # ---------------------------------------------------------------------- stimuli
@@ -321,6 +324,10 @@ def main(argv=None) -> int:
         bl.progress("simulator speed (harness, cocotb on Verilator and Icarus) ...")
         speed = measure_simspeed(f, args.quick)
 
+    mcu = mcu_baseline.bit_cost(PROG / "table1.il")
+    bl.progress(f"single-MCU baseline: {mcu['b']} clocks of 0.1 µs per bit instruction "
+                f"(8051 interpreter on a {mcu['mcu_mhz']:g} MHz DS80C320; native code "
+                f"{mcu['b_native']})")
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
     results = dict(clock_mhz=float(f), clock_source=f_src, c320_mhz=float(C320_MHZ),
                    modes=mode_status, scan=scan, response=resp,
@@ -328,7 +335,9 @@ def main(argv=None) -> int:
                    seed=SEED, quick=args.quick, load_avg=load, cpus=os.cpu_count(),
                    bench_wall_s=time.perf_counter() - t_start,
                    costs=dict(paper=bl.cost_table("paper"), c320=bl.cost_table("c320")),
-                   mcu_bit_costs=list(MCU_BIT_COSTS))
+                   mcu=mcu, mcu_listing=mcu_baseline.listing(),
+                   mcu_bit_costs=sorted(set(MCU_BIT_COSTS) | {
+                       mcu["b"], mcu["b_native"], mcu["b_25mhz"]}))
     (bl.BUILD / "results.json").write_text(json.dumps(results, indent=1))
     bl.progress("report ...")
     import report

@@ -64,18 +64,27 @@ Rules (source instruction -> rows):
   flow graph: an update U may precede a read R in a scan when R is reachable from U
   (forward jumps may make this conservative, loops are covered -- plain program order
   would miss the read at the top of a loop that follows the update at its bottom in
-  the previous iteration).
-  - A bit read of T n / C n that an update of it may precede gets a synchronising
-    round trip right before it: the RLO is made valid on the byte side (bit -> byte
-    transfer if needed), then byte `WRITE FBI k` + bit `LD FBI k`, which both carries
-    the RLO back and holds the read until the byte side has passed every earlier
-    update.  When the read is LD/LDN (it overwrites the RLO anyway) the plain
-    `WRITE FBI k` + `LD FBI k` suffices, whatever F_B holds.
-  - A byte update of T n / C n that a bit read of it may precede must not overtake the
-    read: a bit -> byte transfer goes right before the update even when the byte side
-    already holds the RLO (when only the byte side holds it, it first goes to the bit
-    side): the byte side cannot pass `READ FBY k` before the bit side has executed
-    everything before `= FBY k`, the read included.
+  the previous iteration).  A byte -> bit transfer row between U and R already orders
+  them (the bit side cannot pass its `.. FBI k` before the byte side has executed
+  every row before `WRITE FBI k`, U included), so the walk keeps the set of timers /
+  counters updated since the last byte -> bit row on some path (`unsynced_updates`:
+  joined over the jumps to a label; at a loop head every updated one), and a read
+  needs ordering only when its timer / counter is in that set *and* an update may
+  precede it; symmetrically `unsynced_reads` (bit reads since the last bit -> byte
+  row) for updates after reads.
+  - A bit read of T n / C n that needs ordering gets a synchronising round trip
+    right before it: the RLO is made valid on the byte side (bit -> byte transfer if
+    needed), then byte `WRITE FBI k` + bit `LD FBI k`, which both carries the RLO
+    back and holds the read until the byte side has passed every earlier update.
+    When the read is LD/LDN (it overwrites the RLO anyway) the plain `WRITE FBI k` +
+    `LD FBI k` suffices, whatever F_B holds.  (hardware_wait: a read with a sole
+    update in the same straight stretch waits in hardware instead, bit 16.)
+  - A byte update of T n / C n that a bit read of it may precede, with no bit -> byte
+    row in between, must not overtake the read: a bit -> byte transfer goes right
+    before the update even when the byte side already holds the RLO (when only the
+    byte side holds it, it first goes to the bit side): the byte side cannot pass
+    `READ FBY k` before the bit side has executed everything before `= FBY k`, the
+    read included.
   `status_sync=False` drops both (the paper's Fig. 2 timers: the bit side never
   waits); that gives the paper's Fig. 13 exactly but is not serial-equivalent.
 * REFRESH: one that would be the bit part's first instruction although it is not the
@@ -87,13 +96,39 @@ Rules (source instruction -> rows):
   (FBY 0, 1, 2, ... ; FBI 0, 1, ...), so a writer can run up to `channels` conditions
   ahead.  The queue exchange (one queue per direction) runs the same code: there the
   index is irrelevant, the order is what counts.
+* The bit side's schedule (`schedule`, on by default with the status sync; off in
+  the paper's / free-running mode): the rows fix the byte part and the order of the
+  transfers, but the bit part's rungs may run in another order inside a basic block
+  (cut at labels, jumps, END).  A rung starts at an RLO load (LD LDN SET CLR) at
+  parenthesis depth 0 and runs to the next one: nothing before it is read by it,
+  its RLO is dead at its end.  Two rungs keep their order when one writes a bit the
+  other reads or writes; when both hold `= FBY` writes or both FBI reads (the i-th
+  write pairs with the i-th read); when the first holds `= FBY` and the second
+  waits for the byte side (an FBI read, a bit-16 status read) -- only writes to the
+  byte side move up past reads from it; when either reads T n / C n and the other
+  holds a transfer (the status ordering above counts on those positions); and
+  around barriers (jumps, END, REFRESH, NOP, PI / PQ, a block's first rung when it
+  continues an RLO, a block's last rung: the code after a label may continue its RLO).  So every rung computes what it computes serially, and
+  serial-equivalence is kept.  Among the orders allowed, a list schedule driven by
+  a timing model of the straight-line path (bit: 1 clock per instruction, byte: the
+  cost table; `_Timing`) takes the rungs a pending `= FBY` depends on when the byte
+  side would otherwise wait for it, else the first rung in program order that
+  runs without waiting, else the one that finishes first: a rung that needs a
+  compare result steps back and independent bit work runs meanwhile.  Each block's
+  new order is played against the byte part with one place per direction (a queue
+  of depth 1: every handshake channel count and queue depth waits on a subset of
+  that) and kept only when it cannot deadlock; the whole order only when the model
+  gives fewer clocks than program order.  Transfers are complete inside a block on
+  both sides and the sides take the same path through the blocks, so the per-block
+  check covers every path.  report_text() says how many rungs moved.
 * Exchange instructions (READ, WRITE, operands FBI/FBY) in a mixed program are an
   error: the compiler inserts them.  A hand-partitioned program (`BIT:` / `BYTE:`
   sections, see bitbyte/parser.py) is taken verbatim: its BYTE section's JU/JC/JCN
   become JU_B/JC_B/JCN_B, its END END_B, and each part gets a final END / END_B when
   missing.
 
-API: partition(program, channels=4) -> Partition; report_text(partition);
+API: partition(program, channels=4, *, config, status_sync, hardware_wait, schedule,
+costs) -> Partition; report_text(partition);
 side_by_side(partition); part_listing(partition); estimate(partition);
 assemble_parallel(path, outdir, config) writes the `bitbyte asm --mode parallel` files.
 """
@@ -188,6 +223,7 @@ class Partition:
     hand_partitioned: bool = False
     status_sync: bool = True
     warnings: list[str] = field(default_factory=list)
+    schedule: tuple[int, int, int] | None = None   # rungs moved, model clocks before, after
 
     def bit_program(self) -> Program:
         return Program(self.program.path, list(self.bit), dict(self.bit_labels),
@@ -209,16 +245,20 @@ class Partition:
 # --------------------------------------------------------------------------------------
 
 def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
-              status_sync: bool = True, hardware_wait: bool = True) -> Partition:
+              status_sync: bool = True, hardware_wait: bool = True,
+              schedule: bool | None = None, costs="paper") -> Partition:
     """Split `program` into its bit and byte parts (module docstring) and encode them.
 
     channels: exchange channels per direction used round-robin (1..config.channels).
     status_sync=False: the paper's Fig. 2 timers (no waiting for T n / C n; not
     serial-equivalent).  hardware_wait: a status read that exactly one update
     precedes in the same straight-line stretch waits in hardware (instruction bit 16,
-    docs/isa.md) instead of through a channel round trip.  Raises SourceError for what cannot be partitioned (an
-    exchange instruction in a mixed program, a part too large) and ValueError for a
-    bad channel count."""
+    docs/isa.md) instead of through a channel round trip.  schedule: reorder the bit
+    part's rungs inside basic blocks to wait less (default: on with status_sync);
+    costs: the byte cost table the schedule's timing model assumes (the order is valid
+    for any).  Raises SourceError for what cannot be partitioned (an exchange
+    instruction in a mixed program, a part too large) and ValueError for a bad channel
+    count."""
     if not 1 <= channels <= config.channels:
         raise ValueError(f"channels must be 1..{config.channels} (the build's exchange "
                          f"channels per direction), not {channels}")
@@ -234,6 +274,8 @@ def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
                 break
             mirrored |= more
         part = builder.result()
+        if status_sync if schedule is None else schedule:
+            _schedule_bit_part(part, costs)
     _encode(part, config)
     return part
 
@@ -274,6 +316,12 @@ class _Builder:
         self.cur = 0                          # source index being compiled
         self.reach = _Reach(program)
         self.status_ops = _status_ops(program)
+        # Timer / counter keys with a byte update not yet followed by a byte -> bit
+        # transfer (on some path), and with a bit read not yet followed by a bit -> byte
+        # transfer: see "Timer / counter status" in the module docstring.
+        self.unsynced_updates: set[tuple[str, int]] = set()
+        self.unsynced_reads: set[tuple[str, int]] = set()
+        self.label_state: dict[str, tuple[set, set]] = {}     # from the jumps to it
 
     # -- rows -------------------------------------------------------------------------
 
@@ -291,6 +339,10 @@ class _Builder:
         self.rows.append(Row(kind, self.cur, bit, byte, channel=channel))
         if bit is not None:
             self.bit_emitted += 1
+        if kind == TO_BIT:          # the bit side passes it only after every byte row before
+            self.unsynced_updates = set()
+        elif kind == TO_BYTE:       # the byte side passes it only after every bit row before
+            self.unsynced_reads = set()
         return len(self.rows) - 1
 
     def channel(self, direction: str) -> int:
@@ -351,12 +403,31 @@ class _Builder:
             if joined:
                 if not self.dead:
                     self.need_bit(f"RLO to the bit side at the join point `{joined[0]}`")
+                else:
+                    self.unsynced_updates, self.unsynced_reads = set(), set()
                 self.loc = {BIT}
                 self.dead = False
+                self.join_status(i, joined)
             for name in ins.labels:
                 self.label_rows[name.upper()] = len(self.rows)
                 self.rows.append(Row("label", i, label=name))
             self.instruction(ins)
+
+    def join_status(self, i: int, joined: list[str]) -> None:
+        """The unsynced timer / counter keys at a join point: those of the fall-through
+        path (already in place) and of every forward jump to it; a loop head (a jump at
+        or after it targets it) gets every key the program updates / reads, since the
+        loop's back edge is not compiled yet."""
+        instrs = self.program.instrs
+        names = {name.upper() for name in joined}
+        for name in names:
+            ups, reads = self.label_state.get(name, (set(), set()))
+            self.unsynced_updates |= ups
+            self.unsynced_reads |= reads
+        if any(ins.mnemonic in JUMPS and ins.operand.label.upper() in names
+               for ins in instrs[i:]):
+            self.unsynced_updates |= set(self.status_ops.updates)
+            self.unsynced_reads |= set(self.status_ops.reads)
 
     def instruction(self, ins: Instr) -> None:
         m, op = ins.mnemonic, ins.operand
@@ -381,8 +452,10 @@ class _Builder:
         m, op = ins.mnemonic, ins.operand
         what = _text(m, op)
         wait_update = False
-        if m in COMBINES and op.area in ("T", "C") and self.status_sync:
-            update = self.status_ops.update_before(self.reach, self.cur)
+        status = m in COMBINES and op.area in ("T", "C") and op.kind == "index"
+        if status and self.status_sync:
+            update = self.status_ops.update_before(self.reach, self.cur) \
+                if (op.area, op.index) in self.unsynced_updates else None
             if update is not None and self.hardware_wait and \
                     self.status_ops.sole_dominating_update(self.reach, self.cur) is not None:
                 wait_update = True                  # no transfer: the read waits in hardware
@@ -401,6 +474,8 @@ class _Builder:
             bit.synthesized = True
             bit.note = f"waits (bit 16) until {update} has run this scan"
         self.row(BIT, bit=bit)
+        if status:
+            self.unsynced_reads.add((op.area, op.index))
         if m in BIT_RLO_SETTERS or m in BIT_RLO_MODIFIERS:
             self.loc = {BIT}
 
@@ -419,14 +494,16 @@ class _Builder:
                                                f"RLO is on the bit side, {logic} there"))
                 self.to_bit(f"`{what}`: compare result to the bit side", logic)
         elif kind in STATUS_UPDATES:
+            key = (ins.operand.area, ins.operand.index)
             read = self.status_ops.read_before(self.reach, self.cur) \
-                if self.status_sync else None
+                if self.status_sync and key in self.unsynced_reads else None
             if read is not None:
                 self.need_bit(f"RLO to the bit side, to order `{what}` after {read}")
                 self.to_byte(f"RLO for `{what}`, and order: after {read} on the bit side")
             else:
                 self.need_byte(f"RLO for `{what}`")
             self.row(BYTE, byte=self.copy(ins))
+            self.unsynced_updates.add(key)
         else:                                                     # L, T, arithmetic
             self.row(BYTE, byte=self.copy(ins))
 
@@ -442,6 +519,9 @@ class _Builder:
                 "both", self.copy(ins), self.synth(BYTE_JUMPS[m], op, note))
         else:
             self.jump_rows[self.cur] = self.row(BIT, bit=self.copy(ins))
+        ups, reads = self.label_state.setdefault(op.label.upper(), (set(), set()))
+        ups |= self.unsynced_updates
+        reads |= self.unsynced_reads
         if m == "JU":
             self.dead = True
 
@@ -592,6 +672,442 @@ def _status_ops(program: Program) -> _StatusOps:
         elif ins.mnemonic in COMBINES:
             ops.reads.setdefault((op.area, op.index), []).append(i)
     return ops
+
+
+# --------------------------------------------------------------------------------------
+# The bit side's schedule (list scheduling of rungs inside a basic block)
+# --------------------------------------------------------------------------------------
+
+_SCHED_AREAS = ("I", "IR", "IF", "Q", "M", "T", "C", "FBI", "FBY")
+
+
+@dataclass
+class _Seg:
+    """A rung of the bit part: from an RLO setter at parenthesis depth 0 (or a block's
+    start) up to the next one.  Its RLO is its own: nothing before it is read by it,
+    nothing it leaves in F_b is read after it (the next rung overwrites F_b first), so
+    rungs may change places when their data and the exchange allow it."""
+
+    lo: int                               # bit part indices [lo, hi)
+    hi: int
+    reads: set = field(default_factory=set)
+    writes: set = field(default_factory=set)
+    fby: list = field(default_factory=list)      # ordinals of its `= FBY k` (bit order)
+    fbi: list = field(default_factory=list)      # ordinals of its `.. FBI k` reads
+    updates: list = field(default_factory=list)  # byte indices its bit-16 reads wait for
+    status: bool = False                  # reads T n / C n
+    barrier: bool = False                 # stays where it is, everything else around it
+
+
+def _segments(bit: list[PartInstr], lo: int, hi: int, fby_no: dict, fbi_no: dict,
+              wait_on: dict) -> list[_Seg] | None:
+    """The rungs of the block bit[lo:hi]; None when the block starts inside
+    parentheses (then it is left alone)."""
+    segs: list[_Seg] = []
+    depth = 0
+    for n in range(lo, hi):
+        ins = bit[n]
+        m, op = ins.mnemonic, ins.operand
+        if not segs or (depth == 0 and m in BIT_RLO_SETTERS):
+            segs.append(_Seg(n, n + 1, barrier=not (depth == 0 and m in BIT_RLO_SETTERS)))
+        seg = segs[-1]
+        seg.hi = n + 1
+        if m in OPENS:
+            depth += 1
+        elif m == ")":
+            depth -= 1
+        if depth < 0:
+            return None
+        if m in JUMPS or m in ("END", "NOP", "REFRESH") or \
+                (op is not None and op.kind not in ("bit", "index", "label")) or \
+                (op is not None and op.kind != "label" and op.area not in _SCHED_AREAS):
+            seg.barrier = True
+            continue
+        if op is None:
+            continue
+        if op.area == "FBY":
+            seg.fby.append(fby_no[n])
+        elif op.area == "FBI":
+            seg.fbi.append(fbi_no[n])
+        elif op.area in ("T", "C"):
+            seg.status = True
+            if n in wait_on:
+                seg.updates.append(wait_on[n])
+        else:
+            key = (op.area, op.bit_number)
+            if m in ("=", "S", "R"):
+                seg.writes.add(key)
+            elif m in ("FP", "FN"):
+                seg.reads.add(key)
+                seg.writes.add(key)
+            else:
+                seg.reads.add(key)
+    if segs and segs[0].lo != lo:
+        return None
+    if segs:
+        # the block's last rung stays last: what it leaves (the RLO, an open
+        # parenthesis) may be used after the block's end (a label's fall-through)
+        segs[-1].barrier = True
+    return segs
+
+
+def _seg_preds(segs: list[_Seg]) -> list[set[int]]:
+    """Which rungs each rung must stay behind (indices into segs).
+
+    data: a rung that writes a bit another one reads or writes (either order);
+    exchange: `= FBY` writes keep their order, FBI reads keep theirs (the queues pair
+    the i-th write with the i-th read), and a rung that waits for the byte side (an
+    FBI read, a bit-16 status read) stays behind every `= FBY` that came before it, so
+    the byte side never waits for a write placed after a read that waits for it; only
+    `= FBY` writes move up past FBI reads.  A T n / C n read keeps its place among the
+    rungs that hold transfers (the syncs the compiler chose count on it); barriers
+    (jumps, END, REFRESH, NOP, PI/PQ, a block's first rung when it continues the RLO
+    and its last rung) keep theirs among all."""
+    preds: list[set[int]] = [set() for _ in segs]
+    for j, b in enumerate(segs):
+        for i in range(j):
+            a = segs[i]
+            if a.barrier or b.barrier:
+                dep = True
+            elif a.writes & (b.reads | b.writes) or a.reads & b.writes:
+                dep = True
+            elif (a.fby and b.fby) or (a.fbi and b.fbi):
+                dep = True
+            elif a.fby and (b.fbi or b.updates):
+                dep = True
+            elif (b.status or b.updates) and (a.fby or a.fbi):
+                dep = True
+            elif (a.status or a.updates) and (b.fby or b.fbi):
+                dep = True
+            else:
+                dep = False
+            if dep:
+                preds[j].add(i)
+    return preds
+
+
+class _Timing:
+    """The compile-time timing model the schedule is chosen with: the straight-line
+    path (jumps not taken), the bit side 1 clock per instruction, the byte side its
+    cost table, a transfer seen by the reader the clock after the write, a status the
+    clock after its update.  Only the choice of the order depends on it; whether an
+    order is allowed does not."""
+
+    def __init__(self, byte: list[PartInstr], costs):
+        self.table = resolve_costs(costs)
+        self.byte = byte
+        self.fby_time: dict[int, int] = {}     # FBY ordinal -> clock the byte side sees it
+        self.fbi_time: dict[int, int] = {}     # FBI ordinal -> clock the bit side sees it
+        self.upd_time: dict[int, int] = {}     # byte index -> clock its status is seen
+        self.pc = 0
+        self.t = 0                             # byte side's clock
+        self.reads = 0
+        self.writes = 0
+
+    def clone(self) -> "_Timing":
+        other = _Timing.__new__(_Timing)
+        other.__dict__.update(self.__dict__)
+        other.fby_time, other.fbi_time = dict(self.fby_time), dict(self.fbi_time)
+        other.upd_time = dict(self.upd_time)
+        return other
+
+    def advance(self) -> None:
+        """Run the byte side until it needs a bit -> byte transfer not written yet."""
+        while self.pc < len(self.byte):
+            ins = self.byte[self.pc]
+            m = ins.mnemonic
+            if m == "END_B":
+                break
+            start = self.t
+            if m == "READ":
+                if self.reads not in self.fby_time:
+                    return
+                start = max(start, self.fby_time[self.reads])
+                self.reads += 1
+                cost = self.table["READ"]
+            elif m == "WRITE":
+                self.fbi_time[self.writes] = start + 1
+                self.writes += 1
+                cost = self.table["WRITE"]
+            elif m in BYTE_JUMPS.values():
+                cost = self.table["READ"]
+            else:
+                cost = self.table[byte_kind(ins)]
+            self.t = start + cost
+            if byte_kind(ins) in STATUS_UPDATES:
+                self.upd_time[self.pc] = self.t
+            self.pc += 1
+
+    def run_seg(self, bit: list[PartInstr], seg: _Seg, t: int, fby_no: dict,
+                fbi_no: dict, wait_on: dict, commit: bool) -> float:
+        """The clock the bit side finishes seg at when it starts at t (inf: it would
+        wait for something the byte side cannot produce yet)."""
+        for n in range(seg.lo, seg.hi):
+            op = bit[n].operand
+            ready = t
+            if n in fbi_no:
+                ready = self.fbi_time.get(fbi_no[n], float("inf"))
+            elif n in wait_on:
+                ready = self.upd_time.get(wait_on[n], float("inf"))
+            t = max(t, ready) + 1
+            if t == float("inf"):
+                return t
+            if commit and op is not None and n in fby_no:
+                self.fby_time[fby_no[n]] = t
+                self.advance()
+        return t
+
+
+def _transfer_numbers(bit: list[PartInstr]) -> tuple[dict, dict]:
+    fby_no, fbi_no = {}, {}
+    for n, ins in enumerate(bit):
+        op = ins.operand
+        if op is not None and op.kind == "index" and op.area == "FBY":
+            fby_no[n] = len(fby_no)
+        elif op is not None and op.kind == "index" and op.area == "FBI":
+            fbi_no[n] = len(fbi_no)
+    return fby_no, fbi_no
+
+
+def _update_waits(part: Partition) -> dict[int, int]:
+    """bit index of each bit-16 status read -> byte index of the update it waits for
+    (the last update of that timer / counter before it in the rows)."""
+    bit_at = {id(ins): n for n, ins in enumerate(part.bit)}
+    byte_at = {id(ins): n for n, ins in enumerate(part.byte)}
+    last: dict[tuple[str, int], int] = {}
+    out = {}
+    for row in part.rows:
+        y = row.byte
+        if y is not None and byte_kind(y) in STATUS_UPDATES:
+            last[(y.operand.area, y.operand.index)] = byte_at[id(y)]
+        b = row.bit
+        if b is not None and b.wait_update:
+            out[bit_at[id(b)]] = last[(b.operand.area, b.operand.index)]
+    return out
+
+
+def _blocks(part: Partition) -> list[tuple[int, int]]:
+    """Basic blocks of the bit part: cut at every label and after every jump / END."""
+    starts = {0} | set(part.bit_labels.values())
+    for n, ins in enumerate(part.bit):
+        if ins.mnemonic in JUMPS or ins.mnemonic == "END":
+            starts.add(n + 1)
+    cuts = sorted(s for s in starts if 0 <= s <= len(part.bit)) + [len(part.bit)]
+    return [(a, b) for a, b in zip(cuts, cuts[1:]) if a < b]
+
+
+def _model_clocks(part: Partition, bit: list[PartInstr], costs) -> float:
+    """The timing model's clocks per scan for a bit part order (straight line)."""
+    fby_no, fbi_no = _transfer_numbers(bit)
+    wait_on = _remap(_update_waits(part), part.bit, bit)
+    tm = _Timing(part.byte, costs)
+    tm.advance()
+    t = 0
+    for n in range(len(bit)):
+        seg = _Seg(n, n + 1)
+        if bit[n].mnemonic == "END":
+            tm.advance()
+            return max(t, tm.t) + 1
+        t = tm.run_seg(bit, seg, t, fby_no, fbi_no, wait_on, True)
+        if t == float("inf"):
+            return t                  # cannot happen for an order _no_deadlock passed
+    return max(t, tm.t) + 1
+
+
+def _no_deadlock(bit: list[PartInstr], lo: int, hi: int, byte: list[PartInstr],
+                 fby_no: dict, fbi_no: dict, wait_on: dict) -> bool:
+    """Can the block bit[lo:hi] deadlock against the byte side?  The exchange events
+    of the block (its `= FBY` / FBI reads / bit-16 reads; on the byte side the READs,
+    WRITEs and updates they pair with, in byte order) are played with one place per
+    direction, the tightest exchange there is (a queue of depth 1): whatever the two
+    sides' speeds, each event can run once everything it waits for has run.  With
+    more places (deeper queues, handshake channels used round-robin) the waits are a
+    subset, so no order that passes here can deadlock there."""
+    bit_ev = []
+    for n in range(lo, hi):
+        if n in fby_no:
+            bit_ev.append(("w", fby_no[n]))
+        elif n in fbi_no:
+            bit_ev.append(("r", fbi_no[n]))
+        elif n in wait_on:
+            bit_ev.append(("u", wait_on[n]))
+    if not bit_ev:
+        return True
+    fbys = {k for e, k in bit_ev if e == "w"}
+    fbis = {k for e, k in bit_ev if e == "r"}
+    ups = {k for e, k in bit_ev if e == "u"}
+    byte_ev = []
+    reads = writes = 0
+    for y, ins in enumerate(byte):
+        if ins.mnemonic == "READ":
+            if reads in fbys:
+                byte_ev.append(("r", reads))
+            reads += 1
+        elif ins.mnemonic == "WRITE":
+            if writes in fbis:
+                byte_ev.append(("w", writes))
+            writes += 1
+        if y in ups:
+            byte_ev.append(("u", y))
+    written = {"fby": set(), "fbi": set()}
+    consumed = {"fby": set(), "fbi": set()}
+    updated: set[int] = set()
+    lo_fby, lo_fbi = min(fbys, default=0), min(fbis, default=0)
+    i = j = 0
+    while i < len(bit_ev) or j < len(byte_ev):
+        moved = False
+        while i < len(bit_ev):
+            e, k = bit_ev[i]
+            if e == "w" and not (k == lo_fby or k - 1 in consumed["fby"]):
+                break
+            if e == "r" and k not in written["fbi"]:
+                break
+            if e == "u" and k not in updated:
+                break
+            if e == "w":
+                written["fby"].add(k)
+            elif e == "r":
+                consumed["fbi"].add(k)
+            i += 1
+            moved = True
+        while j < len(byte_ev):
+            e, k = byte_ev[j]
+            if e == "r" and k not in written["fby"]:
+                break
+            if e == "w" and not (k == lo_fbi or k - 1 in consumed["fbi"]):
+                break
+            if e == "r":
+                consumed["fby"].add(k)
+            elif e == "w":
+                written["fbi"].add(k)
+            else:
+                updated.add(k)
+            j += 1
+            moved = True
+        if not moved:
+            return False
+    return True
+
+
+def _schedule_bit_part(part: Partition, costs="paper") -> None:
+    """Reorder the rungs of the bit part inside each basic block so that the bit side
+    waits less (paper §4.3: "the program should be written and compiled in such a way
+    that the load of both processors is equally distributed").  The byte part and
+    the transfers' order stay as they are; what moves is bit-side work:
+
+    * a rung that reads a condition from the byte side (a compare result) goes where
+      its condition is there, and the independent rungs after it run meanwhile
+      (independent bit work hoisted past the wait);
+    * the rungs a `= FBY` (a timer enable, a counter pulse, a jump condition the byte
+      side needs) depends on go first when the byte side would otherwise wait for it.
+
+    The order is a list schedule driven by _Timing; the dependencies (_seg_preds) keep
+    every scan's result the serial one, _no_deadlock keeps every exchange deadlock-free;
+    a block whose new order fails that keeps its old one, and the whole new order is
+    kept only when the model says it is faster."""
+    bit = part.bit
+    fby_no, fbi_no = _transfer_numbers(bit)
+    wait_on = _update_waits(part)
+    if not fby_no and not fbi_no and not wait_on:
+        return
+    tm = _Timing(part.byte, costs)
+    tm.advance()
+    t = 0
+    new: list[PartInstr] = []
+    moved = 0
+    for lo, hi in _blocks(part):
+        segs = _segments(bit, lo, hi, fby_no, fbi_no, wait_on)
+        order = list(range(len(segs))) if segs else None
+        if segs and len(segs) > 2:
+            order = _list_schedule(bit, segs, tm, t, fby_no, fbi_no, wait_on)
+            block = [bit[n] for s in order for n in range(segs[s].lo, segs[s].hi)]
+            trial = bit[:lo] + block + bit[hi:]
+            if not _no_deadlock(trial, lo, hi, part.byte, *_transfer_numbers(trial),
+                                _remap(wait_on, bit, trial)):
+                order = list(range(len(segs)))
+        if segs is None:
+            new += bit[lo:hi]
+            for n in range(lo, hi):
+                t = tm.run_seg(bit, _Seg(n, n + 1), t, fby_no, fbi_no, wait_on, True)
+            continue
+        for s in order:
+            t = tm.run_seg(bit, segs[s], t, fby_no, fbi_no, wait_on, True)
+            new += bit[segs[s].lo:segs[s].hi]
+        moved += sum(1 for k, s in enumerate(order) if s != k)
+    if moved == 0:
+        return
+    assert sorted(map(id, new)) == sorted(map(id, bit))
+    before, after = _model_clocks(part, bit, costs), _model_clocks(part, new, costs)
+    if after >= before:
+        return
+    labels = [ins.labels for ins in bit]          # labels are positions: they stay
+    for ins, names in zip(new, labels):
+        ins.labels = names
+    part.bit[:] = new
+    part.schedule = (moved, before, after)
+
+
+def _remap(wait_on: dict, old: list, new: list) -> dict:
+    """wait_on (bit index -> update) for the instructions of `old` placed as in `new`."""
+    where = {id(ins): n for n, ins in enumerate(new)}
+    return {where[id(old[n])]: u for n, u in wait_on.items()}
+
+
+def _list_schedule(bit, segs, tm: _Timing, t: int, fby_no, fbi_no, wait_on) -> list[int]:
+    """The order of one block's rungs (see _schedule_bit_part).  Simulates the block
+    on a copy of the timing model; at each step takes, among the rungs whose
+    predecessors are placed: the ancestors of the next `= FBY` when the byte side
+    would otherwise wait for it, else the first (in program order) that runs without
+    waiting, else the one that finishes first."""
+    preds = _seg_preds(segs)
+    succs: list[set[int]] = [set() for _ in segs]
+    for j, ps in enumerate(preds):
+        for i in ps:
+            succs[i].add(j)
+    left = [len(ps) for ps in preds]
+    ready = {j for j, c in enumerate(left) if c == 0}
+    done: set[int] = set()
+    sim = tm.clone()
+    order = []
+    fby_seg = {k: j for j, s in enumerate(segs) for k in s.fby}
+    size = [s.hi - s.lo for s in segs]
+    while ready:
+        pick = None
+        need = sim.reads                        # the byte side's next READ
+        if need in fby_seg and fby_seg[need] not in done:
+            anc, todo = set(), [fby_seg[need]]
+            while todo:
+                j = todo.pop()
+                if j in anc or j in done:
+                    continue
+                anc.add(j)
+                todo.extend(preds[j])
+            work = sum(size[j] for j in anc)
+            if sim.pc < len(sim.byte) and sim.byte[sim.pc].mnemonic == "READ" and \
+                    t + work >= sim.t:
+                pick = min(j for j in anc if j in ready)
+        if pick is None:
+            best = None
+            for j in sorted(ready):
+                end = sim.run_seg(bit, segs[j], t, fby_no, fbi_no, wait_on,
+                                             False)
+                if end <= t + size[j]:
+                    pick = j
+                    break
+                if best is None or end < best[0]:
+                    best = (end, j)
+            if pick is None:
+                pick = best[1]
+        t = sim.run_seg(bit, segs[pick], t, fby_no, fbi_no, wait_on, True)
+        order.append(pick)
+        done.add(pick)
+        ready.discard(pick)
+        for j in succs[pick]:
+            left[j] -= 1
+            if left[j] == 0:
+                ready.add(j)
+    assert len(order) == len(segs)
+    return order
 
 
 # --------------------------------------------------------------------------------------
@@ -752,6 +1268,12 @@ def report_text(part: Partition, costs="paper") -> str:
         out.append("jumps the byte side takes too: " + (", ".join(
             f"`{_text(j.mnemonic, j.operand)}` (line {j.line})" for j in mirrored)
             or "none"))
+    if part.schedule is not None:
+        moved, before, after = part.schedule
+        out.append(f"bit-side schedule: {moved} rungs moved inside their blocks, ahead of "
+                   f"rungs that wait for the byte side (timing model, straight line: "
+                   f"{before} -> {after} clocks); the listing below is in program order, "
+                   f"the bit part's addresses give the executed order")
     for t in part.transfers:
         arrow = "bit -> byte" if t.direction == TO_BYTE else "byte -> bit"
         name = "FBY" if t.direction == TO_BYTE else "FBI"

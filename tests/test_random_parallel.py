@@ -110,3 +110,62 @@ def test_status_read_first_in_the_bit_part(tmp_path, sim):
                          str(st), "--scans", "5", "--trace", str(trace)]) == 0
         got[mode] = [line.split(",")[3] for line in trace.read_text().splitlines()[1:]]
     assert got["parallel"] == got["serial"] == ["0", "1", "1", "0", "0"]
+
+
+# Plant programs (bench/gen_programs.py rungs, timers stripped): the partitioning
+# compiler reorders many of their bit-side rungs (tests/test_partition.py), so they
+# check the schedule on the hardware: same trace as serial mode, both exchanges.
+PLANT_PROGRAMS = 10
+
+
+def _plant_case(tmp: Path, index: int):
+    import random
+    import sys
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import gen_programs
+    seed = BASE_SEED * 1000 + 900 + index
+    rng = random.Random(seed)
+    g = gen_programs.generate(rng.randrange(60, 200), rng.randrange(10, 40), seed,
+                              jumps=rng.randrange(0, 4))
+    il = tmp / f"plant{seed}.il"
+    from test_partition import crowd_addresses
+    il.write_text(crowd_addresses(strip_timers("\n".join(g.lines) + "\n")))
+    cols = [f"I{b}.{n}" for b in range(12) for n in range(8)] + [f"IW{n}" for n in range(8)]
+    state = dict.fromkeys(cols, 0)
+    rows = ["scan," + ",".join(cols)]
+    for s in range(SCANS):
+        for _ in range(rng.randrange(1, 12)):
+            c = rng.choice(cols[:96])
+            state[c] ^= 1
+        state[rng.choice(cols[96:])] = rng.randrange(-200, 2000)
+        rows.append(f"{s}," + ",".join(str(state[c]) for c in cols))
+    stim = tmp / f"plant{seed}.csv"
+    stim.write_text("\n".join(rows) + "\n")
+    watch = ",".join(f"M{b}.{n}" for b in range(6) for n in range(8)) + \
+        ",MW0,MW1,MW2,MW3,QW0,QW1,C0,C1"
+    return seed, il, stim, watch
+
+
+def test_scheduled_plant_programs_on_harness(tmp_path, capsys):
+    from bitbyte.parser import parse_file
+    from bitbyte.partition import partition
+    moved = 0
+    for index in range(PLANT_PROGRAMS):
+        seed, il, stim, watch = _plant_case(tmp_path, index)
+        part = partition(parse_file(str(il)))
+        moved += part.schedule is not None
+        kw = dict(stimulus=str(stim), watch=watch, scans=SCANS, watchdog=WATCHDOG)
+        program, columns, _, _ = cli.prepare_run(str(il), **kw)
+        _, records, fault = refsim_trace(program, stimulus=load_stimulus(
+            str(stim), program.symbols), watch=watch.split(","), scans=SCANS,
+            watchdog=WATCHDOG)
+        expected = (outputs(records), fault)
+        for exchange in ("handshake", "queue"):
+            trace = tmp_path / f"{seed}.{exchange}.csv"
+            rc = cli.main(["run", str(il), "--mode", "parallel", "--exchange", exchange,
+                           "--stimulus", str(stim), "--scans", str(SCANS), "--watchdog",
+                           str(WATCHDOG), "--trace", str(trace), "--watch", watch])
+            assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
+            got = (outputs(read_trace_rows(trace, columns)), rc == cli.EXIT_WATCHDOG)
+            assert got == expected, f"plant program seed {seed} ({il}), {exchange}"
+    assert moved >= PLANT_PROGRAMS // 2, f"only {moved} of {PLANT_PROGRAMS} rescheduled"
