@@ -59,15 +59,19 @@ $(HARNESS): $(VENV_STAMP) FORCE
 
 FORCE:
 
-plant-harness: $(VENV_STAMP)   ## build the Verilator harness of the multi-core plant
-	@$(MAKE) --no-print-directory -C sim plant JOBS=$(JOBS)
+CORES ?= 2
+plant-harness: $(VENV_STAMP)   ## build the Verilator harness of a CORES-core plant (default 2)
+	@$(MAKE) --no-print-directory -C sim plant JOBS=$(JOBS) CORES=$(CORES)
 
-sim: $(HARNESS)       ## run the star-delta example on Verilator, write a waveform, print the summary
+sim: $(HARNESS)       ## star-delta and the two-core plant on Verilator: waveforms, summaries
 	@mkdir -p $(dir $(WAVES))
 	bitbyte asm $(EXAMPLE) -o sim/waves >/dev/null
 	bitbyte run $(EXAMPLE) --stimulus $(EXAMPLE_STIM) --clock-mhz 1 --until-us 260000 \
 	  --sim verilator --watch Run,SpeedOK,StartDelay,StarFault,Speed \
 	  --trace $(WAVES:.fst=.trace.csv) --waves $(WAVES)
+	@echo "--- two-core plant (seed 000 section 6.1), 300 ms at 1 MHz"
+	bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000 \
+	  --watch p1.MW20,p2.MW0 --trace sim/waves/plant_6_1.csv --waves sim/waves/plant_6_1.fst
 
 test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
 	@$(MAKE) --no-print-directory lint
@@ -111,13 +115,17 @@ synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no swee
 BENCH_MODES ?= serial,parallel,free:queue-free
 BENCH_EDGES ?= 1000
 
-bench: $(HARNESS) bench-alloc  ## scan time, response time, simulator speed -> docs/performance.md
+bench: $(HARNESS) bench-alloc bench-multicore  ## scan time, response time, simulator speed -> docs/performance.md
 	$(VENV)/bin/python bench/run_bench.py --modes $(BENCH_MODES) --edges $(BENCH_EDGES)
 
 # Task allocation (issue 10, seed 002): the seed's Table I workload, the 10/20 ms
 # discrepancy, cores against networks, heuristic against the optimum (HiGHS checks the
 # exact search), the emitted plant. Writes docs/allocation.md and docs/alloc_*.png
-# (about a minute).
+# (one to two minutes).
+.PHONY: bench-multicore
+bench-multicore: $(VENV_STAMP)  ## seed 000 Table 4 in clocks, protections compared -> docs/multicore.md
+	$(VENV)/bin/python bench/multicore_bench.py
+
 .PHONY: bench-alloc
 bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocation.md
 	$(VENV)/bin/python bench/alloc_bench.py

@@ -28,10 +28,9 @@ from .program import Operand
 from .trace import parse_address
 
 ROOT = Path(__file__).resolve().parent.parent
-PLANT_HARNESS = ROOT / "sim" / "build" / "plant" / "Vplc_system"
+MAX_CORES = 8                 # plants this release builds a harness for
 PLAN_WORDS = 1024             # rtl/plc_system.v PlanWords
 SHARED_WORDS = 2048           # rtl/plc_system.v SharedWords (per ping-pong buffer)
-HW_CORES = 2                  # the harness is built for plc_system's default Cores
 PROTECT_CODES = {"semaphore": "semaphore", "pingpong": "pingpong", "none": "none"}
 
 
@@ -90,16 +89,22 @@ def period_clocks(period_us: int, clock_mhz: Fraction) -> int:
     return math.floor(Fraction(period_us) * clock_mhz + Fraction(1, 2))
 
 
-def ensure_plant_harness() -> Path:
-    """Build sim/build/plant/Vplc_system through the Makefile when missing or stale."""
-    PLANT_HARNESS.parent.mkdir(parents=True, exist_ok=True)
-    with open(PLANT_HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
+def plant_harness_path(cores: int) -> Path:
+    return ROOT / "sim" / "build" / f"plant{cores}" / "Vplc_system"
+
+
+def ensure_plant_harness(cores: int = 2) -> Path:
+    """Build sim/build/plant<cores>/Vplc_system (plc_system with Cores = cores) through
+    the Makefile when missing or stale."""
+    binary = plant_harness_path(cores)
+    binary.parent.mkdir(parents=True, exist_ok=True)
+    with open(binary.parent / ".lock", "w") as lock:   # concurrent runs build once
         fcntl.flock(lock, fcntl.LOCK_EX)
-        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "plant-harness"],
-                              capture_output=True, text=True)
-    if proc.returncode != 0 or not PLANT_HARNESS.exists():
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "plant-harness",
+                               f"CORES={cores}"], capture_output=True, text=True)
+    if proc.returncode != 0 or not binary.exists():
         raise PlantRunError("building the plant harness failed:\n" + proc.stdout + proc.stderr)
-    return PLANT_HARNESS
+    return binary
 
 
 def split_watch(watch: str, core_names: list[str]) -> dict[str, list[str]]:
@@ -127,8 +132,8 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
     from .errors import UsageError
     plant = load_plant(plant_path)
     shared_map = link(plant)
-    if len(plant.cores) != HW_CORES:
-        raise UsageError(f"this release simulates plants of {HW_CORES} cores "
+    if not 2 <= len(plant.cores) <= MAX_CORES:
+        raise UsageError(f"this release simulates plants of 2 to {MAX_CORES} cores "
                          f"({plant_path} has {len(plant.cores)})")
     if shared_map.size_words > SHARED_WORDS:
         raise PlantRunError(f"{shared_map.size_words} shared words exceed the shared "
@@ -183,14 +188,27 @@ def trace_base_of(trace: str) -> str:
 
 def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
               watch: str = "", waves: str | None = None, watchdog: int = 100_000,
-              costs: str = "paper") -> tuple[int, str, dict[str, list[dict[str, str]]]]:
-    """Run a plant on the Verilator plant harness.
+              costs: str = "paper", sim: str = "verilator"
+              ) -> tuple[int, str, dict[str, list[dict[str, str]]]]:
+    """Run a plant on the Verilator plant harness (sim "verilator"), or through
+    cocotb on Icarus ("icarus") or on Verilator ("cocotb-verilator"): the same traces.
 
     Returns (harness exit status, summary text, {core: rows as dicts of strings})."""
     import csv
+    if sim not in ("verilator", "icarus", "cocotb-verilator"):
+        raise PlantRunError(f"unknown simulator {sim!r}")
+    if sim != "verilator" and waves:
+        raise PlantRunError("--waves is written by the Verilator plant harness; "
+                            "use --sim verilator")
     shared_map, jobs, _, plans, until_clock = prepare_plant(
         plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
-    harness = ensure_plant_harness()
+    if sim != "verilator":
+        from .sim_cocotb_plant import run_plant_cocotb
+        base = str(Path(trace_base_of(trace)).resolve()) if trace else None
+        with tempfile.TemporaryDirectory(prefix="bitbyte-plant-") as tmpdir:
+            return run_plant_cocotb(shared_map, jobs, plans, until_clock,
+                                    sim.removeprefix("cocotb-"), base, tmpdir)
+    harness = ensure_plant_harness(len(shared_map.cores))
     with tempfile.TemporaryDirectory(prefix="bitbyte-plant-") as tmpdir:
         tmp = Path(tmpdir)
         base = str(Path(trace_base_of(trace)).resolve()) if trace else None

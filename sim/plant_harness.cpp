@@ -152,7 +152,8 @@ struct Core {
   std::FILE* trace = nullptr;
   std::vector<const uint8_t*> col_base;  // per column: storage, or nullptr (port / zero)
   uint64_t scans = 0, rows = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
-  uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0;
+  uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0, skips = 0;
+  unsigned copy_fail = 0;          // at the last traced scan
   bool finished = false;           // a scan ended at or after until_clock
   size_t next_stim = 0;
 };
@@ -438,6 +439,8 @@ int main(int argc, char** argv) {
         k.post_max = std::max(k.post_max, post);
         k.wait_sum += wait;
         k.overruns += over;
+        k.skips = get_field(top.skips_o, 32 * c, 32);
+        k.copy_fail = unsigned(get_field(top.copy_fail_o, c, 1));
         if (k.trace) {
           char buf[64];
           char* e = put_t_us(buf, g_n + 1, pf.clock_hz);
@@ -473,17 +476,15 @@ int main(int argc, char** argv) {
               pf.protect == 0 ? "semaphore" : pf.protect == 1 ? "pingpong" : "none",
               fmt_ratio(pf.clock_hz, 1000000, 6).c_str());
   for (Core& k : g_cores) {
-    const unsigned c = k.idx;
     std::printf("core %-11s scans %llu", k.cf->name.c_str(), (unsigned long long)k.scans);
     if (k.scans)
       std::printf(", cycles min %llu mean %s max %llu, pre max %llu, post max %llu, sem_wait %llu",
                   (unsigned long long)k.cyc_min, fmt_ratio(k.cyc_sum, k.scans, 3).c_str(),
                   (unsigned long long)k.cyc_max, (unsigned long long)k.pre_max,
                   (unsigned long long)k.post_max, (unsigned long long)k.wait_sum);
+    // over the traced scans (the run goes on until every core has finished)
     std::printf(", overruns %llu, skipped precycles %llu, copy_fail %u\n",
-                (unsigned long long)get_field(top.overruns_o, 32 * c, 32),
-                (unsigned long long)get_field(top.skips_o, 32 * c, 32),
-                unsigned(get_field(top.copy_fail_o, c, 1)));
+                (unsigned long long)k.overruns, (unsigned long long)k.skips, k.copy_fail);
   }
   std::printf("simulated        %s us, %llu clocks\n", us(g_n, 1).c_str(), (unsigned long long)g_n);
   if (!pf.waves.empty())

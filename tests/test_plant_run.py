@@ -112,3 +112,33 @@ def test_seed_6_1_example(tmp_path, layout):
     cleared = [r for r in p1 if _clocks(r, 1)[0] > _clocks(rst_on, 1)[3]]
     assert cleared and all(r["MW20"] == "0" and r["Q0.0"] == "0" for r in cleared[1:])
     assert max(int(r["MW20"]) for r in p1) == 13
+
+
+def test_three_cores_and_overruns(tmp_path):
+    """Cores is a parameter: a writer and two readers of one group (semaphore: whole
+    groups only); and a core whose period is shorter than its scan: every later scan
+    starts late, right after the previous one, and is counted as an overrun."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    import plantgen
+    writer, reader = plantgen.tearing_pair(8)
+    plant = plantgen.write_plant(tmp_path / "three", [("w", writer, 1), ("r1", reader, 0),
+                                                      ("r2", reader, 2)], layout="random")
+    status, summary, rows = run_plant(str(plant), until_us="300",
+                                      watch="r1.MW0,r1.MW7,r2.MW0,r2.MW7")
+    assert status == 0, summary
+    assert summary.count("core ") == 3
+    for core in ("r1", "r2"):
+        assert len(rows[core]) > 100
+        assert all(r["MW0"] == r["MW7"] for r in rows[core])
+        assert len({r["MW0"] for r in rows[core]}) > 50
+    # overruns: a 50-word core (its scan alone is about 2000 clocks = 20 us) every 5 us
+    a, b = plantgen.table4_pair(50)
+    plant = plantgen.write_plant(tmp_path / "late", [("a", a, 5), ("b", b, 1000)])
+    status, summary, rows = run_plant(str(plant), until_us="200")
+    assert status == 0, summary
+    late = rows["a"]
+    assert late[0]["overrun"] == "0" and all(r["overrun"] == "1" for r in late[1:])
+    for prev, r in zip(late, late[1:]):      # each starts in the clock after the last ended
+        start = _clocks(r, 100)[0]
+        assert start == _clocks(prev, 100)[3] and start > int(r["scan"]) * 500
+    assert f"overruns {len(late) - 1}," in summary.split("core b")[0]
