@@ -173,7 +173,7 @@ module core_seq #(
   // ---------------------------------------------------------------- control
   wire lock_wanted = (protect_i == ProtSem);
   assign lock_req_o = (state_q == StPreLock) || (state_q == StPostLock);
-  assign release_o  = lock_wanted && copy_done;
+  assign release_o  = lock_wanted && copy_done && (len_q != 0);  // an empty list took no lock
   assign sh_flip_o  = (protect_i == ProtPing) && copy_done && post_q;
   assign cpu_run_o  = (state_q == StRunStart);
 
@@ -288,5 +288,111 @@ module core_seq #(
   // verilator lint_off UNUSEDSIGNAL
   wire unused_entry = ^entry;          // not every field is used by every entry kind
   // verilator lint_on UNUSEDSIGNAL
+
+`ifdef FORMAL
+  // formal/core_seq.sby: the sequencer's protocol with the semaphore, the CPU and the
+  // local memories, by k-induction (small parameters; the plan RAM and every input
+  // of the CPU, the shared memory and the time base are free, within the assumptions).
+  reg f_past_valid = 1'b0;
+  always @(posedge clk_i) f_past_valid <= 1'b1;
+  always @(*) if (!f_past_valid) assume (!rst_ni);
+
+  // ---- the environment
+  // the configuration is constant while running (it may change only under reset)
+  always @(posedge clk_i) if (f_past_valid && rst_ni) begin
+    assume ($stable(protect_i));
+    assume ($stable(period_i));
+    assume ($stable(pre_len_i));
+    assume ($stable(post_base_i));
+    assume ($stable(post_len_i));
+  end
+  // the common time base counts up by one clock at most
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni)
+    assume (time_i == $past(time_i) || time_i == $past(time_i) + 64'd1);
+  // hsem grants only a request, in the clock it is made
+  always @(*) if (!lock_req_o) assume (!grant_i);
+
+  // ---- lock ownership, as hsem sees it: granted at an edge, owned from the next
+  // clock until (and including) the clock of the release
+  reg f_owned;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)        f_owned <= 1'b0;
+    else if (grant_i)   f_owned <= 1'b1;
+    else if (release_o) f_owned <= 1'b0;
+  end
+
+  wire f_sem     = (protect_i == ProtSem);
+  wire f_lockst  = (state_q == StPreLock) || (state_q == StPostLock);
+  wire f_prest   = (state_q == StPreLock) || (state_q == StPreCopy) ||
+                   (state_q == StRunStart) || (state_q == StScan);
+  wire f_postst  = (state_q == StPostLock) || (state_q == StPostCopy);
+  wire f_m_read  = post_q && i_item && i_bit;    // postcycle: local reads in stage I
+  wire f_w_read  = post_q && i_item && !i_bit;
+
+  always @(*) if (rst_ni) begin
+    // ---- (a) semaphore: shared memory is read and written only under the lock
+    if (f_sem && sh_re_o) assert (f_owned && !release_o);
+    if (f_sem && sh_we_o) assert (f_owned && !release_o);
+    if (f_sem && sh_flip_o) assert (1'b0);        // no flips without ping-pong
+    // the lock is held only while copying and asked for only while not held; a
+    // sequencer without the semaphore never asks
+    if (f_owned)    assert (f_sem && copying);
+    if (lock_req_o) assert (f_sem && !f_owned);
+    // Only the owner releases (an empty list goes to its copy state without the lock
+    // and does not release either).
+    if (release_o) assert (f_owned);
+
+    // ---- (b) the CPU is never started while a copy runs; the sequencer owns the
+    // local ports only in the copy states, and uses them only then
+    if (cpu_run_o) assert (!copy_en_o && !f_valid_q && !c_valid_q && !copying);
+    assert (copy_en_o == ((state_q == StPreCopy) || (state_q == StPostCopy)));
+    if (m_we_o || w_we_o || f_m_read || f_w_read) assert (copy_en_o);
+    if ((state_q == StRunStart) || (state_q == StScan)) assert (!copy_en_o);
+
+    // ---- (c) local writes only in a precycle, shared writes only in a postcycle
+    if (m_we_o || w_we_o) assert (state_q == StPreCopy && !post_q);
+    if (sh_re_o)          assert (state_q == StPreCopy && !post_q);
+    if (sh_we_o)          assert (state_q == StPostCopy && post_q);
+    if (f_m_read || f_w_read) assert (state_q == StPostCopy);
+
+    // ---- (d) no lock across a scan: the CPU starts and runs without the lock
+    if (cpu_run_o || state_q == StScan || state_q == StWait) assert (!f_owned);
+
+    // ---- inductive invariants of the state machine and the pipeline
+    assert (state_q <= StPostCopy);
+    if (f_prest)  assert (!post_q);
+    if (f_postst) assert (post_q);
+    if (!copying) assert (!f_valid_q && !c_valid_q);
+    if (f_lockst) assert (issued_q == {(PaW+1){1'b0}} && len_q != {(PaW+1){1'b0}});
+    if (copying)  assert (issued_q <= len_q);
+    if (f_valid_q || c_valid_q) assert (issued_q != {(PaW+1){1'b0}});
+    if (f_sem && copying && len_q != {(PaW+1){1'b0}} && !copy_done) assert (f_owned);
+    // a gathered postcycle word is pending only while stage C holds its next bit
+    if (gather_q != 32'd0) assert (c_post && c_bit_q && state_q == StPostCopy);
+  end
+
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    // ---- (e) copy_fail is sticky and set only by a skipped precycle
+    if ($past(copy_fail_o)) assert (copy_fail_o);
+    if (!$past(copy_fail_o) && copy_fail_o)
+      assert ($past(state_q) == StPreLock && !$past(grant_i) && $past(give_up) &&
+              state_q == StRunStart && skips_o == $past(skips_o) + 32'd1);
+    // ---- (f) a postcycle never gives up: it leaves StPostLock only with the grant
+    if ($past(state_q) == StPostLock)
+      assert (state_q == ($past(grant_i) ? StPostCopy : StPostLock));
+    // a precycle leaves StPreLock only with the grant (copy) or by giving up (skip)
+    if ($past(state_q) == StPreLock && state_q == StRunStart)
+      assert (!$past(grant_i) && $past(give_up) && copy_fail_o);
+    // a grant is followed by the copy that needs it
+    if ($past(grant_i)) assert (f_owned && copying);
+  end
+
+  // the interesting runs exist (formal/core_seq.sby, task cover)
+  always @(posedge clk_i) if (rst_ni) begin
+    cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
+    cover (f_sem && copy_fail_o && state_q == StScan);
+    cover (f_sem && sh_we_o && !sh_re_o && m_we_o == 1'b0 && gather_q != 32'd0);
+  end
+`endif
 endmodule
 `default_nettype wire

@@ -50,6 +50,11 @@ MUTATIONS = [
     ("byte_port", "byte_port.v",
      "if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;",
      "if (bus_re_i && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;"),  # misses
+    ("core_seq", "core_seq.v",
+     "assign release_o  = lock_wanted && copy_done && (len_q != 0);",
+     "assign release_o  = lock_wanted && copying && issued_q == len_q;"),  # frees mid-copy
+    ("core_seq", "core_seq.v", "StPostLock: if (grant_i) state_q <= StPostCopy;",
+     "StPostLock: if (grant_i || give_up) state_q <= StPostCopy;"),  # postcycle gives up
 ]
 
 
