@@ -100,7 +100,7 @@ def _clock_mhz(text: str) -> Fraction:
 
 def _check_mode(mode: str, exchange: str | None) -> str:
     """The exchange setting for a run: parallel mode defaults to handshake; serial
-    mode ignores --exchange (spec §4); free-running mode is not in this release."""
+    mode ignores --exchange (spec §4); free-running mode takes marker or queue-free."""
     if mode == "serial":
         return "handshake"
     if mode == "free":
@@ -318,14 +318,11 @@ def cmd_run_plant(args) -> int:
                        ("--clock-mhz", args.clock_mhz != "100")):
         if given:
             raise UsageError(f"{opt} does not apply to a plant (the plant file sets it)")
-    if args.sim != "verilator":
-        raise UsageError("plants run on the Verilator plant harness in this release "
-                         "(--sim verilator)")
     try:
         status, summary, _ = run_plant(args.program, until_us=args.until_us,
                                        trace=args.trace, watch=args.watch,
                                        waves=args.waves, watchdog=args.watchdog,
-                                       costs=args.costs)
+                                       costs=args.costs, sim=args.sim)
     except PlantRunError as e:
         raise SimError(str(e)) from None
     print(summary, end="")
