@@ -112,7 +112,7 @@ synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no swee
 # others are listed as not available. Writes docs/performance.md and docs/perf_*.png
 # from scratch; raw data in build/bench/. Not part of `make test` (a few minutes).
 .PHONY: bench
-BENCH_MODES ?= serial,parallel,free:queue-free
+BENCH_MODES ?= serial,parallel,parallel:queue,free:queue-free
 BENCH_EDGES ?= 1000
 
 bench: $(HARNESS) bench-alloc bench-multicore  ## scan time, response time, simulator speed -> docs/performance.md
