@@ -59,6 +59,7 @@ module core_seq #(
   // shared memory (shared_mem.v): read port, write port, ping-pong selects
   output wire                          sh_re_o,
   output wire [$clog2(SharedWords):0]  sh_raddr_o,   // {buffer, word}
+  output wire [$clog2(Cores)-1:0]      sh_rbank_o,   // the word's writer: its bank
   input  wire [31:0]                   sh_rdata_i,   // the word read the clock before
   output wire                          sh_we_o,
   output wire [$clog2(SharedWords):0]  sh_waddr_o,
@@ -150,6 +151,7 @@ module core_seq #(
 
   assign sh_re_o    = i_item && !post_q;
   assign sh_raddr_o = {rd_buf, i_word};
+  assign sh_rbank_o = writer_q;
 
   // stage C: finish the item of the last clock
   wire        c_pre  = c_valid_q && !post_q;

@@ -71,12 +71,18 @@ module plc_system #(
     if (Cores < 2) $error("plc_system: Cores must be at least 2");
   end
 
-  wire [Cores-1:0]      ready, lock_req, lock_release, grant, sh_re, sh_we, sh_flip, sel;
+  wire [Cores-1:0]      ready, lock_req, lock_release, grant, sh_we, sh_flip, sel;
+  // the read strobes: for the waveforms (the banks read in every clock)
+  // verilator lint_off UNUSEDSIGNAL
+  wire [Cores-1:0]      sh_re;
+  // verilator lint_on UNUSEDSIGNAL
   wire [Cores*AW-1:0]   sh_raddr, sh_waddr;
+  wire [Cores*$clog2(Cores)-1:0] sh_rbank;
+  wire                  sh_ready;
   wire [Cores*32-1:0]   sh_rdata, sh_wdata;
   reg                   running_q;
 
-  assign ready_o = &ready;
+  assign ready_o = (&ready) && sh_ready;
 
   // Common time base: clock 0 is the first clock in which the plant runs.
   always @(posedge clk_i or negedge rst_ni) begin
@@ -102,8 +108,9 @@ module plc_system #(
   shared_mem #(.Cores(Cores), .SharedWords(SharedWords)) u_shared_mem (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
-    .re_i   (sh_re),
+    .ready_o(sh_ready),
     .raddr_i(sh_raddr),
+    .rbank_i(sh_rbank),
     .rdata_o(sh_rdata),
     .we_i   (sh_we),
     .waddr_i(sh_waddr),
@@ -161,6 +168,7 @@ module plc_system #(
         .grant_i         (grant[c]),
         .sh_re_o         (sh_re[c]),
         .sh_raddr_o      (sh_raddr[c*AW +: AW]),
+        .sh_rbank_o      (sh_rbank[c*$clog2(Cores) +: $clog2(Cores)]),
         .sh_rdata_i      (sh_rdata[c*32 +: 32]),
         .sh_we_o         (sh_we[c]),
         .sh_waddr_o      (sh_waddr[c*AW +: AW]),

@@ -1,44 +1,74 @@
 `default_nettype none
 // Shared memory of a plant (docs/multicore.md): SharedWords 32-bit words SH0.., twice
 // (two buffers for ping-pong protection; the semaphore and `none` use buffer 0).
-// Every core has its own synchronous read port and its own write port, so copies of
-// different cores never wait for each other here: only the protection (the lock)
-// orders them, and with `none` a reader can really see half of a writer's
-// postcycle. Writes of different cores never hit one word: every shared word has
-// exactly one writer (the linker's rule). sel_o[c] is the buffer core c published
-// last (ping-pong): flip_i[c] toggles it at the end of c's postcycle.
+//
+// Every shared word has exactly one writer (the linker's rule), so the memory is
+// banked by writer: core w writes only bank w, through its own write port. Every core
+// also has its own read port into every bank (one synchronous block RAM per writer and
+// reader pair, Cores^2 in all) and names the bank with each read: the word's writer,
+// which its copy plan carries. So copies of different cores never wait for each other
+// here, only the protection orders them (with `none` a reader really can see half of
+// a postcycle), and everything maps onto plain 1-write 1-read block RAMs.
+// After reset the banks are cleared (2 * SharedWords clocks; ready_o), so that a word
+// nobody has published yet reads 0. sel_o[c] is the buffer core c published last
+// (ping-pong); flip_i[c] toggles it at the end of c's postcycle.
 module shared_mem #(
-  parameter integer Cores       = 2,    // ports
+  parameter integer Cores       = 2,    // cores: writers and readers (at least 2)
   parameter integer SharedWords = 512   // words per buffer (a power of two)
 ) (
-  input  wire                                clk_i,
-  input  wire                                rst_ni,
-  input  wire [Cores-1:0]                    re_i,
-  input  wire [Cores*($clog2(SharedWords)+1)-1:0] raddr_i,  // per core {buffer, word}
-  output reg  [Cores*32-1:0]                 rdata_o,       // the word read the clock before
-  input  wire [Cores-1:0]                    we_i,
+  input  wire                                     clk_i,
+  input  wire                                     rst_ni,
+  output wire                                     ready_o,   // cleared after reset
+  input  wire [Cores*($clog2(SharedWords)+1)-1:0] raddr_i,   // per core {buffer, word}
+  input  wire [Cores*$clog2(Cores)-1:0]           rbank_i,   // per core: the word's writer
+  output wire [Cores*32-1:0]                      rdata_o,   // the word read the clock before
+  input  wire [Cores-1:0]                         we_i,
   input  wire [Cores*($clog2(SharedWords)+1)-1:0] waddr_i,
-  input  wire [Cores*32-1:0]                 wdata_i,
-  input  wire [Cores-1:0]                    flip_i,
-  output reg  [Cores-1:0]                    sel_o
+  input  wire [Cores*32-1:0]                      wdata_i,
+  input  wire [Cores-1:0]                         flip_i,
+  output reg  [Cores-1:0]                         sel_o
 );
-  localparam integer AW = $clog2(SharedWords) + 1;
+  localparam integer AW  = $clog2(SharedWords) + 1;
+  localparam integer IdW = $clog2(Cores);
 
-  reg [31:0] mem [0:2*SharedWords-1];
+  reg  [AW:0]            clear_q;             // 2 * SharedWords when done
+  wire                   clearing = !clear_q[AW];
+  reg  [Cores*IdW-1:0]   rbank_q;             // the bank each read port read last clock
+  wire [Cores*Cores*32-1:0] bank_rdata;      // [(w*Cores + r)*32 +: 32]
 
-  integer c, w;
+  assign ready_o = !clearing;
+
+  genvar w, r;
+  generate
+    for (w = 0; w < Cores; w = w + 1) begin : g_writer
+      for (r = 0; r < Cores; r = r + 1) begin : g_reader
+        sync_ram #(.Words(2 * SharedWords), .Width(32)) u_bank (
+          .clk_i  (clk_i),
+          .we_i   (clearing || we_i[w]),
+          .waddr_i(clearing ? clear_q[AW-1:0] : waddr_i[w*AW +: AW]),
+          .wdata_i(clearing ? 32'd0 : wdata_i[w*32 +: 32]),
+          .raddr_i(raddr_i[r*AW +: AW]),
+          .rdata_o(bank_rdata[(w*Cores + r)*32 +: 32])
+        );
+      end
+    end
+    for (r = 0; r < Cores; r = r + 1) begin : g_read
+      assign rdata_o[r*32 +: 32] =
+        bank_rdata[({{(32-IdW){1'b0}}, rbank_q[r*IdW +: IdW]} * Cores + r) * 32 +: 32];
+    end
+  endgenerate
+
+  integer c;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (w = 0; w < 2 * SharedWords; w = w + 1) mem[w] <= 32'd0;
-      rdata_o <= {(Cores*32){1'b0}};
+      clear_q <= {(AW+1){1'b0}};
+      rbank_q <= {(Cores*IdW){1'b0}};
       sel_o   <= {Cores{1'b0}};
     end else begin
-      for (c = 0; c < Cores; c = c + 1) begin
-        if (we_i[c]) mem[waddr_i[c*AW +: AW]] <= wdata_i[c*32 +: 32];
-        // a read returns the word as it was before this clock's writes
-        if (re_i[c]) rdata_o[c*32 +: 32] <= mem[raddr_i[c*AW +: AW]];
+      if (clearing) clear_q <= clear_q + 1'b1;
+      rbank_q <= rbank_i;
+      for (c = 0; c < Cores; c = c + 1)
         if (flip_i[c]) sel_o[c] <= !sel_o[c];
-      end
     end
   end
 endmodule
