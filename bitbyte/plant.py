@@ -29,8 +29,9 @@ The rules (docs/multicore.md):
   crc32(NAME) mod R with R the smallest power of two >= max(16, 4 * variables),
   names taken in alphabetical order, probing upwards past words that are taken or
   next to a taken one: spread (no two variables in neighbouring words),
-  deterministic, collision-free.  Every copy is a single one (one variable), in the
-  core's declaration order.  There are no sectors.
+  deterministic, collision-free.  Every copy is a single one (one variable): a
+  postcycle in the core's declaration order, a precycle writer by writer (plant order),
+  each in the core's declaration order.  There are no sectors.
 """
 from __future__ import annotations
 
@@ -538,8 +539,9 @@ def link(plant: Plant) -> SharedMap:
     else:
         sectors, size = [], _layout_random(variables)
     variables.sort(key=lambda v: (v.word, -1 if v.bit is None else v.bit))
+    order = {core.name: k for k, (core, _) in enumerate(programs)}
     plans = [CorePlan(core.name, program, *_copies(plant.layout, core.name, program,
-                                                   variables, sectors))
+                                                   variables, sectors, order))
              for core, program in programs]
     return SharedMap(plant, plant.layout, variables, sectors, plans, size)
 
@@ -636,8 +638,8 @@ def _layout_random(variables: list[SharedVar]) -> int:
 
 
 def _copies(layout: str, core: str, program: Program, variables: list[SharedVar],
-            sectors: list[Sector]) -> tuple[list[Copy], list[Copy]]:
-    """(precycle, postcycle) of one core."""
+            sectors: list[Sector], order: dict[str, int]) -> tuple[list[Copy], list[Copy]]:
+    """(precycle, postcycle) of one core. order: the plant order of the cores."""
     by_name = {v.name: v for v in variables}
 
     def item(g: GlobalVar) -> CopyItem:
@@ -647,6 +649,11 @@ def _copies(layout: str, core: str, program: Program, variables: list[SharedVar]
     reads = [item(g) for g in program.globals if g.access == "READ"]
     writes = [item(g) for g in program.globals if g.access == "WRITE"]
     if layout == "random":
+        # A precycle takes its writers one after the other (plant order; each writer's
+        # variables in this core's declaration order): then it copies one writer's
+        # variables in one stretch, shorter than that writer's scan plus postcycle, so
+        # ping-pong cannot tear (docs/multicore.md, Protection).
+        reads.sort(key=lambda i: order[by_name[i.name].writer])
         return ([Copy(None, i.word, 1, (i,)) for i in reads],
                 [Copy(None, i.word, 1, (i,)) for i in writes])
 

@@ -288,6 +288,21 @@ def test_three_cores_a_variable_without_readers_and_one_with_two(tmp_path):
     assert shared.core("b").postcycle == [] and shared.core("c").postcycle == []
 
 
+def test_random_precycle_takes_its_writers_one_after_the_other(tmp_path):
+    """A reader declaring two writers' variables interleaved copies them writer by
+    writer (plant order), each writer's in its declaration order: one writer's
+    variables in one stretch (what keeps ping-pong tear-free)."""
+    a = globals_block("A0 AT MW0 : WRITE", "A1 AT MW1 : WRITE")
+    b = globals_block("B0 AT MW0 : WRITE", "B1 AT MW1 : WRITE")
+    r = globals_block("B1 AT MW11 : READ", "A1 AT MW1 : READ", "B0 AT MW10 : READ",
+                      "A0 AT MW0 : READ")
+    shared = link(load_plant(str(write_plant(tmp_path, {"a": a, "b": b, "r": r},
+                                             "random"))))
+    order = [c.items[0].name for c in shared.core("r").precycle]
+    assert order == ["A1", "A0", "B1", "B0"]
+    assert all(c.sector is None and len(c.items) == 1 for c in shared.core("r").precycle)
+
+
 def test_random_layout_never_puts_two_variables_side_by_side(tmp_path):
     names = [f"V{i}" for i in range(40)]
     a = globals_block(*(f"{n} AT MW{i} : WRITE" for i, n in enumerate(names)))
