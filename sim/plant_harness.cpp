@@ -155,6 +155,8 @@ struct Core {
   uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0, skips = 0;
   unsigned copy_fail = 0;          // at the last traced scan
   bool finished = false;           // a scan ended at or after until_clock
+  bool by_clock = false, by_scan = false;  // its stimulus kind
+  bool strobed = false;            // its bus strobes are high in the model
   size_t next_stim = 0;
 };
 
@@ -396,22 +398,29 @@ int main(int argc, char** argv) {
   };
 
   // ---- the clocks
-  for (Core& k : g_cores) if (k.cf->rf.stim_kind == "scan") apply_stim(k, 0);
+  for (Core& k : g_cores) {
+    k.by_clock = k.cf->rf.stim_kind == "clock";
+    k.by_scan = k.cf->rf.stim_kind == "scan";
+    if (k.by_scan) apply_stim(k, 0);
+  }
   const uint64_t until = uint64_t(pf.until_clock);
   bool fault = false;
   direct = !wave;  // the model is initialised by now
   for (g_n = 0;; ++g_n) {
     for (Core& k : g_cores) {                         // inputs of clock g_n
-      if (k.cf->rf.stim_kind == "clock") apply_stim(k, g_n);
+      if (k.by_clock) apply_stim(k, g_n);
       const bool run = k.want == Core::kStart || k.want == Core::kBus ||
                        (k.want == Core::kSleep && g_n >= k.wake) ||
                        (k.want == Core::kWaitNext && get_field(top.byte_next_o, k.idx, 1));
+      if (!run && !k.strobed) continue;            // an idle core: its bus stays idle
       k.re = k.we = false;
       if (run) { g_cur = &k; swapcontext(&g_sched, &k.ctx); }
+      const bool access = k.want == Core::kBus;
       set_field(top.bus_addr_i, 9 * k.idx, 9, k.addr);
       set_field(top.bus_wdata_i, 32 * k.idx, 32, k.wdata);
-      set_field(top.bus_re_i, k.idx, 1, k.want == Core::kBus && k.re);
-      set_field(top.bus_we_i, k.idx, 1, k.want == Core::kBus && k.we);
+      set_field(top.bus_re_i, k.idx, 1, access && k.re);
+      set_field(top.bus_we_i, k.idx, 1, access && k.we);
+      k.strobed = access;
     }
     tick_half(0);
     for (Core& k : g_cores)
@@ -424,7 +433,7 @@ int main(int argc, char** argv) {
     for (Core& k : g_cores) {
       const unsigned c = k.idx;
       if (get_field(top.fault_o, c, 1)) fault = true;
-      if (get_field(top.scan_done_o, c, 1) && k.cf->rf.stim_kind == "scan")
+      if (k.by_scan && get_field(top.scan_done_o, c, 1))
         apply_stim(k, get_field(top.scan_count_o, 32 * c, 32));  // from the next latch on
       if (get_field(top.cycle_done_o, c, 1) && !k.finished) {
         const uint64_t cycles = get_field(top.scan_cycles_o, 32 * c, 32);
