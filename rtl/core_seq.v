@@ -13,7 +13,9 @@
 // period is skipped (the core runs on its old local copies, sticky copy_fail); a
 // postcycle always waits. 1 ping-pong — a writer writes the buffer readers do not
 // read and flips it at the end of its postcycle; a reader reads, for each writer,
-// the buffer published when its precycle began. 2 none — no lock (shows tearing).
+// the buffer published when its precycle began; if that writer starts overwriting
+// the buffer before the reader has read all it reads from it (a very fast writer), the
+// read could be torn: copy_fail is set. 2 none — no lock (shows tearing).
 //
 // The copy plan (plan RAM, written by the toolchain) is a list of copies, each a
 // descriptor followed by its items; the precycle's list starts at 0 (pre_len_i
@@ -65,6 +67,7 @@ module core_seq #(
   output wire [$clog2(SharedWords):0]  sh_waddr_o,
   output wire [31:0]                   sh_wdata_o,
   input  wire [Cores-1:0]              sh_sel_i,     // per writer: the buffer to read
+  input  wire [Cores-1:0]              sh_posting_i, // per core: writes shared memory now
   output wire                          sh_flip_o,    // ping-pong: publish this core's buffer
   // local memories: M bits (bit_proc's copy port), MW words (plc_core's word RAM)
   output wire                          copy_en_o,    // the sequencer owns both ports
@@ -82,7 +85,8 @@ module core_seq #(
   output reg  [31:0]                   post_clocks_o, // postcycle incl. waits
   output reg  [31:0]                   sem_wait_o,    // clocks spent waiting for the lock
   output reg                           overrun_o,     // this scan started late
-  output reg                           copy_fail_o,   // sticky: a precycle was skipped
+  output reg                           copy_fail_o,   // sticky: a precycle was skipped,
+                                                      // or overtaken (ping-pong)
   output reg  [31:0]                   overruns_o,    // scans that started late
   output reg  [31:0]                   skips_o        // precycles skipped
 );
@@ -123,6 +127,7 @@ module core_seq #(
   reg [31:0]     gather_q;             // postcycle: bits of the shared word so far
   reg [IdW-1:0]  writer_q;             // the current copy's writer
   reg [Cores-1:0] sel_snap_q;          // ping-pong selects when the precycle began
+  reg [Cores-1:0] dirty_q;             // ping-pong: writers that began overwriting them
   wire [31:0]    entry;
 
   sync_ram #(.Words(PlanWords), .Width(32)) u_plan_ram (
@@ -150,6 +155,11 @@ module core_seq #(
   wire           wr_buf  = (protect_i == ProtPing) && !own_sel;
 
   assign sh_re_o    = i_item && !post_q;
+  // Ping-pong: writer w overwrites the buffer this precycle reads once it has published
+  // again (its select moved) and writes; a read of w after that may mix two postcycles.
+  wire [Cores-1:0] overwrite = sh_posting_i & (sh_sel_i ^ sel_snap_q);
+  wire             overtaken = (protect_i == ProtPing) && sh_re_o &&
+                               (dirty_q[writer_q] || overwrite[writer_q]);
   assign sh_raddr_o = {rd_buf, i_word};
   assign sh_rbank_o = writer_q;
 
@@ -210,6 +220,7 @@ module core_seq #(
       gather_q      <= 32'd0;
       writer_q      <= {IdW{1'b0}};
       sel_snap_q    <= {Cores{1'b0}};
+      dirty_q       <= {Cores{1'b0}};
       pre_cnt_q     <= 32'd0;
       post_cnt_q    <= 32'd0;
       wait_cnt_q    <= 32'd0;
@@ -239,6 +250,8 @@ module core_seq #(
         c_local_q <= i_local;
       end
       if (c_post && c_bit_q) gather_q <= sh_we_o ? 32'd0 : gathered;
+      if (state_q == StPreCopy) dirty_q <= dirty_q | overwrite;
+      if (overtaken) copy_fail_o <= 1'b1;
 
       case (state_q)
         StWait: if (run_i && (time_i >= nominal_q || !started_q)) begin
@@ -251,6 +264,7 @@ module core_seq #(
           post_cnt_q <= 32'd0;
           wait_cnt_q <= 32'd0;
           sel_snap_q <= sh_sel_i;
+          dirty_q    <= {Cores{1'b0}};
           state_q    <= (lock_wanted && pre_len_i != 0) ? StPreLock : StPreCopy;
           base_q     <= {PaW{1'b0}};
           len_q      <= pre_len_i;
@@ -374,11 +388,13 @@ module core_seq #(
   end
 
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    // ---- (e) copy_fail is sticky and set only by a skipped precycle
+    // ---- (e) copy_fail is sticky and set only by a skipped precycle or, with
+    // ping-pong, by a precycle read that its writer overtook
     if ($past(copy_fail_o)) assert (copy_fail_o);
     if (!$past(copy_fail_o) && copy_fail_o)
-      assert ($past(state_q) == StPreLock && !$past(grant_i) && $past(give_up) &&
-              state_q == StRunStart && skips_o == $past(skips_o) + 32'd1);
+      assert (($past(state_q) == StPreLock && !$past(grant_i) && $past(give_up) &&
+               state_q == StRunStart && skips_o == $past(skips_o) + 32'd1) ||
+              ($past(overtaken) && $past(state_q) == StPreCopy && protect_i == ProtPing));
     // ---- (f) a postcycle never gives up: it leaves StPostLock only with the grant
     if ($past(state_q) == StPostLock)
       assert (state_q == ($past(grant_i) ? StPostCopy : StPostLock));

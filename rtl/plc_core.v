@@ -63,6 +63,7 @@ module plc_core #(
   output wire [$clog2(SharedWords):0]  sh_waddr_o,
   output wire [31:0]                   sh_wdata_o,
   input  wire [Cores-1:0]              sh_sel_i,
+  input  wire [Cores-1:0]              sh_posting_i,  // which cores write shared memory now
   output wire                          sh_flip_o,
   // status
   output wire                          scan_done_o,
@@ -207,6 +208,7 @@ module plc_core #(
     .sh_waddr_o       (sh_waddr_o),
     .sh_wdata_o       (sh_wdata_o),
     .sh_sel_i         (sh_sel_i),
+    .sh_posting_i     (sh_posting_i),
     .sh_flip_o        (sh_flip_o),
     .copy_en_o        (copy_en),
     .m_we_o           (m_we),

@@ -174,6 +174,7 @@ module plc_system #(
         .sh_waddr_o      (sh_waddr[c*AW +: AW]),
         .sh_wdata_o      (sh_wdata[c*32 +: 32]),
         .sh_sel_i        (sel),
+        .sh_posting_i    (sh_we),
         .sh_flip_o       (sh_flip[c]),
         .scan_done_o     (scan_done_o[c]),
         .scan_count_o    (scan_count_o[c*32 +: 32]),

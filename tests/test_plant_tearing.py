@@ -32,7 +32,8 @@ READER_SCANS = 100_000       # per protection mode, summed over the runs
 
 def _tearing_runs(tmp_path, protection: str, seed: int):
     """Runs with random periods and reader phases until READER_SCANS reader scans;
-    returns (reader scans, torn scans, distinct values seen)."""
+    returns (reader scans, torn scans, distinct values seen). No run may end with the
+    reader's copy_fail set (no skip, no ping-pong precycle overtaken by its writer)."""
     rng = random.Random(seed)
     scans = torn = 0
     seen = set()
@@ -48,6 +49,8 @@ def _tearing_runs(tmp_path, protection: str, seed: int):
         status, summary, rows = run_plant(
             str(plant), until_us="400", watch=",".join(f"r.MW{i}" for i in range(GROUP)))
         assert status == 0, summary
+        if protection != "none":
+            assert rows["r"][-1]["copy_fail"] == "0", summary
         for row in rows["r"]:
             group = {row[f"MW{i}"] for i in range(GROUP)}
             torn += len(group) > 1
@@ -112,3 +115,27 @@ def test_contention_spin_bounded_grant_and_skip(tmp_path):
     # the writer's postcycle always waits (never skipped): its data keeps flowing
     a = rows["a"]
     assert int(a[-1]["scan"]) >= 5 and all(r["copy_fail"] == "0" for r in a)
+
+
+def test_pingpong_overtaken_by_a_fast_bit_writer_is_flagged(tmp_path):
+    """Ping-pong's limit: a writer that publishes 32 bit variables from a 2-instruction
+    scan can begin overwriting the buffer a reader (copying them in the opposite
+    order) is still reading. The reader's precycle notices it and sets copy_fail:
+    a possibly mixed copy is never silent."""
+    names = [f"B{i}" for i in range(32)]
+    writer = ("VAR_GLOBAL\n" + "".join(f"  {n} AT M{i // 8}.{i % 8} : WRITE;\n"
+                                       for i, n in enumerate(names))
+              + "END_VAR\n      NOP\n      END\n")
+    reader = ("VAR_GLOBAL\n" + "".join(f"  {n} AT M{i // 8}.{i % 8} : READ;\n"
+                                       for i, n in reversed(list(enumerate(names))))
+              + "END_VAR\n      NOP\n      END\n")
+    flagged = 0
+    for run, (w_period, r_period) in enumerate([(0, 0), (0, 1), (1, 0), (0, 2)]):
+        plant = plantgen.write_plant(tmp_path / f"fast{run}",
+                                     [("w", writer, w_period), ("r", reader, r_period)],
+                                     protection="pingpong", layout="random")
+        status, summary, rows = run_plant(str(plant), until_us="100")
+        assert status == 0, summary
+        flagged += rows["r"][-1]["copy_fail"] == "1"
+        assert all(r["copy_fail"] == "0" for r in rows["w"])   # the writer reads nothing
+    assert flagged > 0
