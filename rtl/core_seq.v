@@ -25,7 +25,8 @@
 //              [24:12] shared word, [11:0] local address (M bit index or MW index)
 // Entries stream through a 3-stage pipeline (fetch the entry, access the source,
 // write the destination), one per clock without stalls: a copy of n items takes
-// 1 + n clocks, a list 2 more to fill and drain. In a postcycle consecutive bit
+// 1 + n clocks, a list 3 more (fill, drain, and the clock that releases the lock or
+// publishes the ping-pong buffer, with no access). In a postcycle consecutive bit
 // items of one shared word are gathered into one write (the writer owns the word).
 module core_seq #(
   parameter integer Cores       = 2,     // cores of the plant (writer ids)
@@ -195,6 +196,7 @@ module core_seq #(
   wire give_up = (period_i != 32'd0) &&
                  (time_i + need > nominal_q + {32'd0, period_i});
 
+  wire       late = started_q && (period_i != 32'd0) && (time_i > nominal_q);
   reg [31:0] pre_cnt_q, post_cnt_q, wait_cnt_q;
   wire       in_pre  = (state_q == StPreLock) || (state_q == StPreCopy) ||
                        (state_q == StRunStart);
@@ -256,8 +258,9 @@ module core_seq #(
       case (state_q)
         StWait: if (run_i && (time_i >= nominal_q || !started_q)) begin
           // scan 0 starts at time 0; later ones at their nominal start or, late, now
-          overrun_o  <= started_q && (time_i > nominal_q);
-          if (started_q && time_i > nominal_q) overruns_o <= overruns_o + 32'd1;
+          // late: after its nominal start (back to back, period 0, has none)
+          overrun_o  <= late;
+          if (late) overruns_o <= overruns_o + 32'd1;
           if (!started_q || period_i == 32'd0) nominal_q <= time_i;
           started_q  <= 1'b1;
           pre_cnt_q  <= 32'd1;           // the precycle begins in this clock
