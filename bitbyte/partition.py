@@ -701,8 +701,10 @@ class _Seg:
 
 def _segments(bit: list[PartInstr], lo: int, hi: int, fby_no: dict, fbi_no: dict,
               wait_on: dict) -> list[_Seg] | None:
-    """The rungs of the block bit[lo:hi]; None when the block starts inside
-    parentheses (then it is left alone)."""
+    """The rungs of the block bit[lo:hi]; None when the block closes a parenthesis
+    it did not open (then it is left alone). A block that starts inside parentheses
+    is split as usual: its first rung (a barrier) holds everything up to the first
+    RLO load at depth 0."""
     segs: list[_Seg] = []
     depth = 0
     for n in range(lo, hi):
@@ -742,8 +744,6 @@ def _segments(bit: list[PartInstr], lo: int, hi: int, fby_no: dict, fbi_no: dict
                 seg.writes.add(key)
             else:
                 seg.reads.add(key)
-    if segs and segs[0].lo != lo:
-        return None
     if segs:
         # the block's last rung stays last: what it leaves (the RLO, an open
         # parenthesis) may be used after the block's end (a label's fall-through)
@@ -916,7 +916,8 @@ def _model_clocks(part: Partition, bit: list[PartInstr], costs) -> float:
 
 def _no_deadlock(bit: list[PartInstr], lo: int, hi: int, byte: list[PartInstr],
                  fby_no: dict, fbi_no: dict, wait_on: dict) -> bool:
-    """Can the block bit[lo:hi] deadlock against the byte side?  The exchange events
+    """True when the block bit[lo:hi] in its present order cannot deadlock against
+    the byte side.  The exchange events
     of the block (its `= FBY` / FBI reads / bit-16 reads; on the byte side the READs,
     WRITEs and updates they pair with, in byte order) are played with one place per
     direction, the tightest exchange there is (a queue of depth 1): whatever the two
