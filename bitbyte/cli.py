@@ -172,7 +172,7 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
             raise UsageError(f"--channels must be 1..{config.channels}")
         part = partition(program, channels or config.channels, config=config,
                          status_sync=not free,
-                         hardware_wait=not free)
+                         hardware_wait=not free, costs=costs)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
         if free and exchange == "marker":
             _one_cell_per_condition(program, part, channels or config.channels)
