@@ -188,6 +188,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.in_pins_i.value = 0
     dut.in_words_i.value = 0               # nothing of the previous job carries over
     dut.mcopy_en_i.value = 0               # a single CPU: no copy engine
+    dut.time_start_i.value = 0             # ... and its time base starts at its latch
     dut.mcopy_we_i.value = 0
     dut.mcopy_addr_i.value = 0
     dut.mcopy_wdata_i.value = 0

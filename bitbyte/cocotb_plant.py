@@ -15,8 +15,8 @@ clock 0 of the plant's time base. Per clock n:
      request is put on its slice of the bus ports;
   2. the clock-low half (clk_i = 0, inputs settled): each bus access's ready and read
      data;
-  3. the rising edge; then per core: `scan_done_o` applies the scan-keyed inputs of the
-     next scan, `cycle_done_o` writes a trace row with t_us = (n + 1) / clock_mhz.
+  3. the rising edge; then per core: `cycle_done_o` writes a trace row with t_us =
+     (n + 1) / clock_mhz, then applies the scan-keyed inputs of the next scan.
 
 The clock is driven by this module (two Timers per clock, the edge in the middle),
 not by a free-running cocotb Clock, so that the inputs of a clock are always written
@@ -366,7 +366,7 @@ class Plant:
             dut.plan_we_i.value = 0
             if cc["pre_len"] > plan_words or cc["post_base"] + cc["post_len"] > plan_words:
                 raise RuntimeError(f"core {c}: plan too long")
-            period = _set_field(period, 32 * c, 32, cc["period"])
+            period = _set_field(period, 64 * c, 64, cc["period"])
             pre_len = _set_field(pre_len, (aw + 1) * c, aw + 1, cc["pre_len"])
             post_base = _set_field(post_base, aw * c, aw, cc["post_base"])
             post_len = _set_field(post_len, (aw + 1) * c, aw + 1, cc["post_len"])
@@ -511,15 +511,18 @@ class Plant:
             all_done = True
             if fault_bits:
                 fault = True
-            if sdone or cdone:
+            if cdone:
                 for k in cores:
                     c = k.idx
-                    if (sdone >> c) & 1 and c in scan_stim:
-                        self.apply_stim(k, _field(int(count_h.value), 32 * c, 32))
-                    if (cdone >> c) & 1 and not k.finished:
-                        self.row(k, n)
-                        if n + 1 >= until:
-                            k.finished = True
+                    if (cdone >> c) & 1:
+                        if not k.finished:
+                            self.row(k, n)
+                            if n + 1 >= until:
+                                k.finished = True
+                        # the next scan's scan-keyed inputs: after this row, so that
+                        # its PI / IW columns are this scan's, and before its latch
+                        if c in scan_stim:
+                            self.apply_stim(k, _field(int(count_h.value), 32 * c, 32))
             for k in cores:
                 all_done = all_done and k.finished
             if fault or all_done:
@@ -594,9 +597,13 @@ class Plant:
         for k in self.cores:
             line = f"core {k.name:<11} scans {k.scans}"
             if k.scans:
+                def us(clocks, n=1):
+                    return format_decimal(Fraction(clocks * 1_000_000, n * hz))
                 line += (f", cycles min {k.cyc_min} mean "
                          f"{format_decimal(Fraction(k.cyc_sum, k.scans), 3)} max "
-                         f"{k.cyc_max}, pre max {k.pre_max}, post max {k.post_max}, "
+                         f"{k.cyc_max}, scan time [us] min {us(k.cyc_min)} mean "
+                         f"{us(k.cyc_sum, k.scans)} max {us(k.cyc_max)}, "
+                         f"pre max {k.pre_max}, post max {k.post_max}, "
                          f"sem_wait {k.wait_sum}")
             # over the traced scans (the run goes on until every core has finished)
             line += (f", overruns {k.overruns}, skipped precycles {k.skips}, "

@@ -60,3 +60,26 @@ class UsageError(Exception):
     """A command-line mistake: printed as `bitbyte: message`, exit 2.  Defined here,
     not in cli.py, so that modules cli.py calls raise the very class it catches
     (also when cli.py runs as `python -m bitbyte.cli`, i.e. as __main__)."""
+
+
+def read_utf8(path: str, what: str) -> str:
+    """A source file's text; unreadable, or a byte that is not UTF-8: SourceError at
+    the file (or at the bad byte's line and column). what names the file's kind in the
+    message ("a stimulus is UTF-8 text")."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as exc:
+        raise SourceError(path, 0, 0, f"cannot read: {exc.strerror or exc}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        before = data[: exc.start]
+        line = before.count(b"\n") + 1
+        line_start = before.rfind(b"\n") + 1
+        col = len(before[line_start:].decode("utf-8", errors="replace")) + 1
+        end = data.find(b"\n", exc.start)
+        shown = data[line_start: len(data) if end < 0 else end]
+        raise SourceError(path, line, col,
+                          f"invalid UTF-8 byte 0x{data[exc.start]:02X}: {what} is UTF-8 text",
+                          shown.decode("utf-8", errors="replace").rstrip("\r")) from None

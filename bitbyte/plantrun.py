@@ -24,6 +24,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from .plant import Copy, SharedMap, link, load_plant
+from .errors import SourceError, UsageError
 from .program import Operand
 from .trace import parse_address
 
@@ -78,15 +79,20 @@ def encode_plans(shared_map: SharedMap) -> list[CorePlanWords]:
     for plan in shared_map.cores:
         pre, post = encode(plan.precycle), encode(plan.postcycle)
         if len(pre) + len(post) > PLAN_WORDS:
-            raise PlantRunError(f"core {plan.name}: copy plan of {len(pre) + len(post)} "
-                                f"entries exceeds the plan RAM ({PLAN_WORDS})")
+            raise SourceError(shared_map.plant.path, 0, 0,
+                              f"core {plan.name}: copy plan of {len(pre) + len(post)} "
+                              f"entries exceeds the plan RAM ({PLAN_WORDS} entries)")
         plans.append(CorePlanWords(pre + post, len(pre), len(pre), len(post)))
     return plans
 
 
 def period_clocks(period_us: int, clock_mhz: Fraction) -> int:
-    """The period in clocks, rounded to the nearest clock (exact for whole MHz)."""
-    return math.floor(Fraction(period_us) * clock_mhz + Fraction(1, 2))
+    """The period in thousandths of a clock, as the core sequencer takes it: exact,
+    since the clock is a whole number of kHz (scan k starts in the first clock at or
+    after k * period_us)."""
+    milli = Fraction(period_us) * clock_mhz * 1000
+    assert milli.denominator == 1, "clock_mhz is a whole number of kHz"
+    return int(milli)
 
 
 def plant_harness_path(cores: int) -> Path:
@@ -133,11 +139,11 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
     plant = load_plant(plant_path)
     shared_map = link(plant)
     if not 2 <= len(plant.cores) <= MAX_CORES:
-        raise UsageError(f"this release simulates plants of 2 to {MAX_CORES} cores "
-                         f"({plant_path} has {len(plant.cores)})")
+        raise SourceError(plant_path, 0, 0, f"this release simulates plants of 2 to "
+                          f"{MAX_CORES} cores, not {len(plant.cores)}")
     if shared_map.size_words > SHARED_WORDS:
-        raise PlantRunError(f"{shared_map.size_words} shared words exceed the shared "
-                            f"memory ({SHARED_WORDS})")
+        raise SourceError(plant_path, 0, 0, f"{shared_map.size_words} shared words exceed "
+                          f"the shared memory ({SHARED_WORDS} words)")
     plans = encode_plans(shared_map)
     watches = split_watch(watch, [c.name for c in plant.cores])
     jobs, columns = [], []
@@ -202,6 +208,16 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
                             "use --sim verilator")
     shared_map, jobs, _, plans, until_clock = prepare_plant(
         plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
+    if trace:          # every trace file writable before the run (OSError: exit 1)
+        for core in shared_map.plant.cores:
+            open(f"{trace_base_of(trace)}.{core.name}.csv", "w").close()
+    vcd = None
+    if waves:
+        if not waves.lower().endswith((".fst", ".vcd")):
+            raise UsageError("--waves: the file must end in .fst or .vcd")
+        waves = str(Path(waves).resolve())
+        if waves.lower().endswith(".vcd"):      # the harness writes FST: convert after
+            vcd, waves = waves, waves + ".tmp.fst"
     if sim != "verilator":
         from .sim_cocotb_plant import run_plant_cocotb
         base = str(Path(trace_base_of(trace)).resolve()) if trace else None
@@ -228,4 +244,11 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     summary = proc.stdout
     if proc.returncode == 3:
         summary += proc.stderr
+    if vcd:
+        conv = subprocess.run(["fst2vcd", "-f", waves, "-o", vcd], capture_output=True,
+                              text=True)
+        if conv.returncode != 0:
+            raise PlantRunError(f"fst2vcd failed (is gtkwave installed?): {conv.stderr}")
+        Path(waves).unlink()
+        summary = summary.replace(waves, vcd)
     return proc.returncode, summary, rows

@@ -25,7 +25,7 @@ from .config import Config
 from .program import Operand
 from .trace import mhz, operand_fits, resolve_operand
 
-from .errors import SourceError
+from .errors import SourceError, read_utf8
 
 KINDS = ("scan", "t_us")
 
@@ -247,8 +247,7 @@ def load_stimulus(path: str, symbols: dict[str, Operand] | None = None,
                   config: Config | None = None) -> Stimulus:
     """Read STIM.csv; every malformed line raises SourceError(path, line, col, ...)."""
     config = config or Config()
-    with open(path, newline="") as f:
-        text = f.read()
+    text = read_utf8(path, "a stimulus")   # as open(newline=""): line ends kept
     return parse_stimulus(text, path, symbols, config)
 
 

@@ -24,6 +24,7 @@ module bitbyte_cpu #(
   input  wire [31:0]                  prog_wdata_i,
   // control and status
   input  wire                         run_i,             // RUN/STOP switch
+  input  wire                         time_start_i,      // plant: its clock 0 starts the time base
   input  wire                         parallel_i,        // parallel mode: parts meet at END
   input  wire                         free_i,            // free-running mode: they never meet
   input  wire                         marker_write_buffer_i,  // marker area: publish at scan end
@@ -278,6 +279,7 @@ module bitbyte_cpu #(
     .bus_rdata_o     (bus_rdata_o),
     .bus_ready_o     (bus_ready_o),
     .latch_i         (latch),
+    .time_start_i    (time_start_i),
     .exec_i          (exec),
     .fault_i         (fault_o),
     .byte_scan_done_o(byte_scan_done),

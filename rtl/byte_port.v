@@ -21,6 +21,7 @@ module byte_port #(
   output reg                           bus_ready_o,
   // scan state
   input  wire                          latch_i,      // a PII latch (clock 0 starts the time base)
+  input  wire                          time_start_i, // a plant's clock 0: start it already
   input  wire                          exec_i,
   input  wire                          fault_i,
   // parallel mode: the byte side reports the end of its part of the scan
@@ -90,11 +91,12 @@ module byte_port #(
   localparam [31:0] IdValue     = 32'hB17B_7E01;
 
   // ---------------------------------------------------------------- time base
-  // Clock 0 is scan 0's latch; TIME_MS = floor(clock / TICK_DIV) without a divider:
-  // a sub-counter wraps every TICK_DIV clocks.
+  // Clock 0 is scan 0's latch, or in a plant core the plant's clock 0 (time_start_i,
+  // so that its timers run on plant time); TIME_MS = floor(clock / TICK_DIV) without
+  // a divider: a sub-counter wraps every TICK_DIV clocks.
   reg        started_q;
   reg [31:0] clock_q, ms_q, sub_q, tick_div_q;
-  wire       counting = started_q || latch_i;
+  wire       counting = started_q || latch_i || time_start_i;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       started_q <= 1'b0;
@@ -273,8 +275,9 @@ module byte_port #(
     if ($past(bus_we_i) && $past(bus_addr_i) == AddrScanDone) assert (byte_scan_done_o);
     else if ($past(latch_i)) assert (!byte_scan_done_o);
     else assert (byte_scan_done_o == $past(byte_scan_done_o));
-    // the time base counts every clock from the first latch on
-    if ($past(started_q) || $past(latch_i)) assert (clock_q == $past(clock_q) + 32'd1);
+    // the time base counts every clock from the first latch (or plant start) on
+    if ($past(started_q) || $past(latch_i) || $past(time_start_i))
+      assert (clock_q == $past(clock_q) + 32'd1);
     else assert (clock_q == $past(clock_q));
   end
   always @(posedge clk_i) if (rst_ni) cover (stalls_byte_o == 32'd2);

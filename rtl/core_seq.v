@@ -42,7 +42,8 @@ module core_seq #(
   input  wire [$clog2(PlanWords)-1:0]  plan_waddr_i,
   input  wire [31:0]                   plan_wdata_i,
   // configuration, constant while running
-  input  wire [31:0]                   period_i,     // clocks between scan starts; 0: back to back
+  input  wire [63:0]                   period_i,     // between scan starts, in 1/1000 clock
+                                                      // (period_us x clock kHz); 0: back to back
   input  wire [$clog2(PlanWords):0]    pre_len_i,    // precycle entries (from plan address 0)
   input  wire [$clog2(PlanWords)-1:0]  post_base_i,  // first postcycle entry
   input  wire [$clog2(PlanWords):0]    post_len_i,   // postcycle entries
@@ -109,7 +110,8 @@ module core_seq #(
   localparam [2:0] StPostCopy = 3'd6;
 
   reg [2:0]  state_q;
-  reg [63:0] nominal_q;                // nominal start of the next / current scan
+  reg [63:0] nominal_q;                // nominal start of the next / current scan, in
+                                       // 1/1000 clock: scan k at k * period exactly
   reg        started_q;                // scan 0 has been scheduled
 
   // ---------------------------------------------------------------- copy pipeline
@@ -193,10 +195,14 @@ module core_seq #(
   // Fig. 8: waiting is worth it only while the copies and the scan still fit.
   wire [63:0] need = {{(63-PaW){1'b0}}, pre_len_i} + {{(63-PaW){1'b0}}, post_len_i} +
                      {32'd0, cpu_scan_cycles_i} + 64'd6;
-  wire give_up = (period_i != 32'd0) &&
-                 (time_i + need > nominal_q + {32'd0, period_i});
-
-  wire       late = started_q && (period_i != 32'd0) && (time_i > nominal_q);
+  // Times in 1/1000 clock: a period need not be a whole number of clocks (it is
+  // period_us x clock kHz), so scan k starts in the first clock at or after k * period
+  // without drifting.
+  wire [63:0] now_m = time_i * 64'd1000;
+  wire give_up = (period_i != 64'd0) &&
+                 ((time_i + need) * 64'd1000 > nominal_q + period_i);
+  // late: not in the first clock at or after the nominal start (period 0 has none)
+  wire       late = started_q && (period_i != 64'd0) && (now_m >= nominal_q + 64'd1000);
   reg [31:0] pre_cnt_q, post_cnt_q, wait_cnt_q;
   wire       in_pre  = (state_q == StPreLock) || (state_q == StPreCopy) ||
                        (state_q == StRunStart);
@@ -256,12 +262,12 @@ module core_seq #(
       if (overtaken) copy_fail_o <= 1'b1;
 
       case (state_q)
-        StWait: if (run_i && (time_i >= nominal_q || !started_q)) begin
+        StWait: if (run_i && (now_m >= nominal_q || !started_q)) begin
           // scan 0 starts at time 0; later ones at their nominal start or, late, now
           // late: after its nominal start (back to back, period 0, has none)
           overrun_o  <= late;
           if (late) overruns_o <= overruns_o + 32'd1;
-          if (!started_q || period_i == 32'd0) nominal_q <= time_i;
+          if (!started_q || period_i == 64'd0) nominal_q <= now_m;
           started_q  <= 1'b1;
           pre_cnt_q  <= 32'd1;           // the precycle begins in this clock
           post_cnt_q <= 32'd0;
@@ -293,7 +299,7 @@ module core_seq #(
         StPostLock: if (grant_i) state_q <= StPostCopy;
         StPostCopy: if (copy_done) begin
           state_q       <= StWait;
-          nominal_q     <= nominal_q + {32'd0, period_i};
+          nominal_q     <= nominal_q + period_i;
           cycle_done_o  <= 1'b1;
           pre_clocks_o  <= pre_cnt_q;
           post_clocks_o <= post_cnt_q + 32'd1;

@@ -28,7 +28,7 @@ module plc_core #(
   input  wire                          parallel_i,
   input  wire [1:0]                    exchange_i,
   input  wire [31:0]                   watchdog_limit_i,
-  input  wire [31:0]                   period_i,
+  input  wire [63:0]                   period_i,     // 1/1000 clock (core_seq.v)
   input  wire [$clog2(PlanWords):0]    pre_len_i,
   input  wire [$clog2(PlanWords)-1:0]  post_base_i,
   input  wire [$clog2(PlanWords):0]    post_len_i,
@@ -142,6 +142,7 @@ module plc_core #(
     .prog_waddr_i         (prog_waddr_i),
     .prog_wdata_i         (prog_wdata_i),
     .run_i                (cpu_run),
+    .time_start_i         (run_i),                // timers on plant time
     .parallel_i           (parallel_i),
     .free_i               (1'b0),
     .marker_write_buffer_i(1'b0),

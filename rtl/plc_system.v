@@ -27,7 +27,7 @@ module plc_system #(
   input  wire [31:0]                       watchdog_limit_i,
   input  wire [Cores-1:0]                  parallel_i,
   input  wire [Cores*2-1:0]                exchange_i,
-  input  wire [Cores*32-1:0]               period_i,
+  input  wire [Cores*64-1:0]               period_i,         // 1/1000 clock each (core_seq.v)
   input  wire [Cores*($clog2(PlanWords)+1)-1:0] pre_len_i,
   input  wire [Cores*$clog2(PlanWords)-1:0]     post_base_i,
   input  wire [Cores*($clog2(PlanWords)+1)-1:0] post_len_i,
@@ -143,7 +143,7 @@ module plc_system #(
         .parallel_i      (parallel_i[c]),
         .exchange_i      (exchange_i[c*2 +: 2]),
         .watchdog_limit_i(watchdog_limit_i),
-        .period_i        (period_i[c*32 +: 32]),
+        .period_i        (period_i[c*64 +: 64]),
         .pre_len_i       (pre_len_i[c*(PaW+1) +: PaW+1]),
         .post_base_i     (post_base_i[c*PaW +: PaW]),
         .post_len_i      (post_len_i[c*(PaW+1) +: PaW+1]),

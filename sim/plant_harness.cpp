@@ -9,7 +9,8 @@
 // n = k * period_c. Each clock: every core whose firmware is not asleep runs until it
 // asks for the clock (a bus access, hal_spend, hal_wait_dispatch), the bus inputs of
 // all cores are applied, the clock-low half is evaluated (bus read data), the rising
-// edge follows, finished postcycles write their trace rows.
+// edge follows, finished postcycles write their trace rows and then apply the next
+// scan's scan-keyed inputs.
 #include "Vplc_system.h"
 #include "Vplc_system___024root.h"
 #include "verilated.h"
@@ -69,7 +70,7 @@ template <class P> static uint64_t get_field(const P& port, unsigned lsb, unsign
 struct CoreFile {
   RunFile rf;                      // prog, byte_prog, mode, exchange, costs, pool, stim, col, trace
   std::string name, plan;
-  uint64_t period = 0, pre_len = 0, post_base = 0, post_len = 0;
+  uint64_t period = 0, pre_len = 0, post_base = 0, post_len = 0;  // period: 1/1000 clock
 };
 struct PlantFile {
   uint64_t clock_hz = 100000000, watchdog = 100000;
@@ -128,7 +129,7 @@ static PlantFile read_plant_file(const char* path) {
     c.rf.watchdog = pf.watchdog;
     check_run(c.rf, false);
     if (c.rf.free_running) die("a plant core runs in serial or parallel mode");
-    if (c.period > 0xFFFFFFFFULL) die("period exceeds 32 bits");
+    if (c.period >= (1ULL << 62)) die("period out of range");
   }
   return pf;
 }
@@ -303,7 +304,7 @@ int main(int argc, char** argv) {
       }
     top.plan_we_i = 0;
     if (cf.pre_len > plan_words || cf.post_base + cf.post_len > plan_words) die("core %u: plan too long", c);
-    set_field(top.period_i, 32 * c, 32, cf.period);
+    set_field(top.period_i, 64 * c, 64, cf.period);
     set_field(top.pre_len_i, (aw + 1) * c, aw + 1, cf.pre_len);
     set_field(top.post_base_i, aw * c, aw, cf.post_base);
     set_field(top.post_len_i, (aw + 1) * c, aw + 1, cf.post_len);
@@ -433,9 +434,8 @@ int main(int argc, char** argv) {
     for (Core& k : g_cores) {
       const unsigned c = k.idx;
       if (get_field(top.fault_o, c, 1)) fault = true;
-      if (k.by_scan && get_field(top.scan_done_o, c, 1))
-        apply_stim(k, get_field(top.scan_count_o, 32 * c, 32));  // from the next latch on
-      if (get_field(top.cycle_done_o, c, 1) && !k.finished) {
+      const bool cycle_done = get_field(top.cycle_done_o, c, 1);
+      if (cycle_done && !k.finished) {
         const uint64_t cycles = get_field(top.scan_cycles_o, 32 * c, 32);
         const uint64_t pre = get_field(top.pre_clocks_o, 32 * c, 32);
         const uint64_t post = get_field(top.post_clocks_o, 32 * c, 32);
@@ -463,6 +463,9 @@ int main(int argc, char** argv) {
         ++k.scans;
         if (g_n + 1 >= until) k.finished = true;
       }
+      // the next scan's scan-keyed inputs: after the row (its PI / IW columns are this
+      // scan's), before the next latch
+      if (cycle_done && k.by_scan) apply_stim(k, get_field(top.scan_count_o, 32 * c, 32));
       all_done = all_done && k.finished;
     }
     if (fault || all_done) { ++g_n; break; }
@@ -487,10 +490,13 @@ int main(int argc, char** argv) {
   for (Core& k : g_cores) {
     std::printf("core %-11s scans %llu", k.cf->name.c_str(), (unsigned long long)k.scans);
     if (k.scans)
-      std::printf(", cycles min %llu mean %s max %llu, pre max %llu, post max %llu, sem_wait %llu",
+      std::printf(", cycles min %llu mean %s max %llu, scan time [us] min %s mean %s max %s, "
+                  "pre max %llu, post max %llu, sem_wait %llu",
                   (unsigned long long)k.cyc_min, fmt_ratio(k.cyc_sum, k.scans, 3).c_str(),
-                  (unsigned long long)k.cyc_max, (unsigned long long)k.pre_max,
-                  (unsigned long long)k.post_max, (unsigned long long)k.wait_sum);
+                  (unsigned long long)k.cyc_max, us(k.cyc_min, 1).c_str(),
+                  us(k.cyc_sum, k.scans).c_str(), us(k.cyc_max, 1).c_str(),
+                  (unsigned long long)k.pre_max, (unsigned long long)k.post_max,
+                  (unsigned long long)k.wait_sum);
     // over the traced scans (the run goes on until every core has finished)
     std::printf(", overruns %llu, skipped precycles %llu, copy_fail %u\n",
                 (unsigned long long)k.overruns, (unsigned long long)k.skips, k.copy_fail);

@@ -15,7 +15,7 @@ CHANNELS = 4
 async def reset(dut):
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     for sig in (dut.rst_ni, dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i,
-                dut.latch_i, dut.exec_i, dut.fault_i, dut.next_i, dut.dispatch_instr_i,
+                dut.latch_i, dut.time_start_i, dut.exec_i, dut.fault_i, dut.next_i, dut.dispatch_instr_i,
                 dut.dispatch_ctx_i, dut.timer_status_i, dut.counter_status_i,
                 dut.timer_enable_i, dut.counter_pulse_i, dut.fby_rd_data_i,
                 dut.fby_rd_ready_i, dut.fby_full_i, dut.fbi_wr_ready_i, dut.fbi_full_i,

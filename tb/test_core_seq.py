@@ -508,7 +508,7 @@ async def run_scenario(dut, sc, status=True):
                  "cpu_ready_i", "cpu_scan_done_i", "cpu_scan_cycles_i", "grant_i",
                  "sh_rdata_i", "sh_sel_i", "sh_posting_i", "m_rdata_i", "w_rdata_i"):
         getattr(dut, name).value = 0
-    dut.period_i.value = sc.period
+    dut.period_i.value = sc.period * 1000       # the port counts 1/1000 clocks
     dut.pre_len_i.value = sc.pre_len
     dut.post_base_i.value = sc.post_base
     dut.post_len_i.value = sc.post_len
