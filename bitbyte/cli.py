@@ -325,7 +325,10 @@ def cmd_run_plant(args) -> int:
                                        costs=args.costs, sim=args.sim)
     except PlantRunError as e:
         raise SimError(str(e)) from None
-    print(summary, end="")
+    lines = summary.splitlines(keepends=True)      # the watchdog's words go to stderr
+    print("".join(l for l in lines if not l.startswith("scan watchdog")), end="")
+    print("".join(l for l in lines if l.startswith("scan watchdog")), end="",
+          file=sys.stderr)
     return EXIT_WATCHDOG if status == 3 else 0
 
 

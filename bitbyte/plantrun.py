@@ -149,10 +149,16 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
     jobs, columns = [], []
     clock_text = str(plant.clock_mhz)
     for core in plant.cores:
-        _, cols, job, _ = prepare_run(core.program, stimulus=core.stimulus,
-                                      watch=",".join(watches[core.name.upper()]),
-                                      until_us=until_us, watchdog=watchdog,
-                                      clock_mhz=clock_text, costs=costs)
+        try:
+            _, cols, job, _ = prepare_run(core.program, stimulus=core.stimulus,
+                                          watch=",".join(watches[core.name.upper()]),
+                                          until_us=until_us, watchdog=watchdog,
+                                          clock_mhz=clock_text, costs=costs)
+        except UsageError as e:                     # name the core a watch belongs to
+            text = str(e)
+            if text.startswith("--watch: "):
+                raise UsageError(f"--watch: core {core.name}: {text[9:]}") from None
+            raise
         jobs.append(job)
         columns.append(cols)
     until_clock = jobs[0].until_clock

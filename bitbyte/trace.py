@@ -152,9 +152,9 @@ def _watch_column(text: str, symbols: dict[str, Operand], config: Config | None)
     header = text.strip()
     op = resolve_operand(header, symbols)
     if op is None or op.kind not in ("bit", "index"):
-        raise ValueError(f"--watch: '{header}' is neither an address nor a bit/word symbol")
+        raise ValueError(f"'{header}' is neither an address nor a bit/word symbol")
     if config is not None and not operand_fits(op, config):
-        raise ValueError(f"--watch: '{header}': operand out of range")
+        raise ValueError(f"'{header}': operand out of range")
     return Column(header, op)
 
 
