@@ -162,6 +162,8 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
         jobs.append(job)
         columns.append(cols)
     until_clock = jobs[0].until_clock
+    if until_clock >= 2 ** 62:
+        raise UsageError("--until-us: too far (at most 2^62 clocks)")
     return shared_map, jobs, columns, plans, until_clock
 
 
@@ -210,8 +212,8 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     if sim not in ("verilator", "icarus", "cocotb-verilator"):
         raise PlantRunError(f"unknown simulator {sim!r}")
     if sim != "verilator" and waves:
-        raise PlantRunError("--waves is written by the Verilator plant harness; "
-                            "use --sim verilator")
+        raise UsageError("--waves is written by the Verilator plant harness; "
+                         "use --sim verilator")
     shared_map, jobs, _, plans, until_clock = prepare_plant(
         plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
     if trace:          # every trace file writable before the run (OSError: exit 1)
