@@ -48,7 +48,7 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from .errors import SourceError
+from .errors import SourceError, read_utf8
 
 ALPHA_MS = Fraction("0.001145")          # seed 002 §V: 1.145 µs per byte read
 BETA_MS = Fraction("0.001145")           # ... and written
@@ -130,22 +130,7 @@ class Platform:
 
 def _read_text(path: str) -> str:
     """UTF-8 text without control characters (tab allowed); else SourceError."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as exc:
-        raise SourceError(path, 0, 0, f"cannot read: {exc.strerror or exc}") from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        before = data[: exc.start]
-        line = before.count(b"\n") + 1
-        start = before.rfind(b"\n") + 1
-        col = len(before[start:].decode("utf-8", errors="replace")) + 1
-        end = data.find(b"\n", exc.start)
-        shown = data[start: len(data) if end < 0 else end].decode("utf-8", "replace")
-        raise SourceError(path, line, col, f"invalid UTF-8 byte 0x{data[exc.start]:02X}: "
-                          "a task file is UTF-8 text (CSV)", shown.rstrip("\r")) from None
+    text = read_utf8(path, "a task file is UTF-8 text (CSV)")
     for n, line in enumerate(text.split("\n"), start=1):
         line = line[:-1] if line.endswith("\r") else line
         for c, ch in enumerate(line, start=1):

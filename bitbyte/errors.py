@@ -64,8 +64,8 @@ class UsageError(Exception):
 
 def read_utf8(path: str, what: str) -> str:
     """A source file's text; unreadable, or a byte that is not UTF-8: SourceError at
-    the file (or at the bad byte's line and column). what names the file's kind in the
-    message ("a stimulus is UTF-8 text")."""
+    the file (or at the bad byte's line and column). what ends the message: "invalid
+    UTF-8 byte 0xFF: <what>", e.g. "a stimulus is UTF-8 text"."""
     try:
         with open(path, "rb") as f:
             data = f.read()
@@ -81,5 +81,5 @@ def read_utf8(path: str, what: str) -> str:
         end = data.find(b"\n", exc.start)
         shown = data[line_start: len(data) if end < 0 else end]
         raise SourceError(path, line, col,
-                          f"invalid UTF-8 byte 0x{data[exc.start]:02X}: {what} is UTF-8 text",
+                          f"invalid UTF-8 byte 0x{data[exc.start]:02X}: {what}",
                           shown.decode("utf-8", errors="replace").rstrip("\r")) from None

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from .config import Config
-from .errors import SourceError
+from .errors import SourceError, read_utf8
 from .program import GlobalVar, Program
 
 try:
@@ -218,24 +218,7 @@ def _type_name(value) -> str:
 
 def _read_text(path: str) -> str:
     """The plant file as text (UTF-8); unreadable or undecodable: SourceError."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as exc:
-        raise SourceError(path, 0, 0, f"cannot read: {exc.strerror or exc}") from None
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        before = data[: exc.start]
-        line = before.count(b"\n") + 1
-        line_start = before.rfind(b"\n") + 1
-        col = len(before[line_start:].decode("utf-8", errors="replace")) + 1
-        end = data.find(b"\n", exc.start)
-        shown = data[line_start: len(data) if end < 0 else end]
-        shown_text = shown.decode("utf-8", errors="replace").rstrip("\r")
-        raise SourceError(path, line, col, f"invalid UTF-8 byte 0x{data[exc.start]:02X}: "
-                                           "a plant file is UTF-8 text (TOML)",
-                          shown_text) from None
+    return read_utf8(path, "a plant file is UTF-8 text (TOML)")
 
 
 _TOML_POS = re.compile(r"\s*\(at line (\d+), column (\d+)\)\s*$")

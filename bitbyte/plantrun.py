@@ -32,7 +32,6 @@ ROOT = Path(__file__).resolve().parent.parent
 MAX_CORES = 8                 # plants this release builds a harness for
 PLAN_WORDS = 1024             # rtl/plc_system.v PlanWords
 SHARED_WORDS = 2048           # rtl/plc_system.v SharedWords (per ping-pong buffer)
-PROTECT_CODES = {"semaphore": "semaphore", "pingpong": "pingpong", "none": "none"}
 
 
 class PlantRunError(Exception):
@@ -115,7 +114,6 @@ def ensure_plant_harness(cores: int = 2) -> Path:
 
 def split_watch(watch: str, core_names: list[str]) -> dict[str, list[str]]:
     """`p1.MW20,p2.C0` -> {'P1': ['MW20'], 'P2': ['C0']} (core names case-insensitive)."""
-    from .errors import UsageError
     out: dict[str, list[str]] = {n.upper(): [] for n in core_names}
     for part in (w.strip() for w in watch.split(",")):
         if not part:
@@ -135,7 +133,6 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
 
     Returns (shared_map, jobs, columns, plans, until_clock)."""
     from .cli import prepare_run
-    from .errors import UsageError
     plant = load_plant(plant_path)
     shared_map = link(plant)
     if not 2 <= len(plant.cores) <= MAX_CORES:
@@ -171,7 +168,7 @@ def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Pat
                   trace_base: str | None, waves: str | None) -> str:
     plant = shared_map.plant
     lines = [f"clock_hz {jobs[0].clock_hz}", f"watchdog {jobs[0].watchdog}",
-             f"until_clock {until_clock}", f"protect {PROTECT_CODES[plant.protection]}",
+             f"until_clock {until_clock}", f"protect {plant.protection}",
              f"gtkw {ROOT / 'sim' / 'plant.gtkw'}"]
     if waves:
         lines.append(f"waves {waves}")

@@ -35,7 +35,7 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
     Python (slower, the same traces).
     Returns (status, summary text, {core name: trace rows as csv.DictReader gives}),
     status 0, or 3 when a core's scan watchdog fired (as the plant harness)."""
-    from .plantrun import PlantRunError, PROTECT_CODES, period_clocks
+    from .plantrun import PlantRunError, period_clocks
     if sim not in SIMS:
         raise PlantRunError(f"unknown simulator {sim!r} (cocotb runs {', '.join(SIMS)})")
     plant = shared_map.plant
@@ -54,7 +54,7 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
         "watchdog": jobs[0].watchdog,
         "until_clock": until_clock,
         "fast": fast,
-        "protect": PROTECT_CODES[plant.protection],
+        "protect": plant.protection,
         "libs": libs,
         "results": str(results),
         "cores": [{"name": core.name, "job": job.to_json(), "plan": plan.words,

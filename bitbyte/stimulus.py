@@ -247,7 +247,7 @@ def load_stimulus(path: str, symbols: dict[str, Operand] | None = None,
                   config: Config | None = None) -> Stimulus:
     """Read STIM.csv; every malformed line raises SourceError(path, line, col, ...)."""
     config = config or Config()
-    text = read_utf8(path, "a stimulus")   # as open(newline=""): line ends kept
+    text = read_utf8(path, "a stimulus is UTF-8 text")   # as open(newline=""): line ends kept
     return parse_stimulus(text, path, symbols, config)
 
 

@@ -226,20 +226,11 @@ extern "C" void hal_wait_dispatch(void) {
 extern "C" uint64_t hal_now(void) { return g_run->n; }
 
 static RunFile read_run_file(const char* path) {
-  std::ifstream in(path);
-  if (!in) die("cannot open run file %s", path);
   RunFile rf;
-  std::string line, where_buf;
-  std::vector<std::string> w;
-  std::vector<size_t> at;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    where_buf = std::string(path) + ":" + std::to_string(lineno);
-    g_where = where_buf.c_str();
-    split_line(line, w, at);
-    if (w.empty()) continue;
+  for_each_run_line(path, [&](const std::vector<std::string>& w, const std::vector<size_t>& at,
+                              const std::string& line) {
     if (!parse_run_key(rf, w, at, line)) die("unknown key '%s'", w[0].c_str());
-  }
-  g_where = path;
+  });
   check_run(rf, true);
   return rf;
 }

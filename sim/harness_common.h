@@ -227,6 +227,24 @@ static void split_line(std::string& line, std::vector<std::string>& w, std::vect
   }
 }
 
+// Calls fn(words, their starts, the line) for every line of a run file that is not
+// empty or a comment; meanwhile g_where is "path:line" for die()'s messages, and the
+// path alone afterwards.
+template <class F> static void for_each_run_line(const char* path, F fn) {
+  std::ifstream in(path);
+  if (!in) die("cannot open run file %s", path);
+  std::string line, where_buf;
+  std::vector<std::string> w;
+  std::vector<size_t> at;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    where_buf = std::string(path) + ":" + std::to_string(lineno);
+    g_where = where_buf.c_str();
+    split_line(line, w, at);
+    if (!w.empty()) fn(w, at, line);
+  }
+  g_where = path;
+}
+
 // What every run needs, checked after the whole file is read.
 static void check_run(const RunFile& rf, bool need_stop) {
   if (rf.prog.empty()) die("no 'prog'");

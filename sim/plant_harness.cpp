@@ -81,18 +81,10 @@ struct PlantFile {
 };
 
 static PlantFile read_plant_file(const char* path) {
-  std::ifstream in(path);
-  if (!in) die("cannot open run file %s", path);
   PlantFile pf;
-  std::string line, where_buf;
-  std::vector<std::string> w;
-  std::vector<size_t> at;
   CoreFile* cur = nullptr;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    where_buf = std::string(path) + ":" + std::to_string(lineno);
-    g_where = where_buf.c_str();
-    split_line(line, w, at);
-    if (w.empty()) continue;
+  for_each_run_line(path, [&](const std::vector<std::string>& w, const std::vector<size_t>& at,
+                              const std::string& line) {
     const std::string& k = w[0];
     auto one = [&]() { if (w.size() != 2) die("'%s' takes 1 value", k.c_str()); return w[1]; };
     if (k == "core") {
@@ -119,8 +111,7 @@ static PlantFile read_plant_file(const char* path) {
     else if (k == "post_base") cur->post_base = parse_u64(one(), "post_base");
     else if (k == "post_len") cur->post_len = parse_u64(one(), "post_len");
     else if (!parse_run_key(cur->rf, w, at, line)) die("unknown key '%s'", k.c_str());
-  }
-  g_where = path;
+  });
   if (pf.until_clock < 0) die("need 'until_clock'");
   if (pf.clock_hz == 0 || pf.clock_hz % 1000 || pf.clock_hz >= (1ULL << 62))
     die("clock_hz must be a whole number of kHz");
