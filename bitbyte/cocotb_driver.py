@@ -24,7 +24,10 @@ from cocotb.task import bridge, resume
 from cocotb.triggers import Event, FallingEdge, First, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 
+from bitbyte.definition import DEF
 from bitbyte.runjob import WORD_KINDS, RunJob
+
+BUS = DEF.bus                          # byte-bus register addresses
 
 FIRMWARE_LIB = Path(__file__).resolve().parents[1] / "firmware_byte" / "build" / \
     "libbyteproc_cb.so"
@@ -107,6 +110,7 @@ class Firmware:
             lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_serial_step.argtypes = [ctypes.c_void_p]
             lib.bb_run_scan.argtypes = [ctypes.c_void_p]
+            lib.bb_run_step.argtypes = [ctypes.c_void_p, ctypes.c_int]
             lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
             lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
@@ -170,16 +174,9 @@ class Firmware:
         dispatched instructions; parallel mode runs its byte part from each scan's
         latch clock (NEXT) and reports SCAN_DONE."""
         lib = self._lib
-        while not self.stopped.is_set():
-            if self.parallel:
-                lib.hal_wait_dispatch()
-                lib.bb_run_scan(self.state)
-                lib.hal_bus_write(0x07, 1)
-            elif self.free:                    # its own scans, back to back
-                lib.bb_run_scan(self.state)
-                lib.hal_bus_write(0x07, 1)
-            else:
-                lib.bb_serial_step(self.state)
+        mode = DEF.modes["parallel" if self.parallel else "free" if self.free else "serial"]
+        while not self.stopped.is_set():       # the firmware's main loop, turn by turn
+            lib.bb_run_step(self.state, mode)
 
 
 async def run_job(dut, job: RunJob) -> dict:
@@ -205,7 +202,7 @@ async def run_job(dut, job: RunJob) -> dict:
     while not int(dut.ready_o.value):
         await FallingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
-    dut.bus_addr_i.value, dut.bus_wdata_i.value = 0x09, job.clock_hz // 1000   # TICK_DIV
+    dut.bus_addr_i.value, dut.bus_wdata_i.value = BUS["TICK_DIV"], job.clock_hz // 1000
     dut.bus_we_i.value = 1
     await FallingEdge(dut.clk_i)
     dut.bus_we_i.value = 0

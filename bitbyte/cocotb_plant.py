@@ -56,16 +56,18 @@ from cocotb.clock import Clock
 from cocotb.triggers import First, Timer
 from cocotb.utils import get_sim_steps, get_sim_time
 
+from bitbyte.definition import DEF
 from bitbyte.runjob import RunJob
 from bitbyte.trace import format_decimal
 
 HALF_NS = 5          # half a clock in simulator time; reported time uses clock_hz
-IN_BITS = 128        # plc_system InBytes * 8
-OUT_BITS = 128       # plc_system OutBytes * 8
-WORD_BITS = 256      # plc_system InWords / OutWords * 16
+BUS_ADDR = DEF.bus   # byte-bus register addresses
+IN_BITS = DEF.sizes["in_bytes"] * 8      # plc_system InBytes * 8
+OUT_BITS = DEF.sizes["out_bytes"] * 8    # plc_system OutBytes * 8
+WORD_BITS = DEF.sizes["in_words"] * 16   # plc_system InWords / OutWords * 16
 PROTECT = {"semaphore": 0, "pingpong": 1, "none": 2}
 EXCHANGE = ("handshake", "queue", "queue-free", "marker")
-BB_PROG_WORDS = 4096
+BB_PROG_WORDS = DEF.firmware["byte_prog_words"]
 FF_MIN = 3           # idle stretches shorter than this are clocked one by one
 FF_CAP = 1 << 24     # clocks one fast-forward may cover without a known end
 
@@ -109,6 +111,7 @@ def _load_lib(path: str):
     lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
     lib.bb_serial_step.argtypes = [ctypes.c_void_p]
     lib.bb_run_scan.argtypes = [ctypes.c_void_p]
+    lib.bb_run.argtypes = [ctypes.c_void_p, ctypes.c_int]
     lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
     lib.hal_wait_dispatch.argtypes = []
     return lib
@@ -182,14 +185,7 @@ class CoreFirmware:
         self._to_fw.acquire()                   # clock 0
         lib, state = self.lib, self.state
         try:
-            if self.parallel:
-                while True:
-                    lib.hal_wait_dispatch()
-                    lib.bb_run_scan(state)
-                    lib.hal_bus_write(0x07, 1)  # SCAN_DONE
-            else:
-                while True:
-                    lib.bb_serial_step(state)
+            lib.bb_run(state, DEF.modes["parallel" if self.parallel else "serial"])
         except BaseException as e:  # noqa: BLE001 - handed to the clock coroutine
             self.error = e
         self._to_main.release()
@@ -390,7 +386,7 @@ class Plant:
             i += 1
         addr = wdata = we = 0
         for c in range(self.ncores):                 # TICK_DIV on every core
-            addr = _set_field(addr, 9 * c, 9, 0x09)
+            addr = _set_field(addr, 9 * c, 9, BUS_ADDR["TICK_DIV"])
             wdata = _set_field(wdata, 32 * c, 32, self.clock_hz // 1000)
             we = _set_field(we, c, 1, 1)
         dut.bus_addr_i.value = addr

@@ -1,23 +1,29 @@
-"""Sizes of one configured build.  The RTL parameters of `rtl/bitbyte_cpu.v` carry the
-same names; the assembler rejects any address the build cannot hold."""
+"""Sizes of one configured build; the assembler rejects any address the build cannot
+hold.  The defaults are bitbyte/definition.toml's [sizes] (spec §3), where the comment
+of each names the RTL parameter of `rtl/bitbyte_cpu.v` it corresponds to (timers and
+counters are both `StatusBits`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .definition import DEF
+
+_S = DEF.sizes
+
 
 @dataclass(frozen=True)
 class Config:
-    prog_words: int = 4096    # ProgWords: instructions in program memory
-    in_bytes: int = 16        # InBytes: I/PI/IR/IF b = 0..in_bytes-1
-    out_bytes: int = 16       # OutBytes: Q/PQ b = 0..out_bytes-1
-    marker_bytes: int = 256   # MarkerBytes: M b = 0..marker_bytes-1
-    timers: int = 64          # Timers: T 0..timers-1
-    counters: int = 64        # Counters: C 0..counters-1
-    channels: int = 4         # Channels: FBI/FBY k = 0..channels-1
-    nest_depth: int = 8       # NestDepth: parenthesis nesting levels
-    in_words: int = 16        # IW n
-    out_words: int = 16       # QW n
-    data_words: int = 256     # MW n
+    prog_words: int = _S["prog_words"]  # ProgWords: instructions in program memory
+    in_bytes: int = _S["in_bytes"]  # InBytes: I/PI/IR/IF b = 0..in_bytes-1
+    out_bytes: int = _S["out_bytes"]  # OutBytes: Q/PQ b = 0..out_bytes-1
+    marker_bytes: int = _S["marker_bytes"]  # MarkerBytes: M b = 0..marker_bytes-1
+    timers: int = _S["timers"]  # Timers: T 0..timers-1
+    counters: int = _S["counters"]  # Counters: C 0..counters-1
+    channels: int = _S["channels"]  # Channels: FBI/FBY k = 0..channels-1
+    nest_depth: int = _S["nest_depth"]  # NestDepth: parenthesis nesting levels
+    in_words: int = _S["in_words"]  # IW n
+    out_words: int = _S["out_words"]  # QW n
+    data_words: int = _S["data_words"]  # MW n
     clock_mhz: float = 100.0  # bit-processor clock
 
     def area_size(self, area: str) -> int:

@@ -2,52 +2,33 @@
 
 The reference interpreter never reads this module: it interprets the parsed program,
 so that a wrong opcode here shows up as a mismatch between RTL and reference instead
-of hiding in both.  `rtl/bit_isa.vh` holds the same numbers for the hardware.
+of hiding in both.  The numbers come from bitbyte/definition.toml, as do those of the
+generated `rtl/bit_isa.vh` and `firmware_byte/bb_isa.h`.
 
 Word layout (bits):  31..24 opcode | 23..16 reserved (0) | 15..12 area | 11..0 index,
 or 15..0 the jump target, or all operand bits 0.
 """
 from __future__ import annotations
 
-OPCODE_SHIFT = 24
-AREA_SHIFT = 12
-INDEX_BITS = 12            # operand index field: byte*8+bit, or n
-WAIT_UPDATE_BIT = 16       # T/C read in a bit part: wait for this scan's update
-TARGET_BITS = 16           # jump target field: an instruction address
+from .definition import DEF
+
+OPCODE_SHIFT = DEF.fields["opcode"].lo
+AREA_SHIFT = DEF.fields["area"].lo
+INDEX_BITS = DEF.fields["index"].width     # operand index field: byte*8+bit, or n
+WAIT_UPDATE_BIT = DEF.wait_update_bit      # T/C read in a bit part: wait for this scan's update
+TARGET_BITS = DEF.fields["target"].width   # jump target field: an instruction address
 
 # Logic function field f of loads/combines and opening parentheses.
-LOGIC_F = {"LD": 0b00, "A": 0b01, "O": 0b10, "X": 0b11}
-LOAD_BASE = 0x08           # LD LDN A AN O ON X XN = 0x08 | f<<1 | n
-OPEN_BASE = 0x10           # A( AN( O( ON( X( XN(  = 0x10 | f<<1 | n
+LOGIC_F = {name: f for f, (name, _) in enumerate(DEF.logic_functions)}
+LOAD_BASE = DEF.load_base  # LD LDN A AN O ON X XN = LOAD_BASE | f<<1 | n
+OPEN_BASE = DEF.open_base  # A( AN( O( ON( X( XN(  = OPEN_BASE | f<<1 | n
 
-
-def _logic_opcodes() -> dict[str, int]:
-    """The eight loads/combines and six opening parentheses from their f and n
-    fields, as docs/isa.md defines them (one decoder path in the RTL)."""
-    table = {}
-    for name, f in LOGIC_F.items():
-        for n, suffix in ((0, ""), (1, "N")):
-            table[name + suffix] = LOAD_BASE | f << 1 | n
-            if name != "LD":
-                table[name + suffix + "("] = OPEN_BASE | f << 1 | n
-    return table
-
-
-OPCODES: dict[str, int] = {
-    "NOP": 0x00, "END": 0x01, "NOT": 0x02, "SET": 0x03, "CLR": 0x04, ")": 0x05,
-    "REFRESH": 0x06,
-    **_logic_opcodes(),
-    "=": 0x18, "S": 0x19, "R": 0x1A, "FP": 0x1B, "FN": 0x1C,
-    "JU": 0x20, "JC": 0x21, "JCN": 0x22,
-}
+OPCODES: dict[str, int] = DEF.bit_opcodes
 
 # Operand area codes (bits 15..12).  FBI and FBY share code 9: the direction follows
 # from the opcode (a read is F_Bb k, a write F_bB k).
-AREA_CODES: dict[str, int] = {
-    "I": 0, "PI": 1, "IR": 2, "IF": 3, "Q": 4, "PQ": 5, "M": 6,
-    "T": 7, "C": 8, "FBI": 9, "FBY": 9,
-}
-BYTE_DOT_BIT_AREAS = ("I", "PI", "IR", "IF", "Q", "PQ", "M")   # index = byte*8+bit
+AREA_CODES: dict[str, int] = DEF.area_codes
+BYTE_DOT_BIT_AREAS = DEF.bit_form_areas   # index = byte*8+bit
 
 # What the bit processor itself can do with an operand, by opcode group.  Anything
 # else in a parsed program (word instructions, S/R on timers and counters, the
@@ -89,19 +70,10 @@ def plain_word(opcode: int) -> int:
 # Byte instructions (docs/isa.md "Byte instructions"): opcodes 0x80..0xFF.
 # --------------------------------------------------------------------------------------
 
-COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")       # compare code c = index
-BYTE_OPCODES: dict[str, int] = {
-    "L#": 0x80, "L#POOL": 0x81, "L": 0x82, "T": 0x83,
-    "+I": 0x88, "-I": 0x89, "*I": 0x8A, "/I": 0x8B, "MOD": 0x8C,
-    **{cmp: 0x90 + c for c, cmp in enumerate(COMPARES)},
-    **{f"A {cmp}": 0x98 + c for c, cmp in enumerate(COMPARES)},
-    **{f"O {cmp}": 0xA0 + c for c, cmp in enumerate(COMPARES)},
-    "SD": 0xB0, "SS": 0xB1, "SP": 0xB2, "SF": 0xB3, "R T": 0xB4,
-    "CU": 0xB8, "CD": 0xB9, "S C": 0xBA, "R C": 0xBB,
-    "READ": 0xC0, "WRITE": 0xC1,
-}
-WORD_AREA_CODES = {"T": 7, "C": 8, "FBI": 9, "FBY": 9, "IW": 10, "QW": 11, "MW": 12}
-IMM_BITS = 24                                            # L constant immediate field
+COMPARES = DEF.compares                   # compare code c = index
+BYTE_OPCODES: dict[str, int] = DEF.byte_opcodes
+WORD_AREA_CODES = DEF.word_area_codes
+IMM_BITS = DEF.fields["imm"].width        # L constant immediate field
 EXCHANGE_OPS = ("READ", "WRITE")
 
 
@@ -136,6 +108,4 @@ def word_operand_word(opcode: int, area: str, index: int) -> int:
 # Parallel mode: the byte program's own control instructions (docs/isa.md, byte program
 # only; firmware_byte/byteproc.h BB_OP_JU_B ... BB_OP_END_B).  Jumps carry the target
 # byte-program address in bits 15..0, as JU/JC/JCN do in the bit program.
-BYTE_PROGRAM_OPCODES: dict[str, int] = {
-    "JU_B": 0xC8, "JC_B": 0xC9, "JCN_B": 0xCA, "END_B": 0xCF,
-}
+BYTE_PROGRAM_OPCODES: dict[str, int] = DEF.byte_program_opcodes

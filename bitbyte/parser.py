@@ -65,6 +65,7 @@ import bisect
 from dataclasses import dataclass, replace
 
 from .config import DEFAULT, Config
+from .definition import DEF
 from .errors import SourceError
 from .program import GlobalVar, Instr, Operand, Program
 
@@ -77,7 +78,7 @@ INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW")      # number
 AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 
 PAREN_OPENERS = ("A", "AN", "O", "ON", "X", "XN")             # + "(" -> "A(" ...
-COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
+COMPARES = DEF.compares
 KEYWORDS = ("VAR", "END_VAR", "VAR_GLOBAL", "AT", "BIT", "BYTE")
 ACCESS_WORDS = ("READ", "WRITE")                              # VAR_GLOBAL attribute
 GLOBAL_AREAS = {"M": "bit", "MW": "word"}                     # local copy -> kind

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from typing import Iterable, Mapping
 
 from .config import DEFAULT, Config
+from .definition import DEF
 from .program import Instr, Operand, Program
 from .stimulus import Stimulus, no_stimulus
 from .trace import Column, ScanRecord, mhz, trace_columns
@@ -54,34 +55,24 @@ JUMPS = ("JU", "JC", "JCN")
 # --- byte instructions ------------------------------------------------------------------
 
 ARITHMETIC = ("+I", "-I", "*I", "/I", "MOD")
-COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
+COMPARES = DEF.compares
 TIMERS = ("SD", "SS", "SP", "SF")
-COUNTER_MAX = 32767
+COUNTER_MAX = DEF.firmware["counter_max"]
 
-# Every byte instruction kind -> its cost class, named as in the byte firmware
-# (firmware_byte/costs.c, bb_class_name).  A kind is the canonical mnemonic, except
-# that `S C n`, `R C n`, `R T n` (parsed as "S"/"R" with a C/T operand) are the kinds
-# "S C", "R C", "R T".
-BYTE_KINDS: dict[str, str] = {
-    "L": "load", "T": "transfer",
-    "+I": "arith", "-I": "arith", "*I": "muldiv", "/I": "muldiv", "MOD": "muldiv",
-    **{m: "compare" for m in COMPARES},
-    **{f"{f} {c}": "compare" for f in ("A", "O") for c in COMPARES},
-    **{m: "timer" for m in TIMERS}, "R T": "timer",
-    "CU": "counter", "CD": "counter", "S C": "counter", "R C": "counter",
-    "READ": "binary", "WRITE": "binary",
-}
-WORD_CLASSES = ("load", "transfer", "arith", "muldiv", "compare", "timer", "counter")
-COST_CLASSES = WORD_CLASSES + ("binary",)
+# Every byte instruction kind -> its cost class (bitbyte/definition.toml, the classes
+# of the byte firmware).  A kind is the canonical mnemonic, except that `S C n`,
+# `R C n`, `R T n` (parsed as "S"/"R" with a C/T operand) are the kinds "S C", "R C",
+# "R T".  The definition's data that the spec fixes (which instructions are word
+# instructions, the cost tables); never its encoding.
+BYTE_KINDS: dict[str, str] = DEF.byte_kinds
+WORD_CLASSES = DEF.word_classes
+COST_CLASSES = DEF.priced_classes
 
-# Named tables, the same numbers as firmware_byte/costs.c.  "paper" (the default,
-# spec §5): the S7-315-2DP weights of the seed paper, 1 µs per word instruction and
-# 0.1 µs per binary one at 100 MHz.  "c320": the paper's 80C320 byte processor
-# (Table 1 average), 57 clocks per word instruction, 6 per binary one.
-COST_TABLES: dict[str, dict[str, int]] = {
-    "paper": {**{c: 10 for c in WORD_CLASSES}, "binary": 1},
-    "c320": {**{c: 57 for c in WORD_CLASSES}, "binary": 6},
-}
+# Named tables (spec §5): "paper" (the default), the S7-315-2DP weights of the seed
+# paper, 1 µs per word instruction and 0.1 µs per binary one at 100 MHz; "c320": the
+# paper's 80C320 byte processor (Table 1 average), 57 clocks per word instruction, 6
+# per binary one.
+COST_TABLES: dict[str, dict[str, int]] = DEF.cost_tables
 PAPER_COSTS = COST_TABLES["paper"]
 
 

@@ -23,90 +23,18 @@
 extern "C" {
 #endif
 
-/* Sizes (spec §3 defaults). */
-#define BB_NUM_MW        256u
-#define BB_NUM_TIMERS    64u
-#define BB_NUM_COUNTERS  64u
-#define BB_NUM_IW        16u
-#define BB_NUM_QW        16u
-#define BB_NUM_CHANNELS  8u      /* FBY/FBI k: the bus decodes 0..7 */
-#define BB_POOL_WORDS    1024u   /* constant pool (opcode 0x81) */
-#define BB_PROG_WORDS    4096u   /* byte program (parallel mode), bb_load_program() */
-#define BB_MAX_STEPS_DEFAULT 1000000u  /* bb_state.max_steps after bb_init() */
-#define BB_COUNTER_MAX   32767
-
-/* Opcodes (docs/isa.md, "Byte instructions"). */
-#define BB_OP_L_IMM      0x80u
-#define BB_OP_L_POOL     0x81u
-#define BB_OP_L_WORD     0x82u
-#define BB_OP_T_WORD     0x83u
-#define BB_OP_ADD        0x88u
-#define BB_OP_SUB        0x89u
-#define BB_OP_MUL        0x8Au
-#define BB_OP_DIV        0x8Bu
-#define BB_OP_MOD        0x8Cu
-#define BB_OP_CMP        0x90u   /* + c: RLO := cmp            */
-#define BB_OP_A_CMP      0x98u   /* + c: RLO := RLO AND cmp    */
-#define BB_OP_O_CMP      0xA0u   /* + c: RLO := RLO OR  cmp    */
-#define BB_OP_SD         0xB0u
-#define BB_OP_SS         0xB1u
-#define BB_OP_SP         0xB2u
-#define BB_OP_SF         0xB3u
-#define BB_OP_RT         0xB4u
-#define BB_OP_CU         0xB8u
-#define BB_OP_CD         0xB9u
-#define BB_OP_SC         0xBAu
-#define BB_OP_RC         0xBBu
-#define BB_OP_READ       0xC0u
-#define BB_OP_WRITE      0xC1u
-/* Byte program only (parallel mode): target = byte-program address, bits 15..0. */
-#define BB_OP_JU_B       0xC8u   /* jump */
-#define BB_OP_JC_B       0xC9u   /* jump if F_B = 1 */
-#define BB_OP_JCN_B      0xCAu   /* jump if F_B = 0 */
-#define BB_OP_END_B      0xCFu   /* end of the byte part of one scan */
-
-/* Compare codes c. */
-#define BB_CMP_EQ 0
-#define BB_CMP_NE 1
-#define BB_CMP_GT 2
-#define BB_CMP_LT 3
-#define BB_CMP_GE 4
-#define BB_CMP_LE 5
-
-/* Operand areas (bits 15..12 of the word / timer / counter / channel forms). */
-#define BB_AREA_T   7u
-#define BB_AREA_C   8u
-#define BB_AREA_FB  9u
-#define BB_AREA_IW  10u
-#define BB_AREA_QW  11u
-#define BB_AREA_MW  12u
+/* Sizes, opcodes, compare codes, areas, flags and the cost classes (enum bb_class):
+ * generated from bitbyte/definition.toml. */
+#include "bb_isa.h"
 
 /* Instruction word helpers. */
 #define BB_INSTR(op, area, index) \
-  (((uint32_t)(op) << 24) | (((uint32_t)(area) & 0xFu) << 12) | ((uint32_t)(index) & 0xFFFu))
-#define BB_INSTR_IMM(op, imm24) (((uint32_t)(op) << 24) | ((uint32_t)(imm24) & 0xFFFFFFu))
+  (((uint32_t)(op) << BB_OPCODE_SHIFT) | (((uint32_t)(area) & BB_AREA_MASK) << BB_AREA_SHIFT) \
+   | ((uint32_t)(index) & BB_INDEX_MASK))
+#define BB_INSTR_IMM(op, imm24) \
+  (((uint32_t)(op) << BB_OPCODE_SHIFT) | ((uint32_t)(imm24) & BB_IMM_MASK))
 #define BB_INSTR_JUMP(op, target) \
-  (((uint32_t)(op) << 24) | ((uint32_t)(target) & 0xFFFFu))
-
-/* Sticky flags (bb_flags(), also mirrored to the bus register BYTE_FLAGS). */
-#define BB_FLAG_ARITH    0x1u    /* /I or MOD by 0 */
-#define BB_FLAG_ILLEGAL  0x2u    /* unknown opcode or operand */
-#define BB_FLAG_RUNAWAY  0x4u    /* bb_run_scan() hit max_steps before END_B */
-
-/* Cost classes: every instruction falls in one; a cost table gives each its clocks. */
-typedef enum {
-  BB_CL_LOAD = 0,   /* L constant / word / T / C */
-  BB_CL_TRANSFER,   /* T MW / QW */
-  BB_CL_ARITH,      /* +I -I */
-  BB_CL_MULDIV,     /* *I /I MOD */
-  BB_CL_COMPARE,    /* ==I ... , A cmp, O cmp */
-  BB_CL_TIMER,      /* SD SS SP SF, R T n */
-  BB_CL_COUNTER,    /* CU CD, S C n, R C n */
-  BB_CL_BINARY,     /* READ FBY k, WRITE FBI k, JU_B JC_B JCN_B (taken or not) */
-  BB_CL_ILLEGAL,    /* anything else */
-  BB_CL_END,        /* END_B: 0 clocks in every table (the synchronisation point) */
-  BB_NUM_CLASSES
-} bb_class;
+  (((uint32_t)(op) << BB_OPCODE_SHIFT) | ((uint32_t)(target) & BB_TARGET_MASK))
 
 /* A cost table: clocks per class, in bit-processor clocks. */
 typedef struct {
@@ -157,7 +85,9 @@ typedef struct bb_state {
   uint32_t   max_steps;      /* instructions a bb_run_scan may execute, END_B included */
   uint32_t   scan_steps;     /* instructions the last bb_run_scan executed */
   int        mw_on_bus;      /* MW n lives in the FPGA at bus address MW(n) (plant core) */
+  uint64_t   byte_scans;     /* parallel / free-running: byte scans reported (SCAN_DONE) */
 } bb_state;
+
 
 /* --- set-up ------------------------------------------------------------------------ */
 
@@ -235,6 +165,19 @@ int bb_step(bb_state *s, uint32_t instr, int *rlo);
  * Returns the clocks the scan took. */
 int bb_run_scan(bb_state *s);
 
+/* The firmware's main loop, the same for every host (the hosts implement only hal.h).
+ * bb_run_step() is one turn of it:
+ *   serial    bb_serial_step(): one dispatched instruction;
+ *   parallel  hal_wait_dispatch() (NEXT = the scan's latch clock), bb_run_scan(), then
+ *             SCAN_DONE: the bit side's END may complete;
+ *   free      bb_run_scan(), then SCAN_DONE, without waiting for the bit side.
+ * The parallel and free turns count s->byte_scans after their SCAN_DONE write.
+ * Returns the clocks of the turn's work (the wait for NEXT not counted), or -1 for an
+ * unknown mode. bb_run() turns forever: a host stops it from inside a HAL call
+ * (longjmp, a coroutine it no longer resumes, a thread it leaves blocked). */
+int  bb_run_step(bb_state *s, bb_mode mode);
+void bb_run(bb_state *s, bb_mode mode);
+
 /* A core of a multi-core plant (docs/multicore.md) keeps its word markers in the FPGA,
  * next to the copy engine that moves shared words: with on != 0, L MW n / T MW n are
  * one bus access of BB_BUS_MW(n) each (the mw[] array is then unused; bb_mw() reads
@@ -254,6 +197,7 @@ int32_t  bb_accu1(const bb_state *s);
 int32_t  bb_accu2(const bb_state *s);
 uint32_t bb_overruns(const bb_state *s);
 uint64_t bb_executed(const bb_state *s);
+uint64_t bb_byte_scans(const bb_state *s);
 int      bb_rlo(const bb_state *s);
 int      bb_fb(const bb_state *s);     /* F_B, the byte side's RLO (= bb_rlo) */
 

@@ -33,44 +33,27 @@
 
 #include "byteproc.h"
 
-static const bb_costs table_paper = {
-  "paper",
-  {
-    [BB_CL_LOAD] = 10, [BB_CL_TRANSFER] = 10, [BB_CL_ARITH] = 10, [BB_CL_MULDIV] = 10,
-    [BB_CL_COMPARE] = 10, [BB_CL_TIMER] = 10, [BB_CL_COUNTER] = 10,
-    [BB_CL_BINARY] = 1, [BB_CL_ILLEGAL] = 1,
-    [BB_CL_END] = 0,       /* END_B: the synchronisation point, no work */
-  },
-};
+/* bb_cost_tables[] (the first is the default) and bb_class_names[]: generated from
+ * bitbyte/definition.toml, where the numbers above are written once. */
+#include "cost_tables.h"
 
-static const bb_costs table_c320 = {
-  "c320",
-  {
-    [BB_CL_LOAD] = 57, [BB_CL_TRANSFER] = 57, [BB_CL_ARITH] = 57, [BB_CL_MULDIV] = 57,
-    [BB_CL_COMPARE] = 57, [BB_CL_TIMER] = 57, [BB_CL_COUNTER] = 57,
-    [BB_CL_BINARY] = 6, [BB_CL_ILLEGAL] = 1,
-    [BB_CL_END] = 0,       /* END_B: the synchronisation point, no work */
-  },
-};
+#define BB_NUM_COST_TABLES (sizeof bb_cost_tables / sizeof bb_cost_tables[0])
 
 const bb_costs *bb_cost_table(const char *name) {
-  if (name == NULL || strcmp(name, "paper") == 0) return &table_paper;
-  if (strcmp(name, "c320") == 0) return &table_c320;
+  if (name == NULL) return &bb_cost_tables[0];
+  for (size_t i = 0; i < BB_NUM_COST_TABLES; ++i)
+    if (strcmp(name, bb_cost_tables[i].name) == 0) return &bb_cost_tables[i];
   return NULL;
 }
 
 uint32_t bb_cost(const bb_state *s, int cls) {
   if (cls < 0 || cls >= BB_NUM_CLASSES) return 0;
-  const bb_costs *t = (s != NULL && s->costs != NULL) ? s->costs : &table_paper;
+  const bb_costs *t = (s != NULL && s->costs != NULL) ? s->costs : &bb_cost_tables[0];
   return t->clocks[cls];
 }
 
 const char *bb_class_name(int cls) {
-  static const char *const names[BB_NUM_CLASSES] = {
-    "load", "transfer", "arith", "muldiv", "compare", "timer", "counter", "binary",
-    "illegal", "end",
-  };
-  return (cls >= 0 && cls < BB_NUM_CLASSES) ? names[cls] : "?";
+  return (cls >= 0 && cls < BB_NUM_CLASSES) ? bb_class_names[cls] : "?";
 }
 
 int bb_set_costs(bb_state *s, const char *name) {

@@ -329,5 +329,32 @@ int32_t bb_accu1(const bb_state *s) { return s->accu1; }
 int32_t bb_accu2(const bb_state *s) { return s->accu2; }
 uint32_t bb_overruns(const bb_state *s) { return s->overruns; }
 uint64_t bb_executed(const bb_state *s) { return s->executed; }
+uint64_t bb_byte_scans(const bb_state *s) { return s->byte_scans; }
 int bb_rlo(const bb_state *s) { return s->rlo; }
 int bb_fb(const bb_state *s) { return s->rlo; }
+
+/* ------------------------------------------------------------------- main loop */
+
+int bb_run_step(bb_state *s, bb_mode mode) {
+  switch (mode) {
+    case BB_MODE_SERIAL:
+      return bb_serial_step(s);
+    case BB_MODE_PARALLEL:
+      hal_wait_dispatch();                 /* NEXT: this scan's latch clock */
+      break;
+    case BB_MODE_FREE:                     /* its own scans, back to back */
+      break;
+    default:
+      return -1;
+  }
+  const uint64_t t0 = hal_now();
+  bb_run_scan(s);
+  hal_bus_write(BB_BUS_SCAN_DONE, 1);      /* the byte part of this scan is done */
+  ++s->byte_scans;
+  return (int)(hal_now() - t0);
+}
+
+void bb_run(bb_state *s, bb_mode mode) {
+  for (;;)
+    if (bb_run_step(s, mode) < 0) return;
+}

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "byte_bus.vh"
 // Byte-side port: the one synchronous bus through which the byte processor (a
 // microcontroller) reaches the FPGA part. Register map: docs/byte-bus.md.
 // A read returns data in the clock of its strobe; an access that cannot complete
@@ -62,33 +63,12 @@ module byte_port #(
   output reg  [31:0]                   stalls_byte_o,
   output reg  [31:0]                   byte_flags_o
 );
-  localparam [7:0] AddrId       = 8'h00;
-  localparam [7:0] AddrStatus   = 8'h01;
-  localparam [7:0] AddrInstr    = 8'h02;
-  localparam [7:0] AddrCtx      = 8'h03;
-  localparam [7:0] AddrDone     = 8'h04;
-  localparam [7:0] AddrDispMs   = 8'h05;
-  localparam [7:0] AddrDispIw   = 8'h06;
-  localparam [7:0] AddrScanDone = 8'h07;
-  localparam [7:0] AddrTimeMs   = 8'h08;
-  localparam [7:0] AddrTickDiv  = 8'h09;
-  localparam [7:0] AddrClock    = 8'h0A;
-  localparam [7:0] AddrTcBit    = 8'h10;
-  localparam [7:0] AddrTStatLo  = 8'h11;
-  localparam [7:0] AddrTStatHi  = 8'h12;
-  localparam [7:0] AddrCStatLo  = 8'h13;
-  localparam [7:0] AddrCStatHi  = 8'h14;
-  localparam [7:0] AddrTEnLo    = 8'h15;
-  localparam [7:0] AddrTEnHi    = 8'h16;
-  localparam [7:0] AddrCPulseLo = 8'h17;
-  localparam [7:0] AddrCPulseHi = 8'h18;
-  localparam [7:0] AddrChStatus = 8'h30;
-  localparam [7:0] AddrStallBit = 8'h60;
-  localparam [7:0] AddrStallByt = 8'h61;
-  localparam [7:0] AddrFlags    = 8'h62;
-  localparam [7:0] AddrOverflow = 8'h63;
-  localparam [7:0] AddrUnderflw = 8'h64;
-  localparam [31:0] IdValue     = 32'hB17B_7E01;
+  // Register addresses: rtl/byte_bus.vh, generated from bitbyte/definition.toml. The
+  // windows are decoded by their high address bits.
+  localparam [7:0] AddrFby = `BUS_FBY;
+  localparam [7:0] AddrFbi = `BUS_FBI;
+  localparam [7:0] AddrIw  = `BUS_IW;
+  localparam [7:0] AddrQw  = `BUS_QW;
 
   // ---------------------------------------------------------------- time base
   // Clock 0 is scan 0's latch, or in a plant core the plant's clock 0 (time_start_i,
@@ -145,23 +125,23 @@ module byte_port #(
 
   // ---------------------------------------------------------------- decode
   wire [2:0] chan   = bus_addr_i[2:0];
-  wire is_fby_rd    = bus_re_i && (bus_addr_i[7:3] == 5'b0010_0);   // 0x20..0x27
-  wire is_fbi_wr    = bus_we_i && (bus_addr_i[7:3] == 5'b0010_1);   // 0x28..0x2F
+  wire is_fby_rd    = bus_re_i && (bus_addr_i[7:3] == AddrFby[7:3]);   // 8 channels
+  wire is_fbi_wr    = bus_we_i && (bus_addr_i[7:3] == AddrFbi[7:3]);
   wire chan_ok      = ({29'd0, chan} < Channels);
   wire [Channels-1:0] chan_sel = chan_ok ? ({{(Channels-1){1'b0}}, 1'b1} << chan)
                                          : {Channels{1'b0}};
-  wire is_iw        = bus_addr_i[7:4] == 4'h4;
-  wire is_qw        = bus_addr_i[7:4] == 4'h5;
+  wire is_iw        = bus_addr_i[7:4] == AddrIw[7:4];                // 16 words
+  wire is_qw        = bus_addr_i[7:4] == AddrQw[7:4];
   wire [3:0] word   = bus_addr_i[3:0];
 
   assign fby_rd_req_o  = is_fby_rd ? chan_sel : {Channels{1'b0}};
   assign fbi_wr_req_o  = is_fbi_wr ? chan_sel : {Channels{1'b0}};
   assign fbi_wr_data_o = bus_wdata_i[0];
 
-  assign done_we_o   = bus_we_i && (bus_addr_i == AddrDone);
+  assign done_we_o   = bus_we_i && (bus_addr_i == `BUS_DONE);
   assign done_data_o = bus_wdata_i[1:0];
 
-  assign tc_we_o         = bus_we_i && (bus_addr_i == AddrTcBit);
+  assign tc_we_o         = bus_we_i && (bus_addr_i == `BUS_TC_BIT);
   assign tc_is_counter_o = bus_wdata_i[6];
   assign tc_idx_o        = bus_wdata_i[$clog2(StatusBits)-1:0];
   assign tc_val_o        = bus_wdata_i[8];
@@ -190,54 +170,54 @@ module byte_port #(
                   ? {{16{out_words_o[word*16+15]}}, out_words_o[word*16 +: 16]} : 32'd0;
     end else begin
       case (bus_addr_i)
-        AddrId:       bus_rdata_o = IdValue;
-        AddrStatus:   bus_rdata_o = {28'd0, byte_scan_done_o, fault_i, exec_i, next_i};
-        AddrInstr:    bus_rdata_o = dispatch_instr_i;
-        AddrCtx:      bus_rdata_o = dispatch_ctx_i;
-        AddrDispMs:   bus_rdata_o = disp_ms;
-        AddrDispIw:   bus_rdata_o = {{16{disp_iw[15]}}, disp_iw};
-        AddrTimeMs:   bus_rdata_o = ms_q;
-        AddrTickDiv:  bus_rdata_o = tick_div_q;
-        AddrClock:    bus_rdata_o = clock_q;
-        AddrTStatLo:  bus_rdata_o = t_stat[31:0];
-        AddrTStatHi:  bus_rdata_o = t_stat[63:32];
-        AddrCStatLo:  bus_rdata_o = c_stat[31:0];
-        AddrCStatHi:  bus_rdata_o = c_stat[63:32];
-        AddrTEnLo:    bus_rdata_o = t_en[31:0];
-        AddrTEnHi:    bus_rdata_o = t_en[63:32];
-        AddrCPulseLo: bus_rdata_o = c_pulse[31:0];
-        AddrCPulseHi: bus_rdata_o = c_pulse[63:32];
-        AddrChStatus: bus_rdata_o = {16'd0, fbi_full8, fby_full8};
-        AddrStallBit: bus_rdata_o = stalls_bit_o;
-        AddrStallByt: bus_rdata_o = stalls_byte_o;
-        AddrFlags:    bus_rdata_o = byte_flags_o;
-        AddrOverflow: bus_rdata_o = queue_overflows_i;
-        AddrUnderflw: bus_rdata_o = queue_underflows_i;
+        `BUS_ID:       bus_rdata_o = `BUS_ID_VALUE;
+        `BUS_STATUS:   bus_rdata_o = {28'd0, byte_scan_done_o, fault_i, exec_i, next_i};
+        `BUS_DISPATCH_INSTR:    bus_rdata_o = dispatch_instr_i;
+        `BUS_DISPATCH_CTX:      bus_rdata_o = dispatch_ctx_i;
+        `BUS_DISPATCH_MS:   bus_rdata_o = disp_ms;
+        `BUS_DISPATCH_IW:   bus_rdata_o = {{16{disp_iw[15]}}, disp_iw};
+        `BUS_TIME_MS:   bus_rdata_o = ms_q;
+        `BUS_TICK_DIV:  bus_rdata_o = tick_div_q;
+        `BUS_CLOCK:    bus_rdata_o = clock_q;
+        `BUS_T_STATUS_LO:  bus_rdata_o = t_stat[31:0];
+        `BUS_T_STATUS_HI:  bus_rdata_o = t_stat[63:32];
+        `BUS_C_STATUS_LO:  bus_rdata_o = c_stat[31:0];
+        `BUS_C_STATUS_HI:  bus_rdata_o = c_stat[63:32];
+        `BUS_T_ENABLE_LO:    bus_rdata_o = t_en[31:0];
+        `BUS_T_ENABLE_HI:    bus_rdata_o = t_en[63:32];
+        `BUS_C_PULSE_LO: bus_rdata_o = c_pulse[31:0];
+        `BUS_C_PULSE_HI: bus_rdata_o = c_pulse[63:32];
+        `BUS_CHAN_STATUS: bus_rdata_o = {16'd0, fbi_full8, fby_full8};
+        `BUS_STALLS_BIT: bus_rdata_o = stalls_bit_o;
+        `BUS_STALLS_BYTE: bus_rdata_o = stalls_byte_o;
+        `BUS_BYTE_FLAGS:    bus_rdata_o = byte_flags_o;
+        `BUS_QUEUE_OVERFLOWS: bus_rdata_o = queue_overflows_i;
+        `BUS_QUEUE_UNDERFLOWS: bus_rdata_o = queue_underflows_i;
         default:      bus_rdata_o = 32'd0;
       endcase
     end
   end
 
   // ---------------------------------------------------------------- registers
-  assign byte_scan_end_o = bus_we_i && bus_addr_i == AddrScanDone;
+  assign byte_scan_end_o = bus_we_i && bus_addr_i == `BUS_SCAN_DONE;
 
   // SCAN_DONE: set by the byte side's write, cleared when the next scan latches.
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) byte_scan_done_o <= 1'b0;
-    else if (bus_we_i && bus_addr_i == AddrScanDone) byte_scan_done_o <= 1'b1;
+    else if (bus_we_i && bus_addr_i == `BUS_SCAN_DONE) byte_scan_done_o <= 1'b1;
     else if (latch_i) byte_scan_done_o <= 1'b0;
   end
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      tick_div_q    <= 32'd100_000;   // 100 MHz
+      tick_div_q    <= `BUS_TICK_DIV_RESET;   // 100 MHz
       out_words_o   <= {(OutWords*16){1'b0}};
       stalls_bit_o  <= 32'd0;
       stalls_byte_o <= 32'd0;
       byte_flags_o  <= 32'd0;
     end else begin
-      if (bus_we_i && bus_addr_i == AddrTickDiv) tick_div_q <= bus_wdata_i;
-      if (bus_we_i && bus_addr_i == AddrFlags) byte_flags_o <= bus_wdata_i;
+      if (bus_we_i && bus_addr_i == `BUS_TICK_DIV) tick_div_q <= bus_wdata_i;
+      if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_o <= bus_wdata_i;
       if (bus_we_i && is_qw && ({28'd0, word} < OutWords))
         out_words_o[word*16 +: 16] <= bus_wdata_i[15:0];
       if (bit_stall_i) stalls_bit_o <= stalls_bit_o + 32'd1;
@@ -263,8 +243,8 @@ module byte_port #(
   always @(*) begin
     assert ((fby_rd_req_o == {Channels{1'b0}}) || (is_fby_rd && $onehot(fby_rd_req_o)));
     assert ((fbi_wr_req_o == {Channels{1'b0}}) || (is_fbi_wr && $onehot(fbi_wr_req_o)));
-    assert (!done_we_o || (bus_we_i && bus_addr_i == AddrDone));
-    assert (!tc_we_o || (bus_we_i && bus_addr_i == AddrTcBit));
+    assert (!done_we_o || (bus_we_i && bus_addr_i == `BUS_DONE));
+    assert (!tc_we_o || (bus_we_i && bus_addr_i == `BUS_TC_BIT));
   end
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
     // every clock an access is refused is one byte-side stall, and no other clock is
@@ -272,7 +252,7 @@ module byte_port #(
       assert (stalls_byte_o == $past(stalls_byte_o) +
               {31'd0, ($past(bus_re_i) || $past(bus_we_i)) && !$past(bus_ready_o)});
     // SCAN_DONE: set by its write, cleared by the next latch, held otherwise
-    if ($past(bus_we_i) && $past(bus_addr_i) == AddrScanDone) assert (byte_scan_done_o);
+    if ($past(bus_we_i) && $past(bus_addr_i) == `BUS_SCAN_DONE) assert (byte_scan_done_o);
     else if ($past(latch_i)) assert (!byte_scan_done_o);
     else assert (byte_scan_done_o == $past(byte_scan_done_o));
     // the time base counts every clock from the first latch (or plant start) on

@@ -16,6 +16,7 @@
 
 extern "C" {
 #include "byteproc.h"  // the byte processor firmware (firmware_byte/), linked in
+#include "bus_map.h"   // register addresses, generated from bitbyte/definition.toml
 #include "hal.h"
 }
 #include <csetjmp>
@@ -186,7 +187,6 @@ struct Run {
 };
 
 static Run* g_run;  // the HAL's view of the simulation
-static uint64_t g_byte_scans;  // free-running mode: the byte side's completed scans
 
 // ------------------------------------------------------------------ the HAL (hal.h)
 extern "C" uint32_t hal_bus_read(uint16_t addr) {
@@ -353,7 +353,7 @@ int main(int argc, char** argv) {
     if (i > 1000000) die("ready_o never rose after reset");
     d.tick();
   }
-  top.bus_addr_i = 0x09;  // TICK_DIV: clocks per ms, set before scan 0 (no clock of any scan)
+  top.bus_addr_i = BB_BUS_TICK_DIV;  // clocks per ms, set before scan 0 (no clock of any scan)
   top.bus_wdata_i = uint32_t(rf.clock_hz / 1000);
   top.bus_we_i = 1;
   d.tick();
@@ -375,21 +375,9 @@ int main(int argc, char** argv) {
   d.direct = !d.wave;  // the model is initialised by now (first eval() done)
   const auto wall0 = std::chrono::steady_clock::now();
   if (setjmp(run.stop) == 0) {
-    if (rf.parallel) {
-      for (;;) {                     // each scan: its byte part from the latch clock on
-        hal_wait_dispatch();         // NEXT = the latch clock
-        bb_run_scan(&bb);
-        hal_bus_write(0x07, 1);      // SCAN_DONE: the bit side's END may complete
-      }
-    }
-    if (rf.free_running) {
-      for (;;) {                     // its own scans, back to back, never waiting
-        bb_run_scan(&bb);
-        hal_bus_write(0x07, 1);      // SCAN_DONE: its next scan begins
-        ++g_byte_scans;
-      }
-    }
-    for (;;) bb_serial_step(&bb);
+    // the firmware's own main loop, until Run::end_clock() jumps back here
+    bb_run(&bb, rf.parallel ? BB_MODE_PARALLEL : rf.free_running ? BB_MODE_FREE
+                                                                : BB_MODE_SERIAL);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const uint64_t n = run.n, scans = run.scans;
@@ -426,7 +414,7 @@ int main(int argc, char** argv) {
   }
   std::printf("stalls           bit side %u, byte side %u\n", top.stalls_bit_o, top.stalls_byte_o);
   if (rf.free_running)
-    std::printf("byte side        %llu scans (free-running)\n", (unsigned long long)g_byte_scans);
+    std::printf("byte side        %llu scans (free-running)\n", (unsigned long long)bb_byte_scans(&bb));
   if (rf.exchange == 2) {
     const uint32_t ovf = rp->bitbyte_cpu__DOT__queue_overflows, unf = rp->bitbyte_cpu__DOT__queue_underflows;
     std::printf("queue losses     overflows to-byte %u to-bit %u, underflows to-byte %u to-bit %u\n",

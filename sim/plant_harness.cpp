@@ -18,6 +18,7 @@
 
 extern "C" {
 #include "byteproc.h"
+#include "bus_map.h"   // register addresses, generated from bitbyte/definition.toml
 #include "hal.h"
 }
 #if VM_TRACE_FST
@@ -202,17 +203,11 @@ extern "C" void hal_wait_dispatch(void) {
 
 extern "C" uint64_t hal_now(void) { return g_n; }
 
-// The firmware's main loop, as in harness.cpp: serial dispatches or the byte part.
+// A core's coroutine: the firmware's own main loop (it never returns; the harness
+// stops resuming it).
 static void core_main(int idx) {
   Core& c = g_cores[size_t(idx)];
-  if (c.cf->rf.parallel) {
-    for (;;) {
-      hal_wait_dispatch();
-      bb_run_scan(&c.bb);
-      hal_bus_write(0x07, 1);      // SCAN_DONE
-    }
-  }
-  for (;;) bb_serial_step(&c.bb);
+  bb_run(&c.bb, c.cf->rf.parallel ? BB_MODE_PARALLEL : BB_MODE_SERIAL);
 }
 
 // ------------------------------------------------------------------ trace columns
@@ -311,7 +306,7 @@ int main(int argc, char** argv) {
     tick();
   }
   for (unsigned c = 0; c < hw_cores; ++c) {  // TICK_DIV on every core, before the start
-    set_field(top.bus_addr_i, 9 * c, 9, 0x09);
+    set_field(top.bus_addr_i, 9 * c, 9, BB_BUS_TICK_DIV);
     set_field(top.bus_wdata_i, 32 * c, 32, pf.clock_hz / 1000);
     set_field(top.bus_we_i, c, 1, 1);
   }

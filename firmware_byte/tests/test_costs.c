@@ -94,8 +94,41 @@ static void test_new_free_accessors(void) {
   bb_free(NULL);
 }
 
+/* bb_classify() gives every opcode of the definition (bb_isa.h's BB_BYTE_OPCODES,
+ * generated from bitbyte/definition.toml) the class the definition names, for an
+ * operand in range: the firmware's decoder and the definition agree. */
+static uint32_t valid_operand(unsigned op, int cls) {
+  switch (cls) {
+    case BB_CL_TIMER:   return BB_INSTR(op, BB_AREA_T, BB_NUM_TIMERS - 1);
+    case BB_CL_COUNTER: return BB_INSTR(op, BB_AREA_C, BB_NUM_COUNTERS - 1);
+    case BB_CL_LOAD:
+    case BB_CL_TRANSFER:
+      return op == BB_OP_L_IMM || op == BB_OP_L_POOL ? BB_INSTR_IMM(op, 0)
+                                                     : BB_INSTR(op, BB_AREA_MW, BB_NUM_MW - 1);
+    case BB_CL_BINARY:
+      return op == BB_OP_READ || op == BB_OP_WRITE
+             ? BB_INSTR(op, BB_AREA_FB, BB_NUM_CHANNELS - 1) : BB_INSTR_JUMP(op, 0);
+    default:            return BB_INSTR(op, 0, 0);
+  }
+}
+
+static void test_definition_classes(void) {
+  unsigned n = 0;
+#define CHECK_CLASS(op, cls) \
+  do { CHECK_EQ(bb_classify(valid_operand(op, cls)), cls); n++; } while (0);
+  BB_BYTE_OPCODES(CHECK_CLASS)
+#undef CHECK_CLASS
+  CHECK(n >= 20);
+  for (unsigned c = BB_CMP_EQ; c <= BB_CMP_LE; c++) {
+    CHECK_EQ(bb_classify(BB_INSTR(BB_OP_CMP + c, 0, 0)), BB_CL_COMPARE);
+    CHECK_EQ(bb_classify(BB_INSTR(BB_OP_A_CMP + c, 0, 0)), BB_CL_COMPARE);
+    CHECK_EQ(bb_classify(BB_INSTR(BB_OP_O_CMP + c, 0, 0)), BB_CL_COMPARE);
+  }
+}
+
 void suite_costs(void) {
   RUN(test_tables);
   RUN(test_classify);
+  RUN(test_definition_classes);
   RUN(test_new_free_accessors);
 }

@@ -421,6 +421,52 @@ static void test_serial_rejects(void) {
   }
 }
 
+/* bb_run_step(): the firmware's own main loop in each mode, against the fake HAL. */
+static void test_run_step_modes(void) {
+  /* serial: one dispatched instruction, exactly bb_serial_step()'s protocol */
+  setup();
+  FH.dispatch_instr = BB_INSTR_IMM(BB_OP_L_IMM, 7);
+  FH.dispatch_ctx = 0;
+  FH.dispatch_at = 40;
+  fh_clear_log();
+  CHECK_EQ(bb_run_step(&S, BB_MODE_SERIAL), 10);
+  CHECK_EQ(FH.waits, 1);
+  CHECK_EQ(FH.done_count, 1);
+  CHECK_EQ(FH.clock, 50);
+  CHECK_EQ(S.accu1, 7);
+  CHECK_EQ(bb_byte_scans(&S), 0);            /* no scan reported in serial mode */
+  CHECK_EQ(FH.log[FH.nlog - 1].addr, BB_BUS_DONE);
+
+  /* parallel: wait for the latch (NEXT), the byte part, then SCAN_DONE */
+  setup();
+  load(fig13, NWORDS(fig13));
+  FH.fby_val[0] = 1;
+  FH.dispatch_at = 100;
+  fh_clear_log();
+  CHECK_EQ(bb_run_step(&S, BB_MODE_PARALLEL), 53);   /* 52 of the part + SCAN_DONE */
+  CHECK_EQ(FH.waits, 1);
+  CHECK_EQ(FH.clock, 153);
+  CHECK_EQ(FH.log[FH.nlog - 1].addr, BB_BUS_SCAN_DONE);
+  CHECK_EQ(FH.log[FH.nlog - 1].write, 1);
+  CHECK_EQ(FH.log[FH.nlog - 1].clock, 152);          /* the clock after the part */
+  CHECK_EQ(bb_byte_scans(&S), 1);
+
+  /* free-running: no wait at all, scan after scan */
+  setup();
+  load(fig13, NWORDS(fig13));
+  FH.fby_val[0] = 1;
+  FH.dispatch_at = 1000;                             /* would be waited for: is not */
+  CHECK_EQ(bb_run_step(&S, BB_MODE_FREE), 53);
+  CHECK_EQ(bb_run_step(&S, BB_MODE_FREE), 53);
+  CHECK_EQ(FH.waits, 0);
+  CHECK_EQ(FH.clock, 106);
+  CHECK_EQ(bb_byte_scans(&S), 2);
+
+  CHECK_EQ(bb_run_step(&S, (bb_mode)7), -1);         /* an unknown mode does nothing */
+  CHECK_EQ(FH.clock, 106);
+  bb_run(&S, (bb_mode)7);                            /* ... and bb_run returns */
+}
+
 void suite_program(void) {
   RUN(test_fig13_straight);
   RUN(test_jump_on_compare);
@@ -433,4 +479,5 @@ void suite_program(void) {
   RUN(test_load_program);
   RUN(test_classify_and_step);
   RUN(test_serial_rejects);
+  RUN(test_run_step_modes);
 }
