@@ -88,8 +88,8 @@ formal: $(VENV_STAMP) ## prove every formal/*.sby (SymbiYosys, k-induction)
 	    yowasp-sby -f $$f prove | tail -n 2 || exit 1; \
 	done
 
-generate: $(VENV_STAMP)  ## rewrite the files generated from bitbyte/definition.toml (RTL/firmware headers, doc tables)
-	python -m bitbyte.generate
+generate: $(VENV_STAMP)  ## rewrite the files generated from bitbyte/lang/definition.toml (RTL/firmware headers, doc tables)
+	python -m bitbyte.lang.generate
 
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache

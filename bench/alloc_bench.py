@@ -267,8 +267,8 @@ def emitted_plant(tmp: Path) -> dict:
     on the multi-core system (`bitbyte run PLANT.toml`, the Verilator plant harness)."""
     import csv
     import subprocess
-    from bitbyte.parser import parse_file
-    from bitbyte.refsim import RefSim
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.ref.refsim import RefSim
     tasks = [replace(t, wcet_ms=t.wcet_ms / 3) for t in al.generate_becker2015(800, 1)]
     a = al.allocate(tasks, al.Platform(al.BECKER_CORES))
     assert a.ok
@@ -478,9 +478,9 @@ the task file; when `wcet_ms` is empty the WCET is its scan time at `--clock-mhz
 
 * `--mode serial` (default): the serial straight line of docs/isa.md, Σ bit + Σ
   word costs + 1 (END) clocks with the default (paper) cost table, jumps not taken
-  (`bitbyte.refsim.serial_cost` + 1: the Fig. 5 program takes 60 clocks);
+  (`bitbyte.lang.costs.serial_cost` + 1: the Fig. 5 program takes 60 clocks);
 * `--mode parallel`: the partitioning compiler's estimate, max(byte part + bit tail,
-  bit part) (`bitbyte.partition.estimate`, the figure `bitbyte asm --mode parallel`
+  bit part) (`bitbyte.compiler.estimate`, the figure `bitbyte asm --mode parallel`
   reports).
 
 Every bad input is `file:line:col: message` with the line and a caret, exit 1, never a
@@ -766,7 +766,7 @@ accepts the plant. A lower `--clock-mhz` makes it cheaper to simulate (1 MHz: 10
 clocks per 10 ms).
 """)
     pl = R["plant"]
-    w(f"Every core's program alone in the reference interpreter (`bitbyte.refsim`): Table "
+    w(f"Every core's program alone in the reference interpreter (`bitbyte.ref.refsim`): Table "
       f"I with execution times / 3, seed 1, 16 cores, {pl['mhz']} MHz.\n")
     w("| core | SCT [ms] | predicted U | clocks per scan | instructions | measured U | "
       "within SCT |")

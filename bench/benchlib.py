@@ -235,9 +235,9 @@ class Static:
 
 
 def static_counts(path: Path | str) -> Static:
-    from bitbyte.config import Config
-    from bitbyte.parser import parse_file
-    from bitbyte.refsim import byte_kind
+    from bitbyte.lang.config import Config
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.lang.costs import byte_kind
     prog = parse_file(str(path), Config())
     kinds, mns, ops = [], [], []
     nb = nw = nj = 0
@@ -259,7 +259,7 @@ def static_counts(path: Path | str) -> Static:
 
 
 def cost_table(name: str) -> dict[str, int]:
-    from bitbyte.refsim import COST_TABLES
+    from bitbyte.lang.costs import COST_TABLES
     t = COST_TABLES[name]
     return {"word": t["load"], "binary": t["binary"]}
 

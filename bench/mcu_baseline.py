@@ -131,8 +131,8 @@ def to_units(mcu_clocks) -> Fraction:
 
 def mix_of(path) -> dict[str, int]:
     """Bit-instruction kinds of a program (LD, A, O, =, ...) -> count."""
-    from bitbyte.parser import parse_file
-    from bitbyte.refsim import byte_kind
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.lang.costs import byte_kind
     prog = parse_file(str(path))
     out: dict[str, int] = {}
     for ins in prog.instrs:

@@ -24,7 +24,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 import plantgen  # noqa: E402
-from bitbyte.plantrun import run_plant  # noqa: E402
+from bitbyte.plant.run import run_plant  # noqa: E402
 
 DOC = ROOT / "docs" / "multicore.md"
 PLOT = ROOT / "docs" / "multicore_copy.png"

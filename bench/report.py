@@ -506,7 +506,7 @@ def markdown(res, d) -> str:
             "scan. "
             "The run of 2026-11-25 measured 1 447 clocks (speed-up 1.43) with 374 "
             "clocks of bit-side and 291 of byte-side waiting per scan. Two causes, "
-            "both in the partitioning compiler (`bitbyte/partition.py`; docs/toolchain.md):\n")
+            "both in the partitioning compiler (`bitbyte/compiler/`; docs/toolchain.md):\n")
         add("1. *Status syncs far from their update.* Each bit-side read of a timer or "
             "counter status that an update precedes got a channel round trip right "
             "before it (`= FBY` / `READ`, `WRITE` / `LD FBI`), so the bit side "

@@ -233,8 +233,8 @@ def measure_simspeed(f, quick: bool) -> dict:
     bl.progress(f"  harness: {best.mclocks_per_s()} M clocks/s ({clocks} clocks, "
                 f"{best.wall_s:.2f} s wall)")
 
-    from bitbyte.cli import prepare_run
-    from bitbyte.sim_cocotb import run_jobs
+    from bitbyte.run.prepare import prepare_run
+    from bitbyte.sim.cocotb_runner import run_jobs
 
     for sim, n_small, n_large in (("verilator", 2, 12 if quick else 150),
                                   ("icarus", 2, 6 if quick else 50)):

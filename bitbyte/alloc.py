@@ -48,7 +48,7 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from .errors import SourceError, read_utf8
+from bitbyte.lang.errors import SourceError, read_utf8
 
 ALPHA_MS = Fraction("0.001145")          # seed 002 §V: 1.145 µs per byte read
 BETA_MS = Fraction("0.001145")           # ... and written
@@ -266,14 +266,15 @@ def program_clocks(path: str, mode: str = "serial", costs: str = "paper") -> int
     """Clocks of one scan of an IL program along its straight line (no jump taken):
     serial: sum(bit) + sum(word costs) + 1 (docs/isa.md "Serial mode timing");
     parallel: the partitioning compiler's estimate, max(byte part + bit tail, bit
-    part) (bitbyte.partition.estimate).  Raises the program's SourceError."""
-    from .config import Config
-    from .parser import parse_file
-    from .refsim import serial_cost
+    part) (bitbyte.compiler.estimate).  Raises the program's SourceError."""
+    from bitbyte.lang.config import Config
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.lang.costs import serial_cost
     program = parse_file(path, Config())
     if mode == "serial":
         return serial_cost(program, costs) + 1
-    from .partition import estimate, partition
+    from bitbyte.compiler.estimate import estimate
+    from bitbyte.compiler.partition import partition
     return estimate(partition(program, Config().channels), costs).clocks
 
 

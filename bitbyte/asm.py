@@ -3,8 +3,8 @@
 Writes, beside the source or into outdir, `<stem>.hex` (one 8-digit hex word per
 line, address 0 first: the `$readmemh` format), `<stem>.lst` (the listing) and
 `<stem>.json` ({"source", "words", "config", "symbols", "labels"}).  With
-mode="parallel" the program is partitioned first and the files are those of
-bitbyte.partition.assemble_parallel (`<stem>.bit.hex`, `<stem>.byte.hex`, ...).
+mode="parallel" the program is partitioned first (bitbyte.compiler) and the files are
+those of assemble_parallel (`<stem>.bit.hex`, `<stem>.byte.hex`, ...).
 Nothing is written when the program has an error: the SourceError propagates to the caller
 (the CLI prints it with `format_error` and exits non-zero).
 """
@@ -14,10 +14,13 @@ import json
 import os
 from dataclasses import asdict
 
-from .config import DEFAULT, Config
-from .encoder import constant_pool, encode
-from .parser import parse_file
-from .program import Program
+from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.encoding.encoder import constant_pool, encode
+from bitbyte.lang.parser import parse_file
+from bitbyte.compiler.estimate import estimate
+from bitbyte.compiler.partition import partition
+from bitbyte.compiler.report import part_listing, report_text, side_by_side
+from bitbyte.lang.program import Program
 
 
 def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
@@ -28,8 +31,7 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     Returns {"hex": path, "lst": path, "json": path, "words": n}.  Raises only
     SourceError for a bad program (OSError if outdir cannot be written).
     """
-    if mode == "parallel":            # two images, partition report: bitbyte.partition
-        from .partition import assemble_parallel
+    if mode == "parallel":            # two images and the partition report
         return assemble_parallel(path, outdir, config)
     program = parse_file(path, config)
     words, listing_text = encode(program, config, mode)
@@ -66,3 +68,50 @@ def summary(program: Program, words: list[int], config: Config) -> dict:
 def _write(path: str, text: str) -> None:
     with open(path, "w", encoding="ascii", newline="\n") as f:
         f.write(text)
+
+
+def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEFAULT,
+                      channels: int | None = None) -> dict:
+    """Parse, partition, encode, write (stem = the source's name without .il):
+
+      <stem>.bit.hex        bit part image ($readmemh, one 8-digit word per line)
+      <stem>.byte.hex       byte part image (the firmware's bb_load_program words)
+      <stem>.pool.hex       the byte part's constant pool, only when it has one
+      <stem>.lst            report, side-by-side view, both parts address by address
+      <stem>.partition.txt  report and side-by-side view
+      <stem>.json           {"source", "mode", "channels", "config", "symbols",
+                             "bit_words", "byte_words", "bit_labels", "byte_labels",
+                             "transfers", "mirrored_jumps", "estimate"}
+
+    Returns {"bit_hex", "byte_hex", ["pool"], "lst", "report", "json": paths,
+    "words": bit words, "byte_words": byte words}.  Nothing is written on an error."""
+    program = parse_file(path, config)
+    part = partition(program, channels or config.channels, config=config)
+    report = report_text(part)
+    view = side_by_side(part)
+    stem = os.path.splitext(os.path.basename(path))[0]
+    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
+    os.makedirs(outdir, exist_ok=True)
+    paths = {key: os.path.join(outdir, f"{stem}.{ext}") for key, ext in (
+        ("bit_hex", "bit.hex"), ("byte_hex", "byte.hex"), ("lst", "lst"),
+        ("report", "partition.txt"), ("json", "json"))}
+    _write(paths["bit_hex"], hex_image(part.bit_words))
+    _write(paths["byte_hex"], hex_image(part.byte_words))
+    if part.pool:
+        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        _write(paths["pool"], hex_image(part.pool))
+    _write(paths["report"], report + "\n" + view)
+    _write(paths["lst"], report + "\n" + view + part_listing(part))
+    est = estimate(part)
+    summary = {
+        "source": program.path, "mode": "parallel", "channels": part.channels,
+        "hand_partitioned": part.hand_partitioned, "config": asdict(config),
+        "symbols": {name: op.address() for name, op in program.symbols.items()},
+        "bit_words": len(part.bit_words), "byte_words": len(part.byte_words),
+        "bit_labels": part.bit_labels, "byte_labels": part.byte_labels,
+        "transfers": [asdict(t) for t in part.transfers],
+        "mirrored_jumps": [program.instrs[i].line for i in part.mirrored],
+        "estimate": asdict(est),
+    }
+    _write(paths["json"], json.dumps(summary, indent=2) + "\n")
+    return {**paths, "words": len(part.bit_words), "byte_words": len(part.byte_words)}

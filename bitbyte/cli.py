@@ -11,24 +11,24 @@ line mistakes) and a non-zero exit status, never a traceback:
 from __future__ import annotations
 
 import argparse
-import fcntl
-import math
-import subprocess
+import json
 import sys
-import tempfile
 from fractions import Fraction
 from pathlib import Path
 
-from .errors import UsageError  # noqa: F401  (raised by the modules cli calls)
-from .config import Config
-from .errors import SourceError, format_error
+from bitbyte import alloc as al
+from bitbyte.asm import assemble
+from bitbyte.lang import trace as tr
+from bitbyte.lang.config import Config
+from bitbyte.lang.errors import SimError, SourceError, UsageError, format_error
+from bitbyte.plant.link import format_map, link, load_plant
+from bitbyte.plant.run import PlantRunError, run_plant
+from bitbyte.run.prepare import parse_clock_mhz, prepare_run
+from bitbyte.sim.cocotb_runner import run_cocotb
+from bitbyte.sim.verilator import run_harness
 
 EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
 EXIT_NO_FIT = 5
-ROOT = Path(__file__).resolve().parents[1]
-HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
-DEFAULT_SCANS = 10
-
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -87,37 +87,7 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _clock_mhz(text: str) -> Fraction:
-    try:
-        f = Fraction(text)
-    except (ValueError, ZeroDivisionError):
-        raise UsageError(f"--clock-mhz: not a number: {text!r}") from None
-    if f <= 0 or (f * 1000).denominator != 1:
-        raise UsageError("--clock-mhz must be positive and a whole number of kHz "
-                         "(the timers' 1 ms time base counts whole clocks)")
-    return f
-
-
-def _check_mode(mode: str, exchange: str | None) -> str:
-    """The exchange setting for a run: parallel mode defaults to handshake; serial
-    mode ignores --exchange (spec §4); free-running mode takes marker or queue-free."""
-    if mode == "serial":
-        return "handshake"
-    if mode == "free":
-        exchange = exchange or "marker"
-        if exchange not in ("marker", "queue-free"):
-            raise UsageError(f"--exchange {exchange}: free-running processors never wait; "
-                             "use marker or queue-free")
-        return exchange
-    exchange = exchange or "handshake"
-    if exchange not in ("handshake", "queue"):
-        raise UsageError(f"--exchange {exchange}: parallel mode runs with handshake or "
-                         "queue (free-running exchanges need --mode free)")
-    return exchange
-
-
 def cmd_asm(args) -> int:
-    from .asm import assemble
     result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode)
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
@@ -125,87 +95,7 @@ def cmd_asm(args) -> int:
     return 0
 
 
-def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
-                scans: int | None = None, until_us: str | None = None,
-                watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
-                mode: str = "serial", exchange: str | None = None,
-                channels: int | None = None):
-    """Everything `run` does before the simulator: parse, encode, stimulus, columns.
-
-    Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
-    The differential tests call this too, so they exercise the same path."""
-    from . import trace as tr
-    from .encoder import constant_pool, encode_words
-    from .parser import parse_file
-    from .refsim import COST_TABLES
-    from .runjob import RunJob, hw_column
-    from .stimulus import load_stimulus, no_stimulus
-
-    f = _clock_mhz(clock_mhz)
-    config = Config(clock_mhz=float(f))
-    if scans is not None and scans < 1:
-        raise UsageError("--scans must be at least 1")
-    if not 2 <= watchdog < 2 ** 32:
-        raise UsageError("--watchdog must be 2 .. 2^32-1 clocks")
-    until_clock = None
-    if until_us is not None:
-        try:
-            t = Fraction(until_us)
-        except (ValueError, ZeroDivisionError):
-            raise UsageError(f"--until-us: not a number: {until_us!r}") from None
-        if t < 0:
-            raise UsageError("--until-us must not be negative")
-        until_clock = math.ceil(t * f)
-    if scans is None and until_clock is None:
-        scans = DEFAULT_SCANS
-
-    if costs not in COST_TABLES:
-        raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
-    exchange = _check_mode(mode, exchange)
-    program = parse_file(program_path, config)
-    byte_words: list[int] = []
-    if mode in ("parallel", "free"):
-        from .partition import partition
-        # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
-        free = mode == "free"
-        if channels is not None and not 1 <= channels <= config.channels:
-            raise UsageError(f"--channels must be 1..{config.channels}")
-        part = partition(program, channels or config.channels, config=config,
-                         status_sync=not free,
-                         hardware_wait=not free, costs=costs)
-        words, byte_words, pool = part.bit_words, part.byte_words, part.pool
-        if free and exchange == "marker":
-            _one_cell_per_condition(program, part, channels or config.channels)
-    else:
-        words, pool = encode_words(program, config), constant_pool(program)
-    stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
-            else no_stimulus(config))
-    watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
-    try:
-        columns = tr.trace_columns(program, watch_list, program.symbols, config)
-    except ValueError as e:
-        raise UsageError(f"--watch: {e}") from None
-    events = stim.events_for_harness(f)
-    has_words = any(row.words for row in stim.rows)
-
-    def input_words(kind: str, key: int):
-        if not has_words:
-            return None
-        got = stim.words_for_scan(key) if kind == "scan" else stim.words_at_clock(key, f)
-        return [got.get(n, 0) for n in range(16)]
-
-    job = RunJob(prog=words, clock_hz=int(f * 1_000_000), watchdog=watchdog,
-                 scans=scans, until_clock=until_clock,
-                 stim_kind=events[0][0] if events else "none",
-                 stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
-                 cols=[(c.header, *hw_column(c.operand)) for c in columns],
-                 costs=costs, pool=pool, mode=mode, exchange=exchange,
-                 byte_prog=byte_words)
-    return program, columns, job, f
-
-
 def cmd_link(args) -> int:
-    from .plant import format_map, link, load_plant
     print(format_map(link(load_plant(args.plant))), end="")
     return 0
 
@@ -213,10 +103,7 @@ def cmd_link(args) -> int:
 def cmd_alloc(args) -> int:
     """Spec §8: read or generate the tasks, allocate, print the table; --json is
     written even when the tasks do not fit (exit 5), --emit only when they do."""
-    import json
-    from . import alloc as al
-
-    f = _clock_mhz(args.clock_mhz)
+    f = parse_clock_mhz(args.clock_mhz)
     rates = {}
     for opt in ("alpha", "beta"):
         try:
@@ -266,25 +153,7 @@ def cmd_alloc(args) -> int:
     return 0
 
 
-def _one_cell_per_condition(program, part, cells: int) -> None:
-    """The marker area holds one condition per cell and a reader snapshots it once a
-    scan: two conditions of one scan in one cell would mix. Free-running mode with
-    the marker exchange therefore needs a cell per transfer and direction."""
-    seen: dict[str, int] = {}
-    for t in part.transfers:
-        seen[t.direction] = seen.get(t.direction, 0) + 1
-        if seen[t.direction] > cells:
-            line = next((i.source for i in program.instrs if i.line == t.line), "")
-            raise SourceError(program.path, t.line, t.col,
-                              f"more than {cells} conditions cross "
-                              f"{'bit -> byte' if t.direction == 'to_byte' else 'byte -> bit'} in one "
-                              f"scan: the marker area has {cells} cells per direction "
-                              "(use --exchange queue-free, or fewer crossings)", line)
-
-
 def cmd_run(args) -> int:
-    from . import trace as tr
-
     if args.program.lower().endswith(".toml"):
         return cmd_run_plant(args)
 
@@ -295,9 +164,11 @@ def cmd_run(args) -> int:
         channels=args.channels)
 
     if args.sim == "verilator":
-        records, fault, summary = _run_harness(job, columns, args)
+        records, fault, summary = run_harness(job, columns, args.trace, args.waves)
     else:
-        records, fault, summary = _run_cocotb(job, columns, args, f)
+        if args.waves:
+            raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
+        records, fault, summary = run_cocotb(job, columns, args.sim, f, args.trace)
     if args.trace and args.sim != "verilator":
         tr.write_trace(args.trace, columns, records, f)
     print(summary, end="")
@@ -310,7 +181,6 @@ def cmd_run(args) -> int:
 
 def cmd_run_plant(args) -> int:
     """`run PLANT.toml` (spec §7): every core on the multi-core system."""
-    from .plantrun import PlantRunError, run_plant
     if args.until_us is None:
         raise UsageError("running a plant needs --until-us T")
     for opt, given in (("--mode", args.mode != "serial"), ("--exchange", args.exchange),
@@ -330,70 +200,6 @@ def cmd_run_plant(args) -> int:
     print("".join(l for l in lines if l.startswith("scan watchdog")), end="",
           file=sys.stderr)
     return EXIT_WATCHDOG if status == 3 else 0
-
-
-def _records_from_rows(columns, rows):
-    from .trace import ScanRecord
-    return [ScanRecord(scan=s, end_clock=e, cycles=c,
-                       values={col.header: v for col, v in zip(columns, vals)})
-            for s, e, c, vals in rows]
-
-
-def _run_cocotb(job, columns, args, f):
-    from .sim_cocotb import run_jobs
-    from .summary import summary_text
-    if args.waves:
-        raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
-    try:
-        (result,) = run_jobs([job], args.sim)
-    except (SystemExit, RuntimeError, OSError) as e:
-        raise SimError(f"cocotb on {args.sim} failed: {e}") from None
-    records = _records_from_rows(columns, result.rows)
-    return records, result.fault, summary_text(records, f, args.trace, result.stalls)
-
-
-class SimError(Exception):
-    """The simulator could not be built or run: exit 4."""
-
-
-def ensure_harness() -> Path:
-    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale."""
-    HARNESS.parent.mkdir(parents=True, exist_ok=True)
-    with open(HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "harness"],
-                              capture_output=True, text=True)
-    if proc.returncode != 0 or not HARNESS.exists():
-        raise SimError("building the Verilator harness failed:\n" + proc.stdout + proc.stderr)
-    return HARNESS
-
-
-def _run_harness(job, columns, args):
-    from .trace import read_trace_rows
-    harness = ensure_harness()
-    with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
-        hex_path = Path(tmp) / "prog.hex"
-        hex_path.write_text("".join(f"{w:08x}\n" for w in job.prog))
-        trace_path = Path(args.trace).resolve() if args.trace else Path(tmp) / "trace.csv"
-        waves = str(Path(args.waves).resolve()) if args.waves else None
-        if waves:
-            Path(waves).parent.mkdir(parents=True, exist_ok=True)
-        run_file = Path(tmp) / "run.txt"
-        byte_path = None
-        if job.mode in ("parallel", "free"):
-            byte_path = Path(tmp) / "byte.hex"
-            byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
-        text = job.to_harness_text(str(hex_path), str(trace_path), waves,
-                                   str(byte_path) if byte_path else None)
-        run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
-        proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
-        if not args.trace:        # the temporary trace is gone after the run: do not show it
-            proc.stdout = "".join(l for l in proc.stdout.splitlines(keepends=True)
-                                  if not l.startswith("trace "))
-        if proc.returncode not in (0, EXIT_WATCHDOG):
-            raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
-        records = read_trace_rows(trace_path, columns)
-    return records, proc.returncode == EXIT_WATCHDOG, proc.stdout
 
 
 def main(argv: list[str] | None = None) -> int:

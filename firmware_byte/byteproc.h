@@ -24,7 +24,7 @@ extern "C" {
 #endif
 
 /* Sizes, opcodes, compare codes, areas, flags and the cost classes (enum bb_class):
- * generated from bitbyte/definition.toml. */
+ * generated from bitbyte/lang/definition.toml. */
 #include "bb_isa.h"
 
 /* Instruction word helpers. */

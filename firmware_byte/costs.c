@@ -34,7 +34,7 @@
 #include "byteproc.h"
 
 /* bb_cost_tables[] (the first is the default) and bb_class_names[]: generated from
- * bitbyte/definition.toml, where the numbers above are written once. */
+ * bitbyte/lang/definition.toml, where the numbers above are written once. */
 #include "cost_tables.h"
 
 #define BB_NUM_COST_TABLES (sizeof bb_cost_tables / sizeof bb_cost_tables[0])

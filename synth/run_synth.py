@@ -9,7 +9,7 @@ docs/synthesis_resources.png. Every tool is a YoWASP package from .venv.
 
     python synth/run_synth.py [--quick] [--jobs 2] [--seed 1]
 
-The design is synth/synth_top.v, generated from the core's port list by
+The design is synth_top.v (written to synth/build/ at every run), generated from the core's port list by
 synth/gen_wrapper.py: the core's pins stay inside behind shift-register chains, an
 SPI slave and synchronisers (docs/synthesis.md says which port goes where).
 Whatever rtl/*.v holds is read; the parameters to sweep are found in the top's
@@ -571,7 +571,7 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("## The FPGA design: core plus wrapper")
     w("")
     w("The core has hundreds of binary pins, a 32-bit program-load port and the byte-side "
-      "bus: more than any of these packages has pins. `synth/synth_top.v` (generated from the "
+      "bus: more than any of these packages has pins. `synth_top.v` (written to synth/build/ from the "
       "core's port list by `synth/gen_wrapper.py`, lint-clean under `verilator -Wall`) keeps "
       "them inside behind what a board would really carry, so that nothing is optimised away "
       "and every core port is driven by or drives a flip-flop:")
@@ -786,7 +786,9 @@ def main() -> int:
     RTL_DIR = snap
 
     core_file = snap / f"{TOP_CORE}.v"
-    wrapper = gen_wrapper.write_wrapper(core_file, TOP_CORE, HERE / "synth_top.v", f"rtl/{TOP_CORE}.v")
+    # generated into the build folder: `make synth` changes no tracked file
+    top_file = build / "synth_top.v"
+    wrapper = gen_wrapper.write_wrapper(core_file, TOP_CORE, top_file, f"rtl/{TOP_CORE}.v")
     params = wrapper["params"]
     defaults = {}
     for k, v in params:
@@ -795,7 +797,7 @@ def main() -> int:
         except ValueError:
             pass
     rtl = sorted(str(p) for p in snap.glob("*.v"))
-    mine = sorted(str(p) for p in HERE.glob("synth_*.v"))
+    mine = sorted(str(p) for p in HERE.glob("synth_*.v")) + [str(top_file)]
     files = mine + rtl
     lint(files)
     log(f"{len(rtl)} RTL files, top {TOP_CORE}, parameters: " + ", ".join(f"{k}={v}" for k, v in params))

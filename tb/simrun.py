@@ -9,7 +9,7 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-from bitbyte.sim_cocotb import build_and_test
+from bitbyte.sim.cocotb_runner import build_and_test
 
 ROOT = Path(__file__).resolve().parents[1]
 SIMULATORS = ("icarus", "verilator")

@@ -11,7 +11,7 @@ from cocotb.triggers import FallingEdge, RisingEdge, Timer
 from simrun import SIMULATORS, run_cocotb
 
 MARKER_BITS = 64
-# Opcodes (docs/isa.md) and area codes, spelled out independently of bitbyte/isa.py
+# Opcodes (docs/isa.md) and area codes, spelled out independently of bitbyte/encoding/isa.py
 END, NOT, SET, CLR, CLOSE, NOP = 0x01, 0x02, 0x03, 0x04, 0x05, 0x00
 LD, LDN, A, AN, O, ON, X, XN = range(0x08, 0x10)
 A_OPEN, AN_OPEN, O_OPEN, ON_OPEN, X_OPEN, XN_OPEN = range(0x12, 0x18)

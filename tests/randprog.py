@@ -246,7 +246,7 @@ def random_mixed_watch(seed: int) -> list[str]:
 
 
 # ------------------------------------------------------------------ parallel-mode programs
-# Mixed programs with the shapes the partitioning compiler (bitbyte/partition.py) treats
+# Mixed programs with the shapes the partitioning compiler (bitbyte/compiler/) treats
 # specially, on top of the mixed blocks: compares feeding timers/counters directly (the
 # RLO on the byte side at an update), A/O compares inside parentheses, jumps right after
 # compares, loops with word code (on a toggled marker or on a compare), a status read at

@@ -20,7 +20,6 @@ from pathlib import Path
 import pytest
 
 from bitbyte import alloc as al
-
 ROOT = Path(__file__).resolve().parents[1]
 BITBYTE = ROOT / ".venv" / "bin" / "bitbyte"
 SEED = int(os.environ.get("BITBYTE_SEED", "1"))
@@ -337,8 +336,9 @@ def test_cli_table_json_and_program_wcet(tmp_path):
     proc = bitbyte("alloc", path, "--cores", 4, "--clock-mhz", "0.001")
     assert proc.returncode == 1 and proc.stderr.startswith(f"{path}:6:12:")
     assert "task 'd' fits no core" in proc.stderr
-    from bitbyte.parser import parse_file
-    from bitbyte.partition import estimate, partition
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.compiler.estimate import estimate
+    from bitbyte.compiler.partition import partition
     par = estimate(partition(parse_file(str(ROOT / "examples" / "fig5.il")), 4)).clocks
     assert par < 60
     assert bitbyte("alloc", path, "--cores", 4, "--json", out, "--clock-mhz", "0.01",
@@ -461,8 +461,8 @@ def test_cli_program_errors_and_missing_files(tmp_path):
 def test_emit_plant_links_and_each_program_burns_its_load(tmp_path):
     """Each core's generated program takes floor(load * f) clocks per scan in the
     reference interpreter: within its SCT and within 5 % of the predicted U."""
-    from bitbyte.parser import parse_file
-    from bitbyte.refsim import RefSim
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.ref.refsim import RefSim
     out = tmp_path / "r.json"
     plant = tmp_path / "plant" / "plant.toml"
     proc = bitbyte("alloc", "--generate", "becker2015", "--networks", 120, "--seed", 4,
@@ -492,13 +492,13 @@ def test_emit_plant_links_and_each_program_burns_its_load(tmp_path):
 def test_load_program_takes_exactly_its_clocks(clocks, loop_max, monkeypatch):
     """Exact in the reference interpreter, bit instructions only; a small loop_max
     splits the load into several loops as a very large load would be."""
-    from bitbyte.parser import parse
-    from bitbyte.refsim import RefSim
+    from bitbyte.lang.parser import parse
+    from bitbyte.ref.refsim import RefSim
     monkeypatch.setattr(al, "LOOP_MAX", loop_max)
     program = parse("load.il", al.load_program(clocks))
     assert [s.cycles for s in RefSim(program, watchdog=10 ** 8).run(scans=2)] == \
         [clocks, clocks]
-    from bitbyte.refsim import byte_kind
+    from bitbyte.lang.costs import byte_kind
     assert all(byte_kind(ins) is None for ins in program.instrs)    # bit work only
 
 

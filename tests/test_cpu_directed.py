@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import pytest
 
+from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
-from bitbyte.sim_cocotb import run_jobs
+from bitbyte.sim.cocotb_runner import run_jobs
 
 # (name, program, stimulus CSV, scans, expected Q column values per scan:
 #  a list of strings, one per scan, the Q bits in trace-column order)
@@ -70,7 +71,7 @@ def prepared(tmp_path_factory):
         if stim:
             stim_path = tmp / f"{name}.csv"
             stim_path.write_text(stim)
-        _, columns, job, _ = cli.prepare_run(str(il), stimulus=stim_path and str(stim_path),
+        _, columns, job, _ = prepare_run(str(il), stimulus=stim_path and str(stim_path),
                                              scans=scans)
         out.append((name, il, stim_path, scans, expect, columns, job))
     return out

@@ -1,5 +1,5 @@
 """The binary encoding of docs/isa.md, checked against words written out by hand
-(never computed from bitbyte.isa's tables), plus the image files of `assemble`.
+(never computed from bitbyte.encoding.isa's tables), plus the image files of `assemble`.
 
 Word: opcode (31..24) | reserved 0 (23..16) | area (15..12) | index (11..0),
 or opcode | 0 | jump target (15..0).  Areas: I 0, PI 1, IR 2, IF 3, Q 4, PQ 5, M 6,
@@ -12,10 +12,10 @@ import json
 import pytest
 
 from bitbyte.asm import assemble
-from bitbyte.config import Config
-from bitbyte.encoder import constant_pool, encode, encode_words
-from bitbyte.errors import SourceError
-from bitbyte.parser import parse
+from bitbyte.lang.config import Config
+from bitbyte.encoding.encoder import constant_pool, encode, encode_words
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.parser import parse
 
 
 def words_of(text: str, config: Config = Config()) -> list[int]:

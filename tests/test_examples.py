@@ -7,11 +7,14 @@ from pathlib import Path
 
 import pytest
 
+from bitbyte.run.prepare import prepare_run
+from bitbyte.sim.cocotb_runner import records_from_rows
 from bitbyte import cli
-from bitbyte.refsim import refsim_trace, serial_cost
-from bitbyte.sim_cocotb import run_jobs
-from bitbyte.stimulus import load_stimulus
-from bitbyte.trace import read_trace_rows, trace_text
+from bitbyte.lang.costs import serial_cost
+from bitbyte.ref.refsim import refsim_trace
+from bitbyte.sim.cocotb_runner import run_jobs
+from bitbyte.lang.stimulus import load_stimulus
+from bitbyte.lang.trace import read_trace_rows, trace_text
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 # (example, clock MHz, run: --scans N or --until-us T, watched)
@@ -26,7 +29,7 @@ RUNS = [
 def expected(name, mhz, stop, watch):
     il, stim = EXAMPLES / f"{name}.il", EXAMPLES / f"{name}.stim.csv"
     kw = {"scans": stop[1]} if stop[0] == "scans" else {"until_us": stop[1]}
-    program, columns, job, f = cli.prepare_run(str(il), stimulus=str(stim), watch=watch,
+    program, columns, job, f = prepare_run(str(il), stimulus=str(stim), watch=watch,
                                                clock_mhz=mhz, **kw)
     stimulus = load_stimulus(str(stim), program.symbols)
     stimulus.clock_mhz = f
@@ -55,7 +58,7 @@ def test_examples_on_icarus_equal_reference():
     prepared = [expected(*r) for r in runs]
     results = run_jobs([p[1] for p in prepared], "icarus")
     for (name, *_), (columns, _, f, text, _), result in zip(runs, prepared, results):
-        got = trace_text(columns, cli._records_from_rows(columns, result.rows), f)
+        got = trace_text(columns, records_from_rows(columns, result.rows), f)
         assert (got, result.fault) == (text, False), name
 
 
@@ -63,7 +66,7 @@ def test_fig5_serial_cycles():
     """Spec §5: 59 clocks of instruction work serially with the default table; the
     first instruction runs in the latch clock and END adds one: 60 (required <= 62,
     goal 60)."""
-    from bitbyte.parser import parse_file
+    from bitbyte.lang.parser import parse_file
     assert serial_cost(parse_file(str(EXAMPLES / "fig5.il"))) == 9 * 1 + 5 * 10
     *_, records = expected(*RUNS[1])
     assert {r.cycles for r in records} == {60}

@@ -3,11 +3,11 @@ from fractions import Fraction
 
 import pytest
 
-from bitbyte.config import Config
-from bitbyte.errors import SourceError
-from bitbyte.program import Instr, Operand, Program
-from bitbyte.stimulus import load_stimulus, no_stimulus, parse_stimulus
-from bitbyte.trace import (Column, ScanRecord, format_t_us, format_value, header_line,
+from bitbyte.lang.config import Config
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.program import Instr, Operand, Program
+from bitbyte.lang.stimulus import load_stimulus, no_stimulus, parse_stimulus
+from bitbyte.lang.trace import (Column, ScanRecord, format_t_us, format_value, header_line,
                            parse_address, trace_columns, write_trace)
 
 SYMBOLS = {

@@ -8,7 +8,6 @@ from __future__ import annotations
 import pytest
 
 from bitbyte import cli
-
 # Bit-only logic (I0.1 -> Q0.1) next to slow word logic; I0.0 crosses to the byte side
 # (the jump over word code carries it), which counts it into MW0 (+1 per byte scan
 # while I0.0 = 1).

@@ -18,9 +18,9 @@ from pathlib import Path
 import pytest
 
 from bitbyte import cli
-from bitbyte.errors import SourceError
-from bitbyte.parser import parse_file
-from bitbyte.plant import format_map, link, load_plant
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.parser import parse_file
+from bitbyte.plant.link import format_map, link, load_plant
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "plant_6_1"
@@ -95,7 +95,7 @@ def test_example_plant_file():
 
 
 def test_example_stimulus_is_valid_for_p1():
-    from bitbyte.stimulus import load_stimulus
+    from bitbyte.lang.stimulus import load_stimulus
     plant = load_plant(str(EXAMPLE / "plant.toml"))
     program = parse_file(plant.cores[0].program)
     stim = load_stimulus(plant.cores[0].stimulus, program.symbols, plant.config())
@@ -108,9 +108,9 @@ def test_p1_alone_counts_the_pulses_of_in1():
     of a few ms, well inside the 20 ms pulses): 10 clocks per ms."""
     from fractions import Fraction
 
-    from bitbyte.config import Config
-    from bitbyte.refsim import refsim_trace
-    from bitbyte.stimulus import load_stimulus
+    from bitbyte.lang.config import Config
+    from bitbyte.ref.refsim import refsim_trace
+    from bitbyte.lang.stimulus import load_stimulus
     config = Config(clock_mhz=0.01)
     program = parse_file(str(EXAMPLE / "p1.il"), config)
     stim = load_stimulus(str(EXAMPLE / "p1.stim.csv"), program.symbols, config)
@@ -130,10 +130,10 @@ def test_p2_alone_sets_rst_after_5_s(tmp_path):
     at t >= 5 s; OUT2 = (CNT > 3).  1 kHz clock: one clock per ms."""
     from fractions import Fraction
 
-    from bitbyte.config import Config
-    from bitbyte.parser import parse
-    from bitbyte.refsim import refsim_trace
-    from bitbyte.stimulus import load_stimulus
+    from bitbyte.lang.config import Config
+    from bitbyte.lang.parser import parse
+    from bitbyte.ref.refsim import refsim_trace
+    from bitbyte.lang.stimulus import load_stimulus
     source = (EXAMPLE / "p2.il").read_text().replace(
         "END_VAR\n      LD    IN1", "END_VAR\n LD I0.0\n = IN1\n L IW0\n T CNT\n"
         "      LD    IN1", 1)

@@ -11,11 +11,11 @@ import random
 
 import pytest
 
-from bitbyte.config import DEFAULT, Config
-from bitbyte.encoder import encode
-from bitbyte.errors import SourceError, format_error
-from bitbyte.parser import parse, parse_file
-from bitbyte.program import Program
+from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.encoding.encoder import encode
+from bitbyte.lang.errors import SourceError, format_error
+from bitbyte.lang.parser import parse, parse_file
+from bitbyte.lang.program import Program
 
 
 def error_of(text, config=DEFAULT) -> SourceError:

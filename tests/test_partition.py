@@ -1,5 +1,5 @@
-"""The partitioning compiler of parallel mode (bitbyte/partition.py) and its
-co-simulation (bitbyte/parsim.py).
+"""The partitioning compiler of parallel mode (bitbyte/compiler/) and its
+co-simulation (bitbyte/ref/parsim.py).
 
 The directed tests spell out, by hand, the two parts each small program must give
 (instruction lists in the form `mnemonic address`, the parts' END / END_B included);
@@ -16,16 +16,18 @@ from pathlib import Path
 
 import pytest
 
-from bitbyte.config import Config
-from bitbyte.encoder import encode
-from bitbyte.errors import SourceError
-from bitbyte.parser import parse, parse_file
-from bitbyte.parsim import (POLICIES, ChannelError, Deadlock, ParSim, ScanTimeRefSim,
+from bitbyte.lang.config import Config
+from bitbyte.encoding.encoder import encode
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.parser import parse, parse_file
+from bitbyte.ref.parsim import (POLICIES, ChannelError, Deadlock, ParSim, ScanTimeRefSim,
                             state_snapshot)
-from bitbyte.partition import (TO_BIT, TO_BYTE, estimate, part_listing, partition,
-                               report_text, side_by_side)
-from bitbyte.refsim import RefSim
-from bitbyte.stimulus import load_stimulus, parse_stimulus
+from bitbyte.compiler.estimate import estimate
+from bitbyte.compiler.partition import partition
+from bitbyte.compiler.report import part_listing, report_text, side_by_side
+from bitbyte.lang.parts import TO_BIT, TO_BYTE
+from bitbyte.ref.refsim import RefSim
+from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from randprog import (random_mixed_program, random_mixed_stimulus, random_parallel_program,
                       strip_timers)
 
@@ -512,7 +514,7 @@ def test_schedule_keeps_the_rung_a_label_continues_last():
 def test_no_deadlock_check_rejects_a_read_before_the_write_it_needs():
     """The check the schedule relies on: the bit side reading FBI 0 before writing the
     FBY 0 that the byte side needs before it can write FBI 0 is a deadlock."""
-    from bitbyte.partition import _no_deadlock, _transfer_numbers
+    from bitbyte.compiler.schedule import _no_deadlock, _transfer_numbers
     p = split("  LD I0.0\n  L 10\n  SD T1\n  L IW0\n  L 5\n  >I\n  = Q0.0\n",
               schedule=False)
     assert show(p.bit) == ["LD I0.0", "= FBY0", "LD FBI0", "= Q0.0", "END"]

@@ -1,5 +1,5 @@
 """Adversarial checks of the partitioning compiler's status sync and bit-side rung
-schedule (bitbyte/partition.py, commit c6f371c): hand-written programs aimed at what
+schedule (bitbyte/compiler/, commit c6f371c): hand-written programs aimed at what
 reordering rungs could break, three targeted random generators, every order the
 schedule's rules allow (not only the one the timing model picks), the deadlock
 check's necessity, and a batch on the Verilator harness.  Every check compares the
@@ -12,7 +12,7 @@ No counterexample was found in the review (about 22 000 programs through ParSim 
 the compiler's own partition, about 9 000 more with three random orders each that the
 rules allow, about 2 300 on the harness with both exchanges); these are the strongest
 of the checks that passed, kept as regression tests.  They were mutation-checked:
-with any one rule dropped from bitbyte/partition.py (a data dependency, the order of
+with any one rule dropped from bitbyte/compiler/ (a data dependency, the order of
 FBI reads, a status read's place among transfers, the first / last rung or PQ or
 REFRESH as barriers, the deadlock check, the unsynced sets joined at labels and at
 loop heads, the forced transfer before an update that follows a read, the hardware
@@ -28,14 +28,17 @@ from contextlib import redirect_stderr, redirect_stdout
 
 import pytest
 
-import bitbyte.partition as P
+import bitbyte.compiler.partition as P
+import bitbyte.compiler.report as R
+import bitbyte.compiler.schedule as S
+from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
-from bitbyte.config import Config
-from bitbyte.parser import parse
-from bitbyte.parsim import POLICIES, Deadlock, ParSim, ScanTimeRefSim, state_snapshot
-from bitbyte.refsim import RefSim, RefSimError, refsim_trace
-from bitbyte.stimulus import load_stimulus, parse_stimulus
-from bitbyte.trace import read_trace_rows
+from bitbyte.lang.config import Config
+from bitbyte.lang.parser import parse
+from bitbyte.ref.parsim import POLICIES, Deadlock, ParSim, ScanTimeRefSim, state_snapshot
+from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
+from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
+from bitbyte.lang.trace import read_trace_rows
 
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -428,7 +431,7 @@ def compare(part, stim, expected, timers: bool, runs, scans: int = SCANS) -> Non
                 break
             assert rec is not None, f"{where}: parallel hit its step limit"
             assert (rec.values, state_snapshot(sim)) == expected[scan], \
-                f"{where}\n{P.side_by_side(part)}"
+                f"{where}\n{R.side_by_side(part)}"
 
 
 def random_runs(rng: random.Random, n: int):
@@ -549,11 +552,11 @@ def test_one_place_deadlock_check_is_needed_and_conservative():
     program = parse("enables.il", HAND["enables"][0])
     part = P.partition(program, 1, schedule=False)
     bit = part.bit
-    fby_no, fbi_no = P._transfer_numbers(bit)
-    wait_on = P._update_waits(part)
-    (lo, hi), = P._blocks(part)
-    segs = P._segments(bit, lo, hi, fby_no, fbi_no, wait_on)
-    preds = P._seg_preds(segs)
+    fby_no, fbi_no = S._transfer_numbers(bit)
+    wait_on = S._update_waits(part)
+    (lo, hi), = S._blocks(part)
+    segs = S._segments(bit, lo, hi, fby_no, fbi_no, wait_on)
+    preds = S._seg_preds(segs)
     fby_first = [j for j, s in enumerate(segs) if s.fby] + \
                 [j for j, s in enumerate(segs) if not s.fby]
     placed: set[int] = set()
@@ -561,8 +564,8 @@ def test_one_place_deadlock_check_is_needed_and_conservative():
         assert preds[j] <= placed
         placed.add(j)
     trial = [bit[n] for j in fby_first for n in range(segs[j].lo, segs[j].hi)]
-    assert not P._no_deadlock(trial, lo, hi, part.byte, *P._transfer_numbers(trial),
-                              P._remap(wait_on, bit, trial))
+    assert not S._no_deadlock(trial, lo, hi, part.byte, *S._transfer_numbers(trial),
+                              S._remap(wait_on, bit, trial))
     stim = parse_stimulus(stimulus_text(3))
     where = [n for j in fby_first for n in range(segs[j].lo, segs[j].hi)]
     part.bit[:] = trial
@@ -588,15 +591,15 @@ def random_allowed_order(part, rng: random.Random) -> int:
     block keeps program order); labels stay at their positions.  Returns the rungs
     moved."""
     bit = part.bit
-    fby_no, fbi_no = P._transfer_numbers(bit)
-    wait_on = P._update_waits(part)
+    fby_no, fbi_no = S._transfer_numbers(bit)
+    wait_on = S._update_waits(part)
     new, moved = [], 0
-    for lo, hi in P._blocks(part):
-        segs = P._segments(bit, lo, hi, fby_no, fbi_no, wait_on)
+    for lo, hi in S._blocks(part):
+        segs = S._segments(bit, lo, hi, fby_no, fbi_no, wait_on)
         if not segs or len(segs) < 3:
             new += bit[lo:hi]
             continue
-        preds = P._seg_preds(segs)
+        preds = S._seg_preds(segs)
         placed: set[int] = set()
         order: list[int] = []
         while len(order) < len(segs):
@@ -606,8 +609,8 @@ def random_allowed_order(part, rng: random.Random) -> int:
             placed.add(j)
         trial = bit[:lo] + [bit[n] for s in order for n in range(segs[s].lo, segs[s].hi)] \
             + bit[hi:]
-        if not P._no_deadlock(trial, lo, hi, part.byte, *P._transfer_numbers(trial),
-                              P._remap(wait_on, bit, trial)):
+        if not S._no_deadlock(trial, lo, hi, part.byte, *S._transfer_numbers(trial),
+                              S._remap(wait_on, bit, trial)):
             order = list(range(len(segs)))
         new += [bit[n] for s in order for n in range(segs[s].lo, segs[s].hi)]
         moved += sum(1 for k, s in enumerate(order) if s != k)
@@ -729,7 +732,7 @@ def test_scheduled_soup_programs_on_harness(tmp_path):
         il.write_text(soup_program(seed, timers=True))
         st.write_text(stimulus_text(seed, scans))
         kw = dict(stimulus=str(st), watch=HARNESS_WATCH, scans=scans, watchdog=20_000)
-        program, columns, _, _ = cli.prepare_run(str(il), **kw)
+        program, columns, _, _ = prepare_run(str(il), **kw)
         _, records, fault = refsim_trace(program, stimulus=load_stimulus(
             str(st), program.symbols), watch=HARNESS_WATCH.split(","), scans=scans,
             watchdog=20_000)

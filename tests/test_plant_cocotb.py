@@ -3,7 +3,7 @@ identical traces).
 
 A small copy of the seed's §6.1 plant (1 MHz, periods of 300 us and 1000 us, a few
 ms) runs on the Verilator C++ plant harness (sim/plant_harness.cpp) and through
-cocotb (bitbyte/cocotb_plant.py) on Icarus and on Verilator: every core's trace and
+cocotb (bitbyte/sim/cocotb_plant.py) on Icarus and on Verilator: every core's trace and
 the summary must be the same text. Variants: ping-pong, the random layout, periods
 shorter than the scans (overruns, skipped precycles, copy_fail) with a scan-keyed
 stimulus and input / output words, the scan watchdog, every clock clocked from Python
@@ -17,8 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from bitbyte.plantrun import prepare_plant, run_plant
-from bitbyte.sim_cocotb_plant import run_plant_cocotb
+from bitbyte.plant.run import prepare_plant, run_plant
+from bitbyte.plant.cocotb_runner import run_plant_cocotb
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "plant_6_1"

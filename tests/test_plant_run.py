@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from bitbyte.plantrun import run_plant
+from bitbyte.plant.run import run_plant
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "plant_6_1"

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from bitbyte.plantrun import run_plant
+from bitbyte.plant.run import run_plant
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))

@@ -11,11 +11,13 @@ from pathlib import Path
 
 import pytest
 
+from bitbyte.run.prepare import prepare_run
+from bitbyte.sim.cocotb_runner import records_from_rows
 from bitbyte import cli
-from bitbyte.refsim import refsim_trace
-from bitbyte.sim_cocotb import run_jobs
-from bitbyte.stimulus import load_stimulus
-from bitbyte.trace import read_trace_rows
+from bitbyte.ref.refsim import refsim_trace
+from bitbyte.sim.cocotb_runner import run_jobs
+from bitbyte.lang.stimulus import load_stimulus
+from bitbyte.lang.trace import read_trace_rows
 from randprog import (random_mixed_program, random_mixed_watch, random_parallel_program,
                       random_scan_stimulus, strip_timers)
 
@@ -41,8 +43,8 @@ class Case:
         self.stim.write_text(random_scan_stimulus(self.seed, SCANS))
         self.watch = ",".join(w for w in random_mixed_watch(self.seed) if not w.startswith("T"))
         kw = dict(stimulus=str(self.stim), watch=self.watch, scans=SCANS, watchdog=WATCHDOG)
-        self.program, self.columns, _, _ = cli.prepare_run(str(self.il), **kw)
-        self.jobs = {ex: cli.prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
+        self.program, self.columns, _, _ = prepare_run(str(self.il), **kw)
+        self.jobs = {ex: prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
                      for ex in ("handshake", "queue")}
         stim = load_stimulus(str(self.stim), self.program.symbols)
         _, records, fault = refsim_trace(self.program, stimulus=stim,
@@ -91,7 +93,7 @@ def test_parallel_on_cocotb(cases, sim):
     picked = cases[:COCOTB]
     jobs = [c.jobs["queue" if i % 2 else "handshake"] for i, c in enumerate(picked)]
     for i, (case, result) in enumerate(zip(picked, run_jobs(jobs, sim))):
-        case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
+        case.check(records_from_rows(case.columns, result.rows), result.fault,
                    f"cocotb {sim}, parallel, {'queue' if i % 2 else 'handshake'}")
 
 
@@ -147,15 +149,15 @@ def _plant_case(tmp: Path, index: int):
 
 
 def test_scheduled_plant_programs_on_harness(tmp_path, capsys):
-    from bitbyte.parser import parse_file
-    from bitbyte.partition import partition
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.compiler.partition import partition
     moved = 0
     for index in range(PLANT_PROGRAMS):
         seed, il, stim, watch = _plant_case(tmp_path, index)
         part = partition(parse_file(str(il)))
         moved += part.schedule is not None
         kw = dict(stimulus=str(stim), watch=watch, scans=SCANS, watchdog=WATCHDOG)
-        program, columns, _, _ = cli.prepare_run(str(il), **kw)
+        program, columns, _, _ = prepare_run(str(il), **kw)
         _, records, fault = refsim_trace(program, stimulus=load_stimulus(
             str(stim), program.symbols), watch=watch.split(","), scans=SCANS,
             watchdog=WATCHDOG)

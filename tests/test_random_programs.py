@@ -14,11 +14,13 @@ from pathlib import Path
 
 import pytest
 
+from bitbyte.run.prepare import prepare_run
+from bitbyte.sim.cocotb_runner import records_from_rows
 from bitbyte import cli
-from bitbyte.refsim import refsim_trace
-from bitbyte.sim_cocotb import run_jobs
-from bitbyte.stimulus import load_stimulus
-from bitbyte.trace import read_trace_rows, trace_text
+from bitbyte.ref.refsim import refsim_trace
+from bitbyte.sim.cocotb_runner import run_jobs
+from bitbyte.lang.stimulus import load_stimulus
+from bitbyte.lang.trace import read_trace_rows, trace_text
 from randprog import (random_mixed_program, random_mixed_stimulus, random_mixed_watch,
                       random_program, random_stimulus, random_watch)
 
@@ -55,7 +57,7 @@ class Case:
         self.il.write_text(family.program(self.seed))
         self.stim.write_text(family.stimulus(self.seed))
         self.watch = ",".join(family.watch(self.seed))
-        self.program, self.columns, self.job, self.f = cli.prepare_run(
+        self.program, self.columns, self.job, self.f = prepare_run(
             str(self.il), stimulus=str(self.stim), watch=self.watch, scans=SCANS,
             watchdog=family.watchdog, clock_mhz=family.clock_mhz)
         stim = load_stimulus(str(self.stim), self.program.symbols)
@@ -118,7 +120,7 @@ def test_cocotb(cases, sim):
     """All programs in one cocotb session per simulator (the driver of --sim icarus)."""
     results = run_jobs([c.job for c in cases], sim)
     for case, result in zip(cases, results):
-        case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
+        case.check(records_from_rows(case.columns, result.rows), result.fault,
                    f"cocotb {sim}")
 
 
@@ -148,5 +150,5 @@ def test_mixed_cocotb(mixed_cases, sim):
     count = int(os.environ.get("BITBYTE_MIXED_COCOTB", "40"))
     results = run_jobs([c.job for c in mixed_cases[:count]], sim)
     for case, result in zip(mixed_cases, results):
-        case.check(cli._records_from_rows(case.columns, result.rows), result.fault,
+        case.check(records_from_rows(case.columns, result.rows), result.fault,
                    f"cocotb {sim}, serial mode")

@@ -3,17 +3,17 @@ timing model of docs/isa.md.  Every expected value below is written down, never
 computed by the code under test.
 
 Programs are built with a tiny test-only assembler (`prog`) so these tests do not
-depend on bitbyte.parser.
+depend on bitbyte.lang.parser.
 """
 import re
 
 import pytest
 
-from bitbyte.config import Config
-from bitbyte.program import Instr, Operand, Program
-from bitbyte.refsim import RefSim, RefSimError, refsim_trace
-from bitbyte.stimulus import parse_stimulus
-from bitbyte.trace import trace_columns, trace_text
+from bitbyte.lang.config import Config
+from bitbyte.lang.program import Instr, Operand, Program
+from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
+from bitbyte.lang.stimulus import parse_stimulus
+from bitbyte.lang.trace import trace_columns, trace_text
 
 # --- helpers --------------------------------------------------------------------------
 

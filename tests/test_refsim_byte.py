@@ -13,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from bitbyte.config import Config
-from bitbyte.parser import parse
-from bitbyte.refsim import RefSim, RefSimError, refsim_trace, resolve_costs, serial_cost
-from bitbyte.stimulus import parse_stimulus
-from bitbyte.trace import trace_text
+from bitbyte.lang.config import Config
+from bitbyte.lang.parser import parse
+from bitbyte.lang.costs import resolve_costs, serial_cost
+from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
+from bitbyte.lang.stimulus import parse_stimulus
+from bitbyte.lang.trace import trace_text
 
 
 def program(src, config=Config()):

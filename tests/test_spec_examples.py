@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import pytest
 
+from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
-from bitbyte.refsim import refsim_trace
-from bitbyte.stimulus import load_stimulus
-from bitbyte.trace import trace_text
+from bitbyte.ref.refsim import refsim_trace
+from bitbyte.lang.stimulus import load_stimulus
+from bitbyte.lang.trace import trace_text
 
 SIMS = ["verilator", "icarus"]
 
@@ -30,7 +31,7 @@ def run(tmp_path, sim, text, stim=None, watch="", mhz="100", **stop):
         argv += [f"--{key.replace('_', '-')}", str(value)]
     assert cli.main(argv) == 0
     got = (tmp_path / "t.csv").read_text()
-    program, columns, _, f = cli.prepare_run(str(il), stimulus=stim_path and str(stim_path),
+    program, columns, _, f = prepare_run(str(il), stimulus=stim_path and str(stim_path),
                                              watch=watch, clock_mhz=mhz, **stop)
     stimulus = load_stimulus(str(stim_path), program.symbols) if stim_path else None
     if stimulus:

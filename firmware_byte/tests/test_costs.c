@@ -95,7 +95,7 @@ static void test_new_free_accessors(void) {
 }
 
 /* bb_classify() gives every opcode of the definition (bb_isa.h's BB_BYTE_OPCODES,
- * generated from bitbyte/definition.toml) the class the definition names, for an
+ * generated from bitbyte/lang/definition.toml) the class the definition names, for an
  * operand in range: the firmware's decoder and the definition agree. */
 static uint32_t valid_operand(unsigned op, int cls) {
   switch (cls) {

@@ -1,0 +1,2 @@
+"""The partitioning compiler of parallel and free-running mode.
+"""

@@ -1,0 +1,40 @@
+"""Sizes of one configured build; the assembler rejects any address the build cannot
+hold.  The defaults are bitbyte/lang/definition.toml's [sizes] (spec §3), where the comment
+of each names the RTL parameter of `rtl/bitbyte_cpu.v` it corresponds to (timers and
+counters are both `StatusBits`)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from bitbyte.lang.definition import DEF
+
+_S = DEF.sizes
+
+
+@dataclass(frozen=True)
+class Config:
+    prog_words: int = _S["prog_words"]  # ProgWords: instructions in program memory
+    in_bytes: int = _S["in_bytes"]  # InBytes: I/PI/IR/IF b = 0..in_bytes-1
+    out_bytes: int = _S["out_bytes"]  # OutBytes: Q/PQ b = 0..out_bytes-1
+    marker_bytes: int = _S["marker_bytes"]  # MarkerBytes: M b = 0..marker_bytes-1
+    timers: int = _S["timers"]  # Timers: T 0..timers-1
+    counters: int = _S["counters"]  # Counters: C 0..counters-1
+    channels: int = _S["channels"]  # Channels: FBI/FBY k = 0..channels-1
+    nest_depth: int = _S["nest_depth"]  # NestDepth: parenthesis nesting levels
+    in_words: int = _S["in_words"]  # IW n
+    out_words: int = _S["out_words"]  # QW n
+    data_words: int = _S["data_words"]  # MW n
+    clock_mhz: float = 100.0  # bit-processor clock
+
+    def area_size(self, area: str) -> int:
+        """Bytes (byte.bit areas) or elements (numbered areas) this build holds."""
+        return {
+            "I": self.in_bytes, "PI": self.in_bytes, "IR": self.in_bytes,
+            "IF": self.in_bytes, "Q": self.out_bytes, "PQ": self.out_bytes,
+            "M": self.marker_bytes, "T": self.timers, "C": self.counters,
+            "FBI": self.channels, "FBY": self.channels, "IW": self.in_words,
+            "QW": self.out_words, "MW": self.data_words,
+        }[area]
+
+
+DEFAULT = Config()

@@ -1,0 +1,193 @@
+"""The one definition of the CPU's interfaces (bitbyte/lang/definition.toml), read once.
+
+Everything here is data: the instruction word's fields, opcodes and areas, the byte
+instructions with their cost classes, the cost tables, the byte-bus register map, the
+firmware flags and the default sizes. `bitbyte/lang/generate.py` writes the RTL, firmware and
+documentation tables from the same data, so a number changed in the TOML file changes
+everywhere at once (tests/test_generated.py fails until the files are regenerated).
+
+This module imports nothing from the rest of the package: it is the bottom layer.
+"""
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+PATH = Path(__file__).with_name("definition.toml")
+
+
+@dataclass(frozen=True)
+class Field:
+    hi: int
+    lo: int
+
+    @property
+    def width(self) -> int:
+        return self.hi - self.lo + 1
+
+    @property
+    def mask(self) -> int:
+        return (1 << self.width) - 1
+
+
+@dataclass(frozen=True)
+class Register:
+    name: str
+    addr: int
+    access: str
+    doc: str
+    count: int = 1               # a window: register n at addr + n
+    plant_only: bool = False
+    reset: int | None = None
+    fields: tuple[tuple[str, int], ...] = ()
+
+
+@dataclass(frozen=True)
+class ByteOpcode:
+    mnemonic: str                # the encoder's key ("L#", "S C", "A >=I", ...)
+    kind: str                    # the cost-table kind of the reference interpreter
+    value: int
+    cls: str                     # cost class
+    c: str | None = None         # firmware macro
+    rtl: str | None = None       # RTL macro, where the RTL needs it
+    byte_program: bool = False
+    operand: str = "—"
+    doc: str | None = None
+
+
+class Definition:
+    """The parsed definition.  `raw` is the TOML document as read."""
+
+    def __init__(self, raw: dict):
+        self.raw = raw
+        w = raw["word"]
+        self.word_bits: int = w["bits"]
+        self.fields = {k: Field(*w[k]) for k in ("opcode", "area", "index", "target", "imm")}
+        self.wait_update_bit: int = w["wait_update"]
+        self.byte_bit: int = w["byte_bit"]
+
+        lg = raw["logic"]
+        self.load_base: int = lg["load_base"]
+        self.open_base: int = lg["open_base"]
+        self.logic_mask: int = lg["mask"]
+        self.logic_functions: tuple[tuple[str, str], ...] = tuple(
+            (m, r) for m, r in lg["functions"])
+
+        self.bit_opcode_rows: tuple[dict, ...] = tuple(raw["bit_opcode"])
+        self.bit_opcodes: dict[str, int] = dict(self._logic_opcodes())
+        for row in self.bit_opcode_rows:
+            self.bit_opcodes[row["mnemonic"]] = row["value"]
+
+        self.area_rows: tuple[dict, ...] = tuple(raw["area"])
+        # Areas of bit operands (I .. C, FBI/FBY); the word areas only in byte instructions.
+        self.area_codes: dict[str, int] = {
+            a["name"]: a["code"] for a in self.area_rows if not a.get("word")}
+        self.bit_form_areas: tuple[str, ...] = tuple(
+            a["name"] for a in self.area_rows if a["form"] == "bit")
+        # Areas a byte instruction names by number (T, C, FB, IW, QW, MW).
+        self.word_area_codes: dict[str, int] = {
+            a["name"]: a["code"] for a in self.area_rows if a["form"] == "n"}
+
+        cmp = raw["compare"]
+        self.compares: tuple[str, ...] = tuple(cmp["codes"])
+        self.compare_c: tuple[str, ...] = tuple(cmp["c"])
+        self.compare_bases = {"": cmp["plain_base"], "A ": cmp["and_base"],
+                              "O ": cmp["or_base"]}
+        self.byte_opcode_rows: tuple[ByteOpcode, ...] = tuple(
+            ByteOpcode(mnemonic=r["mnemonic"], kind=r.get("kind", r["mnemonic"]),
+                       value=r["value"], cls=r["class"], c=r.get("c"), rtl=r.get("rtl"),
+                       byte_program=r.get("byte_program", False),
+                       operand=r.get("operand", "—"), doc=r.get("doc"))
+            for r in raw["byte_opcode"])
+        self.byte_opcodes: dict[str, int] = {}
+        self.byte_kinds: dict[str, str] = {}
+        compares_top = cmp["or_base"] + 7
+        for op in self.byte_opcode_rows:
+            if op.byte_program:
+                continue
+            if op.value > compares_top and not self.byte_opcodes.keys() & set(self.compares):
+                self._add_compares(cmp["class"])    # in opcode order
+            self.byte_opcodes[op.mnemonic] = op.value
+            self.byte_kinds.setdefault(op.kind, op.cls)
+        self.byte_program_opcodes: dict[str, int] = {
+            op.mnemonic: op.value for op in self.byte_opcode_rows if op.byte_program}
+
+        self.cost_class_rows: tuple[dict, ...] = tuple(raw["cost_class"])
+        self.cost_classes: tuple[str, ...] = tuple(c["name"] for c in self.cost_class_rows)
+        self.word_classes: tuple[str, ...] = tuple(
+            c["name"] for c in self.cost_class_rows if c.get("word"))
+        self.fixed_costs: dict[str, int] = {
+            c["name"]: c["fixed"] for c in self.cost_class_rows if "fixed" in c}
+        # The classes a table prices (the reference interpreter's view).
+        self.priced_classes: tuple[str, ...] = tuple(
+            c for c in self.cost_classes if c not in self.fixed_costs)
+        self.cost_tables: dict[str, dict[str, int]] = {
+            name: {c: (t["word"] if c in self.word_classes else t[c])
+                   for c in self.priced_classes}
+            for name, t in raw["cost_table"].items()}
+
+        bus = raw["bus"]
+        self.bus_id_value: int = bus["id_value"]
+        self.bus_addr_bits: int = bus["addr_bits"]
+        self.plant_bus_addr_bits: int = bus["plant_addr_bits"]
+        self.registers: tuple[Register, ...] = tuple(
+            Register(name=r["name"], addr=r["addr"], access=r["access"], doc=r["doc"],
+                     count=r.get("count", 1), plant_only=r.get("plant_only", False),
+                     reset=r.get("reset"),
+                     fields=tuple((n, v) for n, v in r.get("fields", ())))
+            for r in raw["register"])
+        self.bus: dict[str, int] = {r.name: r.addr for r in self.registers}
+
+        self.byte_flags: dict[str, int] = {f["name"]: 1 << f["bit"] for f in raw["byte_flag"]}
+        self.byte_flag_rows: tuple[dict, ...] = tuple(raw["byte_flag"])
+        self.sizes: dict[str, int] = dict(raw["sizes"])
+        self.firmware: dict = dict(raw["firmware"])
+        # bb_run's modes: name -> the enum value of firmware_byte/bb_isa.h
+        self.modes: dict[str, int] = {m.lower(): i for i, (m, _) in
+                                      enumerate(self.firmware["modes"])}
+        self._check()
+
+    def _logic_opcodes(self):
+        """The eight loads/combines and six opening parentheses from f and n."""
+        for f, (name, _) in enumerate(self.logic_functions):
+            for n, suffix in ((0, ""), (1, "N")):
+                yield name + suffix, self.load_base | f << 1 | n
+                if name != "LD":
+                    yield name + suffix + "(", self.open_base | f << 1 | n
+
+    def _add_compares(self, cls: str) -> None:
+        for prefix, base in self.compare_bases.items():
+            for c, cmp in enumerate(self.compares):
+                self.byte_opcodes[prefix + cmp] = base + c
+                self.byte_kinds[prefix + cmp] = cls
+
+    def register(self, name: str) -> Register:
+        for r in self.registers:
+            if r.name == name:
+                return r
+        raise KeyError(name)
+
+    def _check(self) -> None:
+        """The definition is consistent: no opcode or address used twice, byte opcodes
+        have bit 7 set and bit opcodes do not, every class is priced or fixed."""
+        values = list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) \
+            + list(self.byte_program_opcodes.values())
+        assert len(values) == len(set(values)), "an opcode is defined twice"
+        assert all(v < 0x80 for v in self.bit_opcodes.values())
+        assert all(0x80 <= v <= 0xFF for v in values if v not in self.bit_opcodes.values())
+        spans = sorted((r.addr, r.addr + r.count - 1, r.name) for r in self.registers)
+        for (_, hi, a), (lo, _, b) in zip(spans, spans[1:]):
+            assert hi < lo, f"bus registers {a} and {b} overlap"
+        for op in self.byte_opcode_rows:
+            assert op.cls in self.cost_classes, op
+        for t in self.cost_tables.values():
+            assert set(t) == set(self.priced_classes)
+
+
+def load(path: Path = PATH) -> Definition:
+    with open(path, "rb") as f:
+        return Definition(tomllib.load(f))
+
+
+DEF = load()

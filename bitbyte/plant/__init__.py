@@ -1,0 +1,1 @@
+"""Multi-core plants: plant files, linking shared variables and copy plans, running a plant."""

@@ -1,0 +1,191 @@
+"""`bitbyte run PLANT.toml`: a multi-core plant on the simulated hardware (spec §7).
+
+The linker (`plant.link`) gives every core its program and its precycle / postcycle
+copy lists; this module encodes those lists as the copy-plan words that the core
+sequencer (rtl/core_seq.v) streams, writes the plant harness's run file
+(sim/plant_harness.cpp, sim/README.md "Plants") and runs it: one trace per core,
+`T.<core>.csv`, header `scan,t_us,cycles,pre,post,sem_wait,copy_fail,overrun`, then the
+core's Q and QW columns and its watched operands.
+
+Copy-plan words (docs/multicore.md, "The copy engine"):
+  descriptor  bit 31 = 1, bits 23..16 the writing core (ping-pong buffer select)
+  item        bit 31 = 0, bit 30 bit (1) / word (0), bits 29..25 the bit in the
+              shared word, bits 24..12 the shared word, bits 11..0 the local address
+              (M bit number byte*8+bit, or the MW index)
+"""
+from __future__ import annotations
+
+import fcntl
+import subprocess
+import tempfile
+from pathlib import Path
+
+from bitbyte.plant.link import SharedMap, link, load_plant
+from bitbyte.plant.plans import (MAX_CORES, SHARED_WORDS, PlantRunError, encode_plans,
+                                 period_clocks)
+from bitbyte.lang.errors import SourceError, UsageError
+from bitbyte.plant.cocotb_runner import run_plant_cocotb
+from bitbyte.run.prepare import prepare_run
+
+ROOT = Path(__file__).resolve().parents[2]
+def plant_harness_path(cores: int) -> Path:
+    return ROOT / "sim" / "build" / f"plant{cores}" / "Vplc_system"
+
+
+def ensure_plant_harness(cores: int = 2) -> Path:
+    """Build sim/build/plant<cores>/Vplc_system (plc_system with Cores = cores) through
+    the Makefile when missing or stale."""
+    binary = plant_harness_path(cores)
+    binary.parent.mkdir(parents=True, exist_ok=True)
+    with open(binary.parent / ".lock", "w") as lock:   # concurrent runs build once
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "plant-harness",
+                               f"CORES={cores}"], capture_output=True, text=True)
+    if proc.returncode != 0 or not binary.exists():
+        raise PlantRunError("building the plant harness failed:\n" + proc.stdout + proc.stderr)
+    return binary
+
+
+def split_watch(watch: str, core_names: list[str]) -> dict[str, list[str]]:
+    """`p1.MW20,p2.C0` -> {'P1': ['MW20'], 'P2': ['C0']} (core names case-insensitive)."""
+    out: dict[str, list[str]] = {n.upper(): [] for n in core_names}
+    for part in (w.strip() for w in watch.split(",")):
+        if not part:
+            continue
+        core, dot, operand = part.partition(".")
+        if not dot or core.upper() not in out or not operand.strip():
+            raise UsageError(f"--watch: {part!r} is not CORE.OPERAND with a core of the "
+                             f"plant ({', '.join(core_names)})")
+        out[core.upper()].append(operand.strip())
+    return out
+
+
+def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
+                  watchdog: int = 100_000, costs: str = "paper"):
+    """Link the plant and prepare one RunJob per core (bitbyte.run.prepare does the
+    program, stimulus and trace columns, as for a single CPU).
+
+    Returns (shared_map, jobs, columns, plans, until_clock)."""
+    plant = load_plant(plant_path)
+    shared_map = link(plant)
+    if not 2 <= len(plant.cores) <= MAX_CORES:
+        raise SourceError(plant_path, 0, 0, f"this release simulates plants of 2 to "
+                          f"{MAX_CORES} cores, not {len(plant.cores)}")
+    if shared_map.size_words > SHARED_WORDS:
+        raise SourceError(plant_path, 0, 0, f"{shared_map.size_words} shared words exceed "
+                          f"the shared memory ({SHARED_WORDS} words)")
+    plans = encode_plans(shared_map)
+    watches = split_watch(watch, [c.name for c in plant.cores])
+    jobs, columns = [], []
+    clock_text = str(plant.clock_mhz)
+    for core in plant.cores:
+        try:
+            _, cols, job, _ = prepare_run(core.program, stimulus=core.stimulus,
+                                          watch=",".join(watches[core.name.upper()]),
+                                          until_us=until_us, watchdog=watchdog,
+                                          clock_mhz=clock_text, costs=costs)
+        except UsageError as e:                     # name the core a watch belongs to
+            text = str(e)
+            if text.startswith("--watch: "):
+                raise UsageError(f"--watch: core {core.name}: {text[9:]}") from None
+            raise
+        jobs.append(job)
+        columns.append(cols)
+    until_clock = jobs[0].until_clock
+    if until_clock >= 2 ** 62:
+        raise UsageError("--until-us: too far (at most 2^62 clocks)")
+    return shared_map, jobs, columns, plans, until_clock
+
+
+def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Path,
+                  trace_base: str | None, waves: str | None) -> str:
+    plant = shared_map.plant
+    lines = [f"clock_hz {jobs[0].clock_hz}", f"watchdog {jobs[0].watchdog}",
+             f"until_clock {until_clock}", f"protect {plant.protection}",
+             f"gtkw {ROOT / 'sim' / 'plant.gtkw'}"]
+    if waves:
+        lines.append(f"waves {waves}")
+    for i, (core, job, plan) in enumerate(zip(plant.cores, jobs, plans)):
+        prog = tmp / f"{core.name}.hex"
+        prog.write_text("".join(f"{w:08x}\n" for w in job.prog))
+        plan_path = tmp / f"{core.name}.plan.hex"
+        plan_path.write_text("".join(f"{w:08x}\n" for w in plan.words))
+        trace = (f"{trace_base}.{core.name}.csv" if trace_base
+                 else str(tmp / f"trace.{core.name}.csv"))
+        job.until_clock, job.scans = None, None
+        text = job.to_harness_text(str(prog), trace, None)
+        lines += [f"core {i}", f"name {core.name}", f"plan {plan_path}",
+                  f"period {period_clocks(core.period_us, plant.clock_mhz)}",
+                  f"pre_len {plan.pre_len}", f"post_base {plan.post_base}",
+                  f"post_len {plan.post_len}"]
+        # the per-core keys of a single CPU's run file, minus the plant-wide ones
+        lines += [l for l in text.splitlines()
+                  if l.split(" ", 1)[0] not in ("clock_hz", "watchdog", "until_clock",
+                                                "scans")]
+    return "\n".join(lines) + "\n"
+
+
+def trace_base_of(trace: str) -> str:
+    """`T.csv` -> `T` (the traces are `T.<core>.csv`)."""
+    return trace[:-4] if trace.lower().endswith(".csv") else trace
+
+
+def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
+              watch: str = "", waves: str | None = None, watchdog: int = 100_000,
+              costs: str = "paper", sim: str = "verilator"
+              ) -> tuple[int, str, dict[str, list[dict[str, str]]]]:
+    """Run a plant on the Verilator plant harness (sim "verilator"), or through
+    cocotb on Icarus ("icarus") or on Verilator ("cocotb-verilator"): the same traces.
+
+    Returns (harness exit status, summary text, {core: rows as dicts of strings})."""
+    import csv
+    if sim not in ("verilator", "icarus", "cocotb-verilator"):
+        raise PlantRunError(f"unknown simulator {sim!r}")
+    if sim != "verilator" and waves:
+        raise UsageError("--waves is written by the Verilator plant harness; "
+                         "use --sim verilator")
+    shared_map, jobs, _, plans, until_clock = prepare_plant(
+        plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
+    if trace:          # every trace file writable before the run (OSError: exit 1)
+        for core in shared_map.plant.cores:
+            open(f"{trace_base_of(trace)}.{core.name}.csv", "w").close()
+    vcd = None
+    if waves:
+        if not waves.lower().endswith((".fst", ".vcd")):
+            raise UsageError("--waves: the file must end in .fst or .vcd")
+        waves = str(Path(waves).resolve())
+        if waves.lower().endswith(".vcd"):      # the harness writes FST: convert after
+            vcd, waves = waves, waves + ".tmp.fst"
+    if sim != "verilator":
+        base = str(Path(trace_base_of(trace)).resolve()) if trace else None
+        with tempfile.TemporaryDirectory(prefix="bitbyte-plant-") as tmpdir:
+            return run_plant_cocotb(shared_map, jobs, plans, until_clock,
+                                    sim.removeprefix("cocotb-"), base, tmpdir)
+    harness = ensure_plant_harness(len(shared_map.cores))
+    with tempfile.TemporaryDirectory(prefix="bitbyte-plant-") as tmpdir:
+        tmp = Path(tmpdir)
+        base = str(Path(trace_base_of(trace)).resolve()) if trace else None
+        if waves:
+            waves = str(Path(waves).resolve())
+            Path(waves).parent.mkdir(parents=True, exist_ok=True)
+        run = tmp / "plant.run"
+        run.write_text(run_file_text(shared_map, jobs, plans, until_clock, tmp, base, waves))
+        proc = subprocess.run([str(harness), str(run)], capture_output=True, text=True)
+        if proc.returncode not in (0, 3):
+            raise PlantRunError(f"plant harness failed ({proc.returncode}):\n{proc.stderr}")
+        rows = {}
+        for core in shared_map.plant.cores:
+            path = (f"{base}.{core.name}.csv" if base else str(tmp / f"trace.{core.name}.csv"))
+            with open(path, newline="") as f:
+                rows[core.name] = list(csv.DictReader(f))
+    summary = proc.stdout
+    if proc.returncode == 3:
+        summary += proc.stderr
+    if vcd:
+        conv = subprocess.run(["fst2vcd", "-f", waves, "-o", vcd], capture_output=True,
+                              text=True)
+        if conv.returncode != 0:
+            raise PlantRunError(f"fst2vcd failed (is gtkwave installed?): {conv.stderr}")
+        Path(waves).unlink()
+        summary = summary.replace(waves, vcd)
+    return proc.returncode, summary, rows

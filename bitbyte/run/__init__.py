@@ -1,0 +1,1 @@
+"""Run jobs (what a simulator is asked to do), their preparation from a program and a stimulus, the run summary."""

@@ -1,0 +1,138 @@
+"""Everything `bitbyte run` does before a simulator starts: check the run settings,
+parse the program, encode it (or partition it for parallel and free-running mode), load
+the stimulus and name the trace columns; the result is a RunJob (bitbyte.run.runjob)
+that every simulator driver runs alike.
+"""
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+from bitbyte.compiler.partition import partition
+from bitbyte.encoding.encoder import constant_pool, encode_words
+from bitbyte.lang import trace as tr
+from bitbyte.lang.config import Config
+from bitbyte.lang.costs import COST_TABLES
+from bitbyte.lang.errors import SourceError, UsageError
+from bitbyte.lang.parser import parse_file
+from bitbyte.lang.stimulus import load_stimulus, no_stimulus
+from bitbyte.run.runjob import RunJob, hw_column
+
+DEFAULT_SCANS = 10
+
+
+def parse_clock_mhz(text: str) -> Fraction:
+    try:
+        f = Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        raise UsageError(f"--clock-mhz: not a number: {text!r}") from None
+    if f <= 0 or (f * 1000).denominator != 1:
+        raise UsageError("--clock-mhz must be positive and a whole number of kHz "
+                         "(the timers' 1 ms time base counts whole clocks)")
+    return f
+
+
+def check_mode(mode: str, exchange: str | None) -> str:
+    """The exchange setting for a run: parallel mode defaults to handshake; serial
+    mode ignores --exchange (spec §4); free-running mode takes marker or queue-free."""
+    if mode == "serial":
+        return "handshake"
+    if mode == "free":
+        exchange = exchange or "marker"
+        if exchange not in ("marker", "queue-free"):
+            raise UsageError(f"--exchange {exchange}: free-running processors never wait; "
+                             "use marker or queue-free")
+        return exchange
+    exchange = exchange or "handshake"
+    if exchange not in ("handshake", "queue"):
+        raise UsageError(f"--exchange {exchange}: parallel mode runs with handshake or "
+                         "queue (free-running exchanges need --mode free)")
+    return exchange
+
+
+def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
+                scans: int | None = None, until_us: str | None = None,
+                watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
+                mode: str = "serial", exchange: str | None = None,
+                channels: int | None = None):
+    """Everything `run` does before the simulator: parse, encode, stimulus, columns.
+
+    Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
+    The differential tests call this too, so they exercise the same path."""
+
+    f = parse_clock_mhz(clock_mhz)
+    config = Config(clock_mhz=float(f))
+    if scans is not None and scans < 1:
+        raise UsageError("--scans must be at least 1")
+    if not 2 <= watchdog < 2 ** 32:
+        raise UsageError("--watchdog must be 2 .. 2^32-1 clocks")
+    until_clock = None
+    if until_us is not None:
+        try:
+            t = Fraction(until_us)
+        except (ValueError, ZeroDivisionError):
+            raise UsageError(f"--until-us: not a number: {until_us!r}") from None
+        if t < 0:
+            raise UsageError("--until-us must not be negative")
+        until_clock = math.ceil(t * f)
+    if scans is None and until_clock is None:
+        scans = DEFAULT_SCANS
+
+    if costs not in COST_TABLES:
+        raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
+    exchange = check_mode(mode, exchange)
+    program = parse_file(program_path, config)
+    byte_words: list[int] = []
+    if mode in ("parallel", "free"):
+        # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
+        free = mode == "free"
+        if channels is not None and not 1 <= channels <= config.channels:
+            raise UsageError(f"--channels must be 1..{config.channels}")
+        part = partition(program, channels or config.channels, config=config,
+                         status_sync=not free,
+                         hardware_wait=not free, costs=costs)
+        words, byte_words, pool = part.bit_words, part.byte_words, part.pool
+        if free and exchange == "marker":
+            _one_cell_per_condition(program, part, channels or config.channels)
+    else:
+        words, pool = encode_words(program, config), constant_pool(program)
+    stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
+            else no_stimulus(config))
+    watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
+    try:
+        columns = tr.trace_columns(program, watch_list, program.symbols, config)
+    except ValueError as e:
+        raise UsageError(f"--watch: {e}") from None
+    events = stim.events_for_harness(f)
+    has_words = any(row.words for row in stim.rows)
+
+    def input_words(kind: str, key: int):
+        if not has_words:
+            return None
+        got = stim.words_for_scan(key) if kind == "scan" else stim.words_at_clock(key, f)
+        return [got.get(n, 0) for n in range(config.in_words)]
+
+    job = RunJob(prog=words, clock_hz=int(f * 1_000_000), watchdog=watchdog,
+                 scans=scans, until_clock=until_clock,
+                 stim_kind=events[0][0] if events else "none",
+                 stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
+                 cols=[(c.header, *hw_column(c.operand)) for c in columns],
+                 costs=costs, pool=pool, mode=mode, exchange=exchange,
+                 byte_prog=byte_words)
+    return program, columns, job, f
+
+
+def _one_cell_per_condition(program, part, cells: int) -> None:
+    """The marker area holds one condition per cell and a reader snapshots it once a
+    scan: two conditions of one scan in one cell would mix. Free-running mode with
+    the marker exchange therefore needs a cell per transfer and direction."""
+    seen: dict[str, int] = {}
+    for t in part.transfers:
+        seen[t.direction] = seen.get(t.direction, 0) + 1
+        if seen[t.direction] > cells:
+            line = next((i.source for i in program.instrs if i.line == t.line), "")
+            raise SourceError(program.path, t.line, t.col,
+                              f"more than {cells} conditions cross "
+                              f"{'bit -> byte' if t.direction == 'to_byte' else 'byte -> bit'} in one "
+                              f"scan: the marker area has {cells} cells per direction "
+                              "(use --exchange queue-free, or fewer crossings)", line)

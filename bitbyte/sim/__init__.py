@@ -1,0 +1,1 @@
+"""Simulator drivers: the Verilator harness runner and the cocotb test modules and runner."""

@@ -1,0 +1,291 @@
+"""cocotb driver of rtl/bitbyte_cpu.v: runs the RunJobs named by $BITBYTE_JOBS and
+writes the RunResults to $BITBYTE_RESULTS.
+
+The protocol is the one of docs/isa.md's timing model and of the C++ harness: load
+the program in reset, wait for `ready_o`, raise `run_i` for one clock, then clock 0 is
+the PII latch of scan 0. Inputs for clock n are driven at the falling edge inside
+clock n; a scan's results are read at the falling edge after the edge that ended it.
+
+The byte processor is the real firmware (firmware_byte/, loaded with ctypes). It runs
+in a bridged thread (cocotb.task.bridge); each HAL call it makes is a resume-wrapped
+coroutine that drives the bus and awaits clock edges, so the C code blocks exactly
+as long as its bus accesses and its `hal_spend` take in simulated clocks.
+"""
+from __future__ import annotations
+
+import ctypes
+import json
+import os
+from pathlib import Path
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.task import bridge, resume
+from cocotb.triggers import Event, FallingEdge, First, RisingEdge, Timer
+from cocotb.utils import get_sim_time
+
+from bitbyte.lang.definition import DEF
+from bitbyte.run.runjob import RunJob
+
+BUS = DEF.bus                          # byte-bus register addresses
+
+FIRMWARE_LIB = Path(__file__).resolve().parents[2] / "firmware_byte" / "build" / \
+    "libbyteproc_cb.so"
+
+PERIOD_NS = 10      # simulator time only; reported time uses the job's clock_hz
+MARKER_BITS = 2048  # the marker RAM clears one bit per clock after reset
+
+
+def _word(vector, index: int) -> int:
+    return _signed16((int(vector.value) >> (16 * index)) & 0xFFFF)
+
+
+def _signed16(v: int) -> int:
+    return v - 0x10000 if v & 0x8000 else v
+
+
+def _reader(dut, kind: str, index: int, firmware=None):
+    """A function returning the current value of one traced column."""
+    if kind == "mw":
+        return lambda: firmware.mw(index)
+    if kind == "qw":
+        return lambda: _word(dut.out_words_o, index)
+    if kind == "iw":
+        return lambda: _word(dut.in_words_i, index)
+    if kind == "q":
+        return lambda: (int(dut.out_pins_o.value) >> index) & 1
+    if kind == "pi":
+        return lambda: (int(dut.in_pins_i.value) >> index) & 1
+    images = {"i": "pii_o", "ir": "rise_o", "if": "fall_o"}
+    if kind in images:
+        sig = getattr(dut.u_input_unit, images[kind])
+        return lambda: (int(sig.value) >> index) & 1
+    if kind == "m":
+        cell = dut.u_bit_proc.u_marker_ram.mem[index]
+        return lambda: int(cell.value) & 1
+    if kind == "t":
+        sig = dut.u_tc_status.timer_status_o
+        return lambda: (int(sig.value) >> index) & 1
+    if kind == "c":
+        sig = dut.u_tc_status.counter_status_o
+        return lambda: (int(sig.value) >> index) & 1
+    return lambda: 0
+
+
+class Firmware:
+    """The byte processor: firmware_byte's C code with a HAL onto this simulation."""
+
+    _lib = None
+
+    def __init__(self, dut, job: RunJob, clock0_ns: float):
+        lib = Firmware._load()
+        self.dut, self.clock0_ns = dut, clock0_ns
+        self.stopped = Event()
+        self.state = lib.bb_new()
+        lib.bb_init(self.state, lib.bb_cost_table(job.costs.encode()))
+        if job.pool:
+            words = (ctypes.c_uint32 * len(job.pool))(*job.pool)
+            lib.bb_load_pool(self.state, words, len(job.pool))
+        self.parallel = job.mode == "parallel"
+        self.free = job.mode == "free"
+        if self.parallel or self.free:
+            words = (ctypes.c_uint32 * len(job.byte_prog))(*job.byte_prog)
+            lib.bb_load_program(self.state, words, len(job.byte_prog))
+        # The HAL: each callback runs in the firmware's thread and blocks on a coroutine.
+        hal = (lib.HalRead(resume(self._read)), lib.HalWrite(resume(self._write)),
+               lib.HalSpend(resume(self._spend)), lib.HalWait(resume(self._wait)),
+               lib.HalNow(self._now))
+        self._keep = hal                       # ctypes callbacks must outlive the C calls
+        lib.bb_hal_set_callbacks(*hal)
+
+    @classmethod
+    def _load(cls):
+        if cls._lib is None:
+            lib = ctypes.CDLL(str(FIRMWARE_LIB))
+            lib.bb_new.restype = ctypes.c_void_p
+            lib.bb_free.argtypes = [ctypes.c_void_p]
+            lib.bb_cost_table.restype = ctypes.c_void_p
+            lib.bb_cost_table.argtypes = [ctypes.c_char_p]
+            lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+            lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
+            lib.bb_serial_step.argtypes = [ctypes.c_void_p]
+            lib.bb_run_scan.argtypes = [ctypes.c_void_p]
+            lib.bb_run_step.argtypes = [ctypes.c_void_p, ctypes.c_int]
+            lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
+            lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
+            lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
+            lib.bb_mw.restype = ctypes.c_int16
+            lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint16)
+            lib.HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint16, ctypes.c_uint32)
+            lib.HalSpend = ctypes.CFUNCTYPE(None, ctypes.c_uint32)
+            lib.HalWait = ctypes.CFUNCTYPE(None)
+            lib.HalNow = ctypes.CFUNCTYPE(ctypes.c_uint64)
+            cls._lib = lib
+        return cls._lib
+
+    def mw(self, n: int) -> int:
+        return int(self._lib.bb_mw(self.state, n))
+
+    def close(self):
+        self._lib.bb_hal_set_callbacks(None, None, None, None, None)
+        self._lib.bb_free(self.state)
+
+    # HAL (docs/byte-bus.md). Each runs at a falling edge: "this clock" is the clock
+    # whose falling edge it is; an access takes the clock and returns at the next one.
+    async def _access(self, addr: int, data: int | None) -> int:
+        dut = self.dut
+        while not self.stopped.is_set():
+            dut.bus_addr_i.value = addr
+            dut.bus_re_i.value = int(data is None)
+            dut.bus_we_i.value = int(data is not None)
+            dut.bus_wdata_i.value = data or 0
+            await Timer(1, unit="ns")                    # combinational read data
+            rdata, ready = int(dut.bus_rdata_o.value), int(dut.bus_ready_o.value)
+            await FallingEdge(dut.clk_i)
+            dut.bus_re_i.value = dut.bus_we_i.value = 0
+            if ready:
+                return rdata
+        return 0
+
+    async def _read(self, addr: int) -> int:
+        return await self._access(addr, None)
+
+    async def _write(self, addr: int, data: int) -> None:
+        await self._access(addr, data)
+
+    async def _spend(self, clocks: int) -> None:
+        if clocks and not self.stopped.is_set():
+            # from one falling edge to the falling edge `clocks` clocks later, in one wait
+            await Timer(clocks * PERIOD_NS, unit="ns")
+
+    async def _wait(self) -> None:
+        dut = self.dut
+        if int(dut.next.value) or self.stopped.is_set():
+            return
+        await First(RisingEdge(dut.next), self.stopped.wait())
+        if not self.stopped.is_set():
+            await FallingEdge(dut.clk_i)               # into the dispatch clock
+
+    def _now(self) -> int:
+        return int((get_sim_time("ns") - self.clock0_ns) // PERIOD_NS)
+
+    def run_until_stopped(self) -> None:
+        """The firmware's main loop (in the bridged thread): serial mode executes
+        dispatched instructions; parallel mode runs its byte part from each scan's
+        latch clock (NEXT) and reports SCAN_DONE."""
+        lib = self._lib
+        mode = DEF.modes["parallel" if self.parallel else "free" if self.free else "serial"]
+        while not self.stopped.is_set():       # the firmware's main loop, turn by turn
+            lib.bb_run_step(self.state, mode)
+
+
+async def run_job(dut, job: RunJob) -> dict:
+    dut.rst_ni.value = 0
+    dut.run_i.value = 0
+    dut.in_pins_i.value = 0
+    dut.in_words_i.value = 0               # nothing of the previous job carries over
+    dut.mcopy_en_i.value = 0               # a single CPU: no copy engine
+    dut.time_start_i.value = 0             # ... and its time base starts at its latch
+    dut.mcopy_we_i.value = 0
+    dut.mcopy_addr_i.value = 0
+    dut.mcopy_wdata_i.value = 0
+    dut.watchdog_limit_i.value = job.watchdog
+    for addr, word in enumerate(job.prog):
+        await FallingEdge(dut.clk_i)
+        dut.prog_we_i.value = 1
+        dut.prog_waddr_i.value = addr
+        dut.prog_wdata_i.value = word
+    await FallingEdge(dut.clk_i)
+    dut.prog_we_i.value = 0
+    dut.rst_ni.value = 1
+    await Timer(MARKER_BITS * PERIOD_NS, unit="ns")
+    while not int(dut.ready_o.value):
+        await FallingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.bus_addr_i.value, dut.bus_wdata_i.value = BUS["TICK_DIV"], job.clock_hz // 1000
+    dut.bus_we_i.value = 1
+    await FallingEdge(dut.clk_i)
+    dut.bus_we_i.value = 0
+    dut.parallel_i.value = int(job.mode == "parallel")
+    dut.free_i.value = int(job.mode == "free")
+    dut.marker_write_buffer_i.value = 0
+    dut.exchange_i.value = ("handshake", "queue", "queue-free", "marker").index(job.exchange)
+    dut.run_i.value = 1                    # this clock is still IDLE
+    await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
+
+    firmware = Firmware(dut, job, get_sim_time("ns"))
+    fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
+    try:
+        result = await _scans(dut, job, firmware)
+    finally:
+        firmware.stopped.set()
+        await fw_thread
+        firmware.close()
+        dut.bus_re_i.value = dut.bus_we_i.value = 0
+    return result
+
+
+async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
+    """From clock 0 on: inputs, finished scans, the stop condition. The coroutine
+    wakes only at the clocks where something happens (a scan ends, the watchdog
+    fires, a time-keyed input changes), always at that clock's falling edge."""
+    readers = [_reader(dut, kind, index, firmware) for _, kind, index in job.cols]
+    stim = list(job.stim)
+    next_stim = 0
+    rows, fault = [], False
+    scan = 0
+    pins = 0
+    clock0 = firmware.clock0_ns
+
+    def clock_now() -> int:
+        return int((get_sim_time("ns") - clock0) // PERIOD_NS)
+
+    def apply_due(key: int) -> None:
+        nonlocal next_stim, pins
+        while next_stim < len(stim) and stim[next_stim][0] <= key:
+            _, pins, words = stim[next_stim]
+            next_stim += 1
+            if words is not None:
+                dut.in_words_i.value = sum((w & 0xFFFF) << (16 * i) for i, w in enumerate(words))
+        dut.in_pins_i.value = pins
+
+    apply_due(0)                               # clock 0: the latch of scan 0
+    while True:
+        # sleep until a scan ends, the watchdog fires or the next time-keyed input
+        wake = [RisingEdge(dut.scan_done_o), RisingEdge(dut.fault_o)]
+        if job.stim_kind == "clock" and next_stim < len(stim):
+            at = clock0 + stim[next_stim][0] * PERIOD_NS - get_sim_time("ns")
+            wake.append(Timer(at, unit="ns"))     # at > 0: due inputs are applied
+        fired = await First(*wake)
+        if isinstance(fired, RisingEdge):
+            await FallingEdge(dut.clk_i)       # into the clock after the edge
+        clock = clock_now()
+        if int(dut.fault_o.value):
+            fault = True
+            break
+        if isinstance(fired, RisingEdge) and int(dut.scan_done_o.value):
+            rows.append((scan, clock, int(dut.scan_cycles_o.value), [r() for r in readers]))
+            scan += 1
+            if job.scans is not None and scan >= job.scans:
+                break
+            if job.until_clock is not None and clock >= job.until_clock:
+                break
+            if job.stim_kind == "scan":
+                apply_due(scan)                # this clock latches scan `scan`
+        if job.stim_kind == "clock":
+            apply_due(clock)
+    return {"rows": rows, "fault": fault, "clocks": clock_now(),
+            "stalls": [int(dut.stalls_bit_o.value), int(dut.stalls_byte_o.value)]}
+
+
+@cocotb.test()
+async def run_jobs(dut):
+    """Execute every job of $BITBYTE_JOBS in order."""
+    jobs = [RunJob.from_json(d) for d in json.load(open(os.environ["BITBYTE_JOBS"]))]
+    cocotb.start_soon(Clock(dut.clk_i, PERIOD_NS, unit="ns").start())
+    for sig in (dut.prog_we_i, dut.prog_waddr_i, dut.prog_wdata_i, dut.in_words_i,
+                dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i):
+        sig.value = 0
+    results = [await run_job(dut, job) for job in jobs]
+    with open(os.environ["BITBYTE_RESULTS"], "w") as f:
+        json.dump(results, f)

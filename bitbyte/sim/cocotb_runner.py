@@ -1,0 +1,116 @@
+"""Run RunJobs on the RTL through cocotb (Icarus or Verilator).
+
+Builds rtl/ once per simulator under build/cocotb-<sim>/ and runs the driver
+`bitbyte.cocotb_driver`, which executes a list of jobs in one simulator process
+(program load and reset between jobs), so a test can run hundreds of programs
+without paying the simulator start-up each time.
+"""
+from __future__ import annotations
+
+import fcntl
+import json
+import logging
+import os
+import tempfile
+from pathlib import Path
+
+from bitbyte.lang.errors import SimError
+from bitbyte.lang.trace import ScanRecord
+from bitbyte.run.summary import summary_text
+
+ROOT = Path(__file__).resolve().parents[2]
+RTL = ROOT / "rtl"
+
+
+def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
+                   parameters: dict | None = None, extra_env: dict | None = None,
+                   testcase: str | None = None, waves: bool = False,
+                   quiet: bool = False) -> Path:
+    """Build `toplevel` from rtl/*.v on `sim` and run cocotb `test_module`.
+
+    Returns the results XML path; raises SystemExit/RuntimeError on failure."""
+    from cocotb_tools.runner import get_runner  # heavy import, only when simulating
+
+    runner = get_runner(sim)
+    if quiet:
+        runner.log.setLevel(logging.ERROR)   # "Skipping compilation" and the like
+    build_args = ["-Wno-fatal", "-j", "2"] if sim == "verilator" else []
+    if sim == "verilator" and waves:
+        build_args += ["--trace-fst", "--trace-structs"]
+    runner.build(
+        sources=sorted(RTL.glob("*.v")),
+        includes=[RTL],
+        hdl_toplevel=toplevel,
+        parameters=parameters or {},
+        build_dir=build_dir,
+        build_args=build_args,
+        timescale=("1ns", "1ps"),
+        waves=waves,
+        log_file=build_dir / "build.log" if quiet else None,
+    )
+    env = dict(extra_env or {})
+    paths = [str(ROOT), str(ROOT / "tb"), os.environ.get("PYTHONPATH", "")]
+    env.setdefault("PYTHONPATH", os.pathsep.join(p for p in paths if p))
+    return runner.test(
+        hdl_toplevel=toplevel,
+        test_module=test_module,
+        build_dir=build_dir,
+        test_dir=build_dir,
+        extra_env=env,
+        testcase=testcase,
+        waves=waves,
+        log_file=build_dir / "sim.log" if quiet else None,
+    )
+
+
+def build_firmware() -> None:
+    """firmware_byte/build/libbyteproc_cb.so, the byte processor for ctypes."""
+    import subprocess
+    lock_dir = ROOT / "firmware_byte" / "build"
+    lock_dir.mkdir(parents=True, exist_ok=True)
+    with open(lock_dir / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT / "firmware_byte"), "lib"],
+                              capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError("building firmware_byte failed:\n" + proc.stdout + proc.stderr)
+
+
+def run_jobs(jobs, sim: str = "icarus"):
+    """Run RunJobs on `sim` in one simulator process; returns RunResults in order."""
+    from bitbyte.run.runjob import RunResult
+
+    build_firmware()
+    build_dir = ROOT / "build" / f"cocotb-{sim}"
+    build_dir.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
+        jobs_path = Path(tmp) / "jobs.json"
+        results_path = Path(tmp) / "results.json"
+        jobs_path.write_text(json.dumps([job.to_json() for job in jobs]))
+        # One build directory per simulator, shared by concurrent runs: serialise.
+        with open(build_dir / ".lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            build_and_test(sim, "bitbyte_cpu", "bitbyte.sim.cocotb_driver", build_dir,
+                           extra_env={"BITBYTE_JOBS": str(jobs_path),
+                                      "BITBYTE_RESULTS": str(results_path)},
+                           quiet=True)
+        data = json.loads(results_path.read_text())
+    return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
+                      clocks=d["clocks"], stalls=tuple(d["stalls"])) for d in data]
+
+
+def records_from_rows(columns, rows):
+    """The driver's rows (scan, end_clock, cycles, values) as trace records."""
+    return [ScanRecord(scan=s, end_clock=e, cycles=c,
+                       values={col.header: v for col, v in zip(columns, vals)})
+            for s, e, c, vals in rows]
+
+
+def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
+    """One RunJob on cocotb: (records, watchdog fault?, the run summary text)."""
+    try:
+        (result,) = run_jobs([job], sim)
+    except (SystemExit, RuntimeError, OSError) as e:
+        raise SimError(f"cocotb on {sim} failed: {e}") from None
+    records = records_from_rows(columns, result.rows)
+    return records, result.fault, summary_text(records, f, trace, result.stalls)

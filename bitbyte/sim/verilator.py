@@ -1,0 +1,58 @@
+"""Run a RunJob on the Verilator C++ harness (sim/harness.cpp), building it through the
+Makefile when it is missing or stale.  The harness writes the trace and prints the run
+summary itself.
+"""
+from __future__ import annotations
+
+import fcntl
+import subprocess
+import tempfile
+from pathlib import Path
+
+from bitbyte.lang.errors import SimError
+from bitbyte.lang.trace import read_trace_rows
+
+ROOT = Path(__file__).resolve().parents[2]
+HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
+HARNESS_WATCHDOG = 3      # the harness's exit status when the scan watchdog stopped a run
+
+
+def ensure_harness() -> Path:
+    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale."""
+    HARNESS.parent.mkdir(parents=True, exist_ok=True)
+    with open(HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "harness"],
+                              capture_output=True, text=True)
+    if proc.returncode != 0 or not HARNESS.exists():
+        raise SimError("building the Verilator harness failed:\n" + proc.stdout + proc.stderr)
+    return HARNESS
+
+
+def run_harness(job, columns, trace: str | None = None, waves: str | None = None):
+    """Run `job`; returns (records, watchdog fault?, the harness's summary text).  trace:
+    where the harness writes the trace CSV (else a temporary file); waves: FST/VCD."""
+    harness = ensure_harness()
+    with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
+        hex_path = Path(tmp) / "prog.hex"
+        hex_path.write_text("".join(f"{w:08x}\n" for w in job.prog))
+        trace_path = Path(trace).resolve() if trace else Path(tmp) / "trace.csv"
+        waves = str(Path(waves).resolve()) if waves else None
+        if waves:
+            Path(waves).parent.mkdir(parents=True, exist_ok=True)
+        run_file = Path(tmp) / "run.txt"
+        byte_path = None
+        if job.mode in ("parallel", "free"):
+            byte_path = Path(tmp) / "byte.hex"
+            byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
+        text = job.to_harness_text(str(hex_path), str(trace_path), waves,
+                                   str(byte_path) if byte_path else None)
+        run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
+        proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
+        if not trace:             # the temporary trace is gone after the run: do not show it
+            proc.stdout = "".join(l for l in proc.stdout.splitlines(keepends=True)
+                                  if not l.startswith("trace "))
+        if proc.returncode not in (0, HARNESS_WATCHDOG):
+            raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
+        records = read_trace_rows(trace_path, columns)
+    return records, proc.returncode == HARNESS_WATCHDOG, proc.stdout
