@@ -778,8 +778,8 @@ clocks per 10 ms).
     w(f"\nLargest relative difference measured / predicted: {worst:.1e} (the issue asks "
       f"for ≤ 5 %; the rest is the floor to whole clocks and the headroom).\n")
     run = pl["run"]
-    w("**On the multi-core system.** The plant harness simulates plants of two cores in "
-      "this release, so two of these cores (the fullest 10 ms and the fullest 200 ms one) "
+    w("**On the multi-core system.** Two of these cores (the fullest 10 ms and the "
+      "fullest 200 ms one) "
       f"were emitted as a plant at 1 MHz and run with `bitbyte run PLANT.toml --until-us "
       f"{run['until']}` (busy = precycle + cycles + postcycle of a scan, from the "
       "trace):\n")

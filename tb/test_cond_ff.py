@@ -6,19 +6,14 @@ import random
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 
 async def reset(dut):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    for sig in (dut.rst_ni, dut.wr_req_i, dut.wr_data_i, dut.rd_req_i):
-        sig.value = 0
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.wr_req_i, dut.wr_data_i, dut.rd_req_i)
 
 
 async def clock(dut, wr=None, rd=False):

@@ -8,22 +8,16 @@ import random
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 CORES = 3
 
 
 async def reset(dut):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.lock_req_i.value = 0
-    dut.release_i.value = 0
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.lock_req_i, dut.release_i)
 
 
 async def clock(dut, req=0, rel=0):

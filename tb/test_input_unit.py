@@ -5,22 +5,16 @@ import random
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 IN_BITS = 16
 
 
 async def reset(dut):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.pins_i.value = 0
-    dut.latch_i.value = 0
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.pins_i, dut.latch_i)
 
 
 async def clock(dut, pins: int, latch: bool = False):

@@ -5,21 +5,16 @@ from __future__ import annotations
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 
 async def reset(dut, write_buffer):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    for sig in (dut.rst_ni, dut.bit_start_i, dut.bit_end_i, dut.bit_wr_i, dut.bit_wr_data_i,
-                dut.byte_start_i, dut.byte_end_i, dut.byte_wr_i, dut.byte_wr_data_i):
-        sig.value = 0
-    dut.write_buffer_i.value = int(write_buffer)
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.bit_start_i, dut.bit_end_i, dut.bit_wr_i,
+                         dut.bit_wr_data_i, dut.byte_start_i, dut.byte_end_i, dut.byte_wr_i,
+                         dut.byte_wr_data_i, write_buffer_i=int(write_buffer))
 
 
 async def clock(dut, **signals):

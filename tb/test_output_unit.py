@@ -5,22 +5,17 @@ import random
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 OUT_BITS = 16
 
 
 async def reset(dut):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    for sig in (dut.rst_ni, dut.wr_en_i, dut.wr_idx_i, dut.wr_val_i, dut.wr_direct_i,
-                dut.update_i, dut.fault_i):
-        sig.value = 0
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.wr_en_i, dut.wr_idx_i, dut.wr_val_i, dut.wr_direct_i,
+                         dut.update_i, dut.fault_i)
 
 
 async def clock(dut, wr=None, direct=False, update=False, fault=False):

@@ -4,22 +4,14 @@ from __future__ import annotations
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 
 async def reset(dut, limit=100):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.mem_ready_i.value = 0
-    dut.run_i.value = 0
-    dut.end_i.value = 0
-    dut.watchdog_limit_i.value = limit
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.mem_ready_i, dut.run_i, dut.end_i, watchdog_limit_i=limit)
 
 
 async def clock(dut, end=False):

@@ -6,22 +6,17 @@ import random
 
 import cocotb
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from simrun import SIMULATORS, run_cocotb
+from tbutil import start_in_reset
 
 N = 64
 
 
 @cocotb.test()
 async def random_writes_against_model(dut):
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    for sig in (dut.rst_ni, dut.status_we_i, dut.ctl_we_i, dut.latch_i):
-        sig.value = 0
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await start_in_reset(dut, dut.status_we_i, dut.ctl_we_i, dut.latch_i)
     model = {"ts": 0, "cs": 0, "te": 0, "cp": 0}
     rng = random.Random(3)
     for _ in range(500):

@@ -124,3 +124,27 @@ def test_bare_number_check_can_fail():
     assert BARE.search("dut.bus_addr_i.value = 9")
     assert BARE.search("set_field(top.bus_addr_i, 9 * c, 9, 0x09);")
     assert not BARE.search("hal_bus_write(BB_BUS_SCAN_DONE, 1);")
+
+
+def rtl_parameter_defaults(top: str) -> dict[str, int]:
+    """`parameter integer Name = value` of rtl/<top>.v's parameter list."""
+    text = (ROOT / "rtl" / f"{top}.v").read_text()
+    start = text.index(f"module {top}")
+    head = text[start:re.compile(r"\)\s*\(").search(text, start).start()]
+    return {m.group(1): int(m.group(2)) for m in
+            re.finditer(r"\bparameter\s+integer\s+(\w+)\s*=\s*(\d+)", head)}
+
+
+@pytest.mark.parametrize("top", sorted(DEF.rtl_defaults))
+def test_rtl_parameter_defaults_are_the_definition_sizes(top):
+    got = rtl_parameter_defaults(top)
+    want = DEF.rtl_defaults[top]
+    assert {k: got.get(k) for k in want} == want
+
+
+def test_rtl_default_check_can_fail():
+    got = rtl_parameter_defaults("bitbyte_cpu")
+    assert got["ProgWords"] == DEF.sizes["prog_words"]
+    def bigger(raw):
+        raw["sizes"]["prog_words"] *= 2
+    assert _changed(bigger).rtl_defaults["bitbyte_cpu"]["ProgWords"] != got["ProgWords"]

@@ -20,13 +20,12 @@ from bitbyte.lang.config import Config
 from bitbyte.encoding.encoder import encode
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse, parse_file
-from bitbyte.ref.parsim import (POLICIES, ChannelError, Deadlock, ParSim, ScanTimeRefSim,
-                            state_snapshot)
+from bitbyte.ref.parsim import (POLICIES, ChannelError, Deadlock, ParSim,
+                                serial_states, state_snapshot)
 from bitbyte.compiler.estimate import estimate
 from bitbyte.compiler.partition import partition
 from bitbyte.compiler.report import part_listing, report_text, side_by_side
 from bitbyte.lang.parts import TO_BIT, TO_BYTE
-from bitbyte.ref.refsim import RefSim
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from randprog import (random_mixed_program, random_mixed_stimulus, random_parallel_program,
                       strip_timers)
@@ -529,7 +528,7 @@ def test_paper_mode_is_not_serial_equivalent():
     T1 before SD T1 of the same scan: Start_Up comes a scan late."""
     program = parse_file(str(FIG5))
     stim = load_stimulus(str(FIG5_STIM), program.symbols)
-    expected = serial_snapshots(program, stim, 10, timers=True)
+    expected = serial_states(program, stim, 10, timers=True)
 
     def scans(part):
         sim = ParSim(part, stimulus=stim, policy="bit-first", ms_per_scan=1)
@@ -640,7 +639,7 @@ def test_hand_partitioned_program_is_taken_verbatim():
     assert p.warnings == []
     # and it behaves as the serial Fig. 5 (plus MW5 = 1 while Out is 0)
     stim = load_stimulus(str(FIG5_STIM), program.symbols)
-    serial = serial_snapshots(parse_file(str(FIG5)), stim, 10, timers=True)
+    serial = serial_states(parse_file(str(FIG5)), stim, 10, timers=True)
     for policy in POLICIES:
         sim = ParSim(p, stimulus=stim, policy=policy, rng=3, ms_per_scan=1)
         for rec, (values, _) in zip(sim.run(10), serial):
@@ -764,24 +763,12 @@ def test_part_listing_shows_labels_and_targets():
 SCANS = 8
 
 
-def serial_snapshots(program, stim, scans, timers):
-    ref = ScanTimeRefSim(program, Config(), stim, 100_000, ms_per_scan=1) if timers \
-        else RefSim(program, Config(), stim, 100_000)
-    out = []
-    for _ in range(scans):
-        rec = ref.run_scan()
-        if rec is None:
-            break
-        out.append((rec.values, state_snapshot(ref)))
-    return out
-
-
 def assert_same_as_serial(part, stim_text, scans, timers=False, runs=4,
                           exchange="handshake", seed=0, queue_depth=4):
     """Every scan of `runs` random interleavings equals serial mode; a scan serial
     mode does not finish (watchdog) must not finish in parallel either."""
     stim = parse_stimulus(stim_text) if isinstance(stim_text, str) else stim_text
-    expected = serial_snapshots(part.program, stim, scans, timers)
+    expected = serial_states(part.program, stim, scans, timers)
     for run in range(runs):
         sim = ParSim(part, Config(), stim, exchange=exchange, rng=seed * 101 + run,
                      max_steps=30_000, ms_per_scan=1 if timers else None,

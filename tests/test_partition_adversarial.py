@@ -35,8 +35,9 @@ from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
 from bitbyte.lang.config import Config
 from bitbyte.lang.parser import parse
-from bitbyte.ref.parsim import POLICIES, Deadlock, ParSim, ScanTimeRefSim, state_snapshot
-from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
+from bitbyte.ref.parsim import (POLICIES, Deadlock, ParSim, serial_states,
+                                state_snapshot)
+from bitbyte.ref.refsim import RefSimError, refsim_trace
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from bitbyte.lang.trace import read_trace_rows
 
@@ -405,16 +406,8 @@ def stimulus_text(seed: int, scans: int = SCANS) -> str:
 # Serial vs parallel (ParSim)
 # --------------------------------------------------------------------------------------
 
-def serial_states(program, stim, timers: bool, scans: int = SCANS):
-    ref = ScanTimeRefSim(program, Config(), stim, 20_000, ms_per_scan=1) if timers \
-        else RefSim(program, Config(), stim, 20_000)
-    out = []
-    for _ in range(scans):
-        rec = ref.run_scan()
-        if rec is None:
-            break
-        out.append((rec.values, state_snapshot(ref)))
-    return out
+def serial_reference(program, stim, timers: bool, scans: int = SCANS):
+    return serial_states(program, stim, scans, timers, watchdog=20_000)
 
 
 def compare(part, stim, expected, timers: bool, runs, scans: int = SCANS) -> None:
@@ -532,7 +525,7 @@ def test_hand_programs_every_channel_count_exchange_and_policy(name):
         "the program no longer exercises what it was written for"
     for stim_seed in range(3):
         stim = parse_stimulus(stimulus_text(stim_seed * 7 + 1, 8))
-        expected = serial_states(program, stim, timers=True, scans=8)
+        expected = serial_reference(program, stim, timers=True, scans=8)
         for channels in (1, 2, 3, 4):
             for hw_wait in (True, False):
                 part = P.partition(program, channels, hardware_wait=hw_wait)
@@ -574,7 +567,7 @@ def test_one_place_deadlock_check_is_needed_and_conservative():
             ParSim(part, Config(), stim, exchange="handshake", policy=policy).run_scan()
     two = P.partition(program, 2, schedule=False)
     two.bit[:] = [two.bit[n] for n in where]
-    expected = serial_states(program, stim, timers=False)
+    expected = serial_reference(program, stim, timers=False)
     compare(two, stim, expected, False, [("handshake", 1, p, 0) for p in POLICIES])
     # the compiler's own choice with one channel: program order, no deadlock
     compare(P.partition(program, 1), stim, expected, False,
@@ -626,7 +619,7 @@ def _program_and_expectation(gen: str, seed: int, timers: bool):
     program = parse(f"{gen}{seed}.il", GENERATORS[gen](seed, timers))
     stim = parse_stimulus(stimulus_text(seed))
     try:
-        expected = serial_states(program, stim, timers)
+        expected = serial_reference(program, stim, timers)
     except RefSimError:                 # e.g. a parenthesis stack the jumps unbalance
         return None
     return program, stim, expected
@@ -658,7 +651,7 @@ def test_hand_programs_every_allowed_rung_order(name):
     interleaving policy, one and two channels."""
     program = parse(f"{name}.il", HAND[name][0])
     stim = parse_stimulus(stimulus_text(11, 8))
-    expected = serial_states(program, stim, timers=True, scans=8)
+    expected = serial_reference(program, stim, timers=True, scans=8)
     rng = random.Random(name)
     for k in range(12):
         part = P.partition(program, 1 + k % 2, schedule=False, hardware_wait=k % 3 > 0)

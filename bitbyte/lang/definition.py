@@ -142,6 +142,11 @@ class Definition:
         self.byte_flags: dict[str, int] = {f["name"]: 1 << f["bit"] for f in raw["byte_flag"]}
         self.byte_flag_rows: tuple[dict, ...] = tuple(raw["byte_flag"])
         self.sizes: dict[str, int] = dict(raw["sizes"])
+        self.plant: dict[str, int] = dict(raw["plant"])
+        # top module -> RTL parameter -> its default (from [sizes] / [plant])
+        self.rtl_defaults: dict[str, dict[str, int]] = {
+            top: {param: {**self.sizes, **self.plant}[key] for param, key in params.items()}
+            for top, params in raw["rtl"].items()}
         self.firmware: dict = dict(raw["firmware"])
         # bb_run's modes: name -> the enum value of firmware_byte/bb_isa.h
         self.modes: dict[str, int] = {m.lower(): i for i, (m, _) in

@@ -6,14 +6,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Operand
 from bitbyte.lang.trace import parse_address
 from bitbyte.plant.link import Copy, SharedMap
 
-MAX_CORES = 8                 # plants this release builds a harness for
-PLAN_WORDS = 1024             # rtl/plc_system.v PlanWords
-SHARED_WORDS = 2048           # rtl/plc_system.v SharedWords (per ping-pong buffer)
+MAX_CORES = DEF.plant["max_cores"]        # plants this release builds a harness for
+PLAN_WORDS = DEF.plant["plan_words"]      # rtl/plc_system.v PlanWords
+SHARED_WORDS = DEF.plant["shared_words"]  # rtl/plc_system.v SharedWords (per ping-pong buffer)
 
 
 class PlantRunError(Exception):

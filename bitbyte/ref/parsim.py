@@ -284,3 +284,19 @@ def state_snapshot(sim: RefSim) -> tuple:
         tuple((c.value, c.cu_edge, c.cd_edge, c.s_edge) for c in sim.counters),
         sim.arith_error,
     )
+
+
+def serial_states(program, stimulus: Stimulus, scans: int, timers: bool,
+                  watchdog: int = 100_000) -> list[tuple]:
+    """The serial reference of a parallel run, scan by scan: (trace values,
+    state_snapshot) of each completed scan; timers=True runs ScanTimeRefSim (timers on
+    scan time, as ParSim sees them)."""
+    ref = ScanTimeRefSim(program, Config(), stimulus, watchdog, ms_per_scan=1) if timers \
+        else RefSim(program, Config(), stimulus, watchdog)
+    out = []
+    for _ in range(scans):
+        rec = ref.run_scan()
+        if rec is None:
+            break
+        out.append((rec.values, state_snapshot(ref)))
+    return out
