@@ -1,5 +1,6 @@
 `default_nettype none
 `include "bit_isa.vh"
+`include "param_check.vh"
 // Bit processor: one bit instruction per clock, sustained.
 //
 // Three stages:
@@ -14,7 +15,7 @@
 // with the RLO and the parenthesis stack already reset for it. The processor idles
 // (fetch held at address 0) whenever the scan controller is not running.
 module bit_proc #(
-  parameter integer ProgWords   = 4096,  // program memory, instructions
+  parameter integer ProgWords   = 4096,  // program memory, instructions (power of two)
   parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
   parameter integer OutBits     = 128,   // binary outputs (Q, PQ)
   parameter integer MarkerBits  = 2048,  // marker bits (M)
@@ -82,7 +83,36 @@ module bit_proc #(
   localparam integer PcW   = $clog2(ProgWords);
   localparam integer MW    = $clog2(MarkerBits);
   localparam integer SpW   = $clog2(NestDepth + 1);  // 0..NestDepth levels
-  localparam integer IdxW  = $clog2(NestDepth);      // a level's index
+  // a level's index and a channel number: one bit at least, also for a single one
+  localparam integer IdxW  = (NestDepth > 1) ? $clog2(NestDepth) : 1;
+  localparam integer ChW   = (Channels > 1) ? $clog2(Channels) : 1;
+
+  // ---------------------------------------------------------------- parameter checks
+  // The instruction's index field is 12 bits (`ISA_INDEX`), a jump target 16 bits
+  // (`ISA_TARGET`); an area needs at least one index bit. The fetch address wraps at
+  // ProgWords only if it is a power of two.
+  if (ProgWords < 2 || ProgWords > 65536 || (ProgWords & (ProgWords - 1)) != 0)
+  begin : g_bad_prog_words
+    `PARAM_ERROR("bit_proc: ProgWords must be a power of two in 2..65536 (16-bit jump target)");
+  end
+  if (InBits < 2 || InBits > 4096) begin : g_bad_in_bits
+    `PARAM_ERROR("bit_proc: InBits must be 2..4096 (12-bit operand index)");
+  end
+  if (OutBits < 2 || OutBits > 4096) begin : g_bad_out_bits
+    `PARAM_ERROR("bit_proc: OutBits must be 2..4096 (12-bit operand index)");
+  end
+  if (MarkerBits < 2 || MarkerBits > 4096) begin : g_bad_marker_bits
+    `PARAM_ERROR("bit_proc: MarkerBits must be 2..4096 (12-bit operand index)");
+  end
+  if (StatusBits < 2 || StatusBits > 4096) begin : g_bad_status_bits
+    `PARAM_ERROR("bit_proc: StatusBits must be 2..4096 (12-bit operand index)");
+  end
+  if (Channels < 1 || Channels > 4096) begin : g_bad_channels
+    `PARAM_ERROR("bit_proc: Channels must be 1..4096 (12-bit operand index)");
+  end
+  if (NestDepth < 1) begin : g_bad_nest_depth
+    `PARAM_ERROR("bit_proc: NestDepth must be at least 1");
+  end
 
   // ---------------------------------------------------------------- fetch / decode
   reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM
@@ -127,9 +157,10 @@ module bit_proc #(
   // Execute holds its instruction while a channel is empty/full (the buffered
   // condition flip-flops' handshake) or the byte processor works on a dispatched
   // instruction; nothing of the instruction takes effect until the clock it completes.
-  // (the index fits when its bits above a channel number are 0: no wide compare)
-  wire [Channels-1:0] chan_sel = (e_index[11:$clog2(Channels)] == 0)
-      ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[$clog2(Channels)-1:0]) : {Channels{1'b0}};
+  // (the index fits when its bits above a channel number are 0: no wide compare; a
+  // number past the last channel shifts the one out of the vector)
+  wire [Channels-1:0] chan_sel = (e_index[11:ChW] == 0)
+      ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[ChW-1:0]) : {Channels{1'b0}};
   wire on_channel = e_area == `AREA_FB;
   wire fbi_read   = e_go && on_channel && is_logic;
   wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_cur));

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // One bit-byte CPU, the FPGA part: bit processor, scan controller, binary I/O units,
 // the exchange circuits (buffered condition flip-flops, timer/counter status buffer,
 // serial dispatch) and the byte-side port through which the byte processor (a
@@ -62,6 +63,18 @@ module bitbyte_cpu #(
 );
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
+
+  // The leaves check the rest; these are the ranges in this module's own units (an
+  // operand index is 12 bits: byte * 8 + bit).
+  if (InBytes < 1 || InBytes > 512) begin : g_bad_in_bytes
+    `PARAM_ERROR("bitbyte_cpu: InBytes must be 1..512 (12-bit operand index)");
+  end
+  if (OutBytes < 1 || OutBytes > 512) begin : g_bad_out_bytes
+    `PARAM_ERROR("bitbyte_cpu: OutBytes must be 1..512 (12-bit operand index)");
+  end
+  if (MarkerBytes < 1 || MarkerBytes > 512) begin : g_bad_marker_bytes
+    `PARAM_ERROR("bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)");
+  end
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
   wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now;

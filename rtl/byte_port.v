@@ -1,15 +1,16 @@
 `default_nettype none
 `include "byte_bus.vh"
+`include "param_check.vh"
 // Byte-side port: the one synchronous bus through which the byte processor (a
 // microcontroller) reaches the FPGA part. Register map: docs/byte-bus.md.
 // A read returns data in the clock of its strobe; an access that cannot complete
 // (a condition channel empty/full) drops bus_ready_o and is repeated by the byte
 // processor in the next clock, each such clock counted as a byte-side stall.
 module byte_port #(
-  parameter integer StatusBits = 64,  // timers and counters (each); at most 64
-  parameter integer Channels   = 4,   // condition channels per direction; at most 8
-  parameter integer InWords    = 16,  // IW n
-  parameter integer OutWords   = 16   // QW n
+  parameter integer StatusBits = 64,  // timers and counters (each); 2..64
+  parameter integer Channels   = 4,   // condition channels per direction; 1..8
+  parameter integer InWords    = 16,  // IW n; 1..16
+  parameter integer OutWords   = 16   // QW n; 1..16
 ) (
   input  wire                          clk_i,
   input  wire                          rst_ni,
@@ -69,6 +70,21 @@ module byte_port #(
   localparam [7:0] AddrFbi = `BUS_FBI;
   localparam [7:0] AddrIw  = `BUS_IW;
   localparam [7:0] AddrQw  = `BUS_QW;
+
+  // The register map fixes the sizes this port can serve (TC_BIT carries a 6-bit index,
+  // the status registers are LO/HI pairs).
+  if (StatusBits < 2 || StatusBits > 64) begin : g_bad_status_bits
+    `PARAM_ERROR("byte_port: StatusBits must be 2..64 (the bus has LO/HI status registers only)");
+  end
+  if (Channels < 1 || Channels > 8) begin : g_bad_channels
+    `PARAM_ERROR("byte_port: Channels must be 1..8 (the bus decodes 8 FBY/FBI channels)");
+  end
+  if (InWords < 1 || InWords > 16) begin : g_bad_in_words
+    `PARAM_ERROR("byte_port: InWords must be 1..16 (the bus window IW has 16 registers)");
+  end
+  if (OutWords < 1 || OutWords > 16) begin : g_bad_out_words
+    `PARAM_ERROR("byte_port: OutWords must be 1..16 (the bus window QW has 16 registers)");
+  end
 
   // ---------------------------------------------------------------- time base
   // Clock 0 is scan 0's latch, or in a plant core the plant's clock 0 (time_start_i,

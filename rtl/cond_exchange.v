@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // The condition exchange between the two processors, in the setting chosen at run
 // time (exchange_i, `--exchange`):
 //   0 handshake:  Channels buffered condition flip-flops per direction (Fig. 11);
@@ -40,6 +41,10 @@ module cond_exchange #(
   output wire [31:0]         overflows_o,
   output wire [31:0]         underflows_o
 );
+  if (Channels < 1) begin : g_bad_channels
+    `PARAM_ERROR("cond_exchange: Channels must be at least 1");
+  end
+
   wire use_queue  = exchange_i == 2'd1 || exchange_i == 2'd2;
   wire use_marker = exchange_i == 2'd3;
   wire use_ff     = exchange_i == 2'd0;

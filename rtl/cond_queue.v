@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Pointer-based condition queue (paper Fig. 16): one register file per direction, a
 // write pointer advanced by the writer and a read pointer advanced by the reader, so
 // both sides reach it in one clock and conditions come out in the order they went in.
@@ -31,6 +32,12 @@ module cond_queue #(
   output reg  [15:0] underflows_o
 );
   localparam integer PtrW = $clog2(Depth);
+
+  // Strict full/empty tell the pointers apart by one extra bit: that needs the slot
+  // index to wrap exactly at Depth.
+  if (Depth < 2 || (Depth & (Depth - 1)) != 0) begin : g_bad_depth
+    `PARAM_ERROR("cond_queue: Depth must be a power of two, at least 2");
+  end
 
   reg [Depth-1:0] data_q;
   reg [Depth-1:0] fresh_q;           // written and not yet read

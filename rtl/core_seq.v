@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Core sequencer of a plant core (docs/multicore.md): when a scan starts, the
 // precycle, the scan itself, the postcycle, and the copy engine that moves the
 // shared variables (seed 000 Fig. 4: read at scan start, write at scan end).
@@ -97,6 +98,25 @@ module core_seq #(
   localparam integer MaW = $clog2(MarkerBits);
   localparam integer WaW = $clog2(MwWords);
   localparam integer IdW = (Cores > 1) ? $clog2(Cores) : 1;
+
+  // The copy plan's fields bound the sizes: descriptor [23:16] a writer, item [24:12]
+  // a shared word, [11:0] a local address.
+  if (Cores < 2 || Cores > 256) begin : g_bad_cores
+    `PARAM_ERROR("core_seq: Cores must be 2..256 (8-bit writer field of a descriptor)");
+  end
+  if (PlanWords < 2 || (PlanWords & (PlanWords - 1)) != 0) begin : g_bad_plan_words
+    `PARAM_ERROR("core_seq: PlanWords must be a power of two, at least 2");
+  end
+  if (SharedWords < 2 || SharedWords > 8192 || (SharedWords & (SharedWords - 1)) != 0)
+  begin : g_bad_shared_words
+    `PARAM_ERROR("core_seq: SharedWords must be a power of two in 2..8192 (13-bit item field)");
+  end
+  if (MarkerBits < 2 || MarkerBits > 4096) begin : g_bad_marker_bits
+    `PARAM_ERROR("core_seq: MarkerBits must be 2..4096 (12-bit local address of an item)");
+  end
+  if (MwWords < 2 || MwWords > 4096) begin : g_bad_mw_words
+    `PARAM_ERROR("core_seq: MwWords must be 2..4096 (12-bit local address of an item)");
+  end
 
   localparam [1:0] ProtSem  = 2'd0;
   localparam [1:0] ProtPing = 2'd1;

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "bit_isa.vh"
+`include "param_check.vh"
 // Serial-mode dispatch (paper Fig. 6/7, NEXT/GO). The bit processor fetches every
 // instruction; a byte instruction reaching execute holds the pipeline and is offered
 // to the byte processor (NEXT) together with the RLO and the scan number. The byte
@@ -30,6 +31,10 @@ module dispatch #(
   output wire [$clog2(StatusBits)-1:0] ctl_idx_o,
   output wire                          ctl_val_o
 );
+  if (StatusBits < 2 || StatusBits > 4096) begin : g_bad_status_bits
+    `PARAM_ERROR("dispatch: StatusBits must be 2..4096 (12-bit operand index)");
+  end
+
   wire [7:0] op = instr_i[`ISA_OPCODE];
   // 0xB0..0xB4: SD SS SP SF, R T n; 0xB8..0xBB: CU CD, S C n, R C n
   wire is_timer   = (op >= `OP_B_SD) && (op <= `OP_B_RT);

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Hardware semaphore for the multi-core PLC (seed 000: the STM32 HSEM guarding the
 // shared memory). One lock, `Cores` requesters. A request is a one-step read-lock:
 // in the clock a core asks, it learns whether it got the lock (grant_o), and owns
@@ -19,6 +20,10 @@ module hsem #(
 );
   localparam integer IdW = $clog2(Cores);
   localparam [31:0]  LastCore = Cores - 1;
+
+  if (Cores < 2) begin : g_bad_cores
+    `PARAM_ERROR("hsem: Cores must be at least 2 (an owner id needs a bit)");
+  end
 
   reg [IdW-1:0] last_q;  // the last core granted: round-robin starts after it
 

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Binary input unit (paper Fig. 1): the process-image input (PII) lives here, in the
 // unit, not in the processor. A latch (scan start or REFRESH) copies the pins into the
 // PII and publishes the edges seen since the previous latch; between latches the
@@ -23,6 +24,10 @@ module input_unit #(
   output wire [InBits-1:0] rise_now_o,
   output wire [InBits-1:0] fall_now_o
 );
+  if (InBits < 1) begin : g_bad_in_bits
+    `PARAM_ERROR("input_unit: InBits must be at least 1");
+  end
+
   // Pin value one clock ago. Reset to 0: before the first scan every input counts as
   // having been 0, so an input that is 1 at the first latch shows a rising edge.
   reg  [InBits-1:0] pins_prev_q;

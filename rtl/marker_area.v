@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Dual-port marker area for free-running exchange (paper Fig. 17). Each side owns a
 // write region of `Cells` condition cells (the bit side's cells carry `= FBY k`, the
 // byte side's `WRITE FBI k`), so the two never write the same cell and need no
@@ -31,6 +32,10 @@ module marker_area #(
   input  wire             byte_wr_data_i,
   output wire [Cells-1:0] byte_rd_data_o
 );
+  if (Cells < 1) begin : g_bad_cells
+    `PARAM_ERROR("marker_area: Cells must be at least 1");
+  end
+
   // Each side's region: the cells as written (`work`) and as published (`pub`).
   reg [Cells-1:0] bit_work_q, bit_pub_q, byte_work_q, byte_pub_q;
   // Each reader's auxiliary buffer.

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Binary output unit (paper Fig. 1): the process-image output (PIO) and the output
 // register that drives the pins. `= Q` writes the PIO only; the pins follow at END
 // (update_i). `= PQ` (direct) writes the pin and the PIO in the same clock, so a later
@@ -18,6 +19,10 @@ module output_unit #(
   output reg  [OutBits-1:0]         pio_o,
   output reg  [OutBits-1:0]         pins_o
 );
+  if (OutBits < 2) begin : g_bad_out_bits
+    `PARAM_ERROR("output_unit: OutBits must be at least 2 (a write index needs a bit)");
+  end
+
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pio_o  <= {OutBits{1'b0}};

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // One core of a multi-core plant (docs/multicore.md): a complete bit-byte CPU, its
 // word markers MW in a RAM the byte processor reaches over the bus (bus addresses
 // 0x100 + n, so that the copy engine can reach them too), and the core sequencer
@@ -80,6 +81,11 @@ module plc_core #(
 );
   localparam integer MarkerBits = MarkerBytes * 8;
   localparam integer WaW        = $clog2(MwWords);
+
+  // MW n is bus address 0x100 + n of a 9-bit bus: 8 bits of word number.
+  if (MwWords < 2 || MwWords > 256) begin : g_bad_mw_words
+    `PARAM_ERROR("plc_core: MwWords must be 2..256 (bus addresses 0x100 + n, 9-bit bus)");
+  end
 
   wire        cpu_run, cpu_ready, copy_en;
   wire        m_we, m_wdata, m_rdata;

@@ -1,10 +1,11 @@
 `default_nettype none
+`include "param_check.vh"
 // A multi-core plant (spec §7, docs/multicore.md): Cores complete bit-byte CPUs, each
 // with its own program, scan period, I/O and byte processor, cooperating only through
 // one shared memory guarded by a hardware semaphore. Per-core ports are flattened:
 // core c's field is [c*W +: W].
 module plc_system #(
-  parameter integer Cores       = 2,     // cores (at least 2)
+  parameter integer Cores       = 2,     // cores, 2..8
   parameter integer ProgWords   = 4096,  // program memory per core, instructions
   parameter integer PlanWords   = 1024,  // copy-plan entries per core
   parameter integer SharedWords = 2048,  // shared 32-bit words (per ping-pong buffer)
@@ -67,8 +68,10 @@ module plc_system #(
   localparam integer PaW = $clog2(PlanWords);
   localparam integer AW  = $clog2(SharedWords) + 1;
 
-  initial begin
-    if (Cores < 2) $error("plc_system: Cores must be at least 2");
+  // The toolchain builds, links and runs plants of 2..8 cores (bitbyte/plantrun.py
+  // MAX_CORES); the leaves check the rest.
+  if (Cores < 2 || Cores > 8) begin : g_bad_cores
+    `PARAM_ERROR("plc_system: Cores must be 2..8 (the plants bitbyte link and run build)");
   end
 
   wire [Cores-1:0]      ready, lock_req, lock_release, grant, sh_we, sh_flip, sel;

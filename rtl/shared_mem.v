@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Shared memory of a plant (docs/multicore.md): SharedWords 32-bit words SH0.., twice
 // (two buffers for ping-pong protection; the semaphore and `none` use buffer 0).
 //
@@ -30,6 +31,13 @@ module shared_mem #(
 );
   localparam integer AW  = $clog2(SharedWords) + 1;
   localparam integer IdW = $clog2(Cores);
+
+  if (Cores < 2) begin : g_bad_cores
+    `PARAM_ERROR("shared_mem: Cores must be at least 2 (a bank number needs a bit)");
+  end
+  if (SharedWords < 1 || (SharedWords & (SharedWords - 1)) != 0) begin : g_bad_shared_words
+    `PARAM_ERROR("shared_mem: SharedWords must be a power of two (buffer bit above the word)");
+  end
 
   reg  [AW:0]            clear_q;             // 2 * SharedWords when done
   wire                   clearing = !clear_q[AW];

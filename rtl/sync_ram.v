@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // One write port and one synchronous read port: the shape of an FPGA block RAM, so
 // that Yosys maps program and marker memory onto BRAM instead of flip-flops.
 // A read of the address written in the same clock returns the old word; the bit
@@ -14,6 +15,13 @@ module sync_ram #(
   input  wire [$clog2(Words)-1:0] raddr_i,
   output reg  [Width-1:0]         rdata_o
 );
+  if (Words < 2) begin : g_bad_words
+    `PARAM_ERROR("sync_ram: Words must be at least 2 (an address needs a bit)");
+  end
+  if (Width < 1) begin : g_bad_width
+    `PARAM_ERROR("sync_ram: Width must be at least 1");
+  end
+
   // no_rw_check: a read of the word written in the same clock may return either
   // value (the users never depend on it: the program is written while stopped, the
   // marker RAM's collisions are forwarded by bit_proc), so Yosys adds no collision

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "param_check.vh"
 // Timer/counter status buffer (paper Fig. 2). The byte processor keeps the timers and
 // counters in its own memory and copies each status bit here when a timer or counter
 // instruction executes; the bit processor reads `T n` / `C n` from this buffer in one
@@ -32,6 +33,10 @@ module tc_status #(
   output reg  [StatusBits-1:0]         timer_updated_o,
   output reg  [StatusBits-1:0]         counter_updated_o
 );
+  if (StatusBits < 2) begin : g_bad_status_bits
+    `PARAM_ERROR("tc_status: StatusBits must be at least 2 (an index needs a bit)");
+  end
+
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       timer_status_o   <= {StatusBits{1'b0}};
