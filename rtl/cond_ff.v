@@ -38,9 +38,7 @@ module cond_ff (
 
 `ifdef FORMAL
   // Properties of the mailbox; formal/cond_ff.sby proves them by k-induction.
-  reg f_past_valid = 1'b0;
-  always @(posedge clk_i) f_past_valid <= 1'b1;
-  always @(*) if (!f_past_valid) assume (!rst_ni);
+`include "formal_past.vh"
 
   // Count conditions written and read since reset: the difference is the fill level.
   reg [3:0] f_written, f_read;

@@ -92,9 +92,7 @@ module cond_queue #(
 
 `ifdef FORMAL
   // Strict setting (formal/cond_queue.sby): a lossless FIFO, proved by k-induction.
-  reg f_past_valid = 1'b0;
-  always @(posedge clk_i) f_past_valid <= 1'b1;
-  always @(*) if (!f_past_valid) assume (!rst_ni);
+`include "formal_past.vh"
   always @(*) assume (!free_i);
 
   wire [PtrW:0] f_fill = wr_ptr_q - rd_ptr_q;

@@ -69,9 +69,7 @@ module hsem #(
 
 `ifdef FORMAL
   // formal/hsem.sby: mutual exclusion and granting after release, by k-induction.
-  reg f_past_valid = 1'b0;
-  always @(posedge clk_i) f_past_valid <= 1'b1;
-  always @(*) if (!f_past_valid) assume (!rst_ni);
+`include "formal_past.vh"
 
   // mutual exclusion: at most one grant, and never while the lock is held
   always @(*) begin

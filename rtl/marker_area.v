@@ -73,9 +73,7 @@ module marker_area #(
 
 `ifdef FORMAL
   // formal/marker_area.sby proves these for all time by k-induction.
-  reg f_past_valid = 1'b0;
-  always @(posedge clk_i) f_past_valid <= 1'b1;
-  always @(*) if (!f_past_valid) assume (!rst_ni);
+`include "formal_past.vh"
   always @(posedge clk_i) if (f_past_valid) assume ($stable(write_buffer_i));
 
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
