@@ -6,6 +6,8 @@
 // A read returns data in the clock of its strobe; an access that cannot complete
 // (a condition channel empty/full) drops bus_ready_o and is repeated by the byte
 // processor in the next clock, each such clock counted as a byte-side stall.
+// This module is the register map and the dispatch snapshot; the time base
+// (time_base.v) and the stall counters (bus_stats.v) are its submodules.
 module byte_port #(
   parameter integer StatusBits = 64,  // timers and counters (each); 2..64
   parameter integer Channels   = 4,   // condition channels per direction; 1..8
@@ -60,8 +62,8 @@ module byte_port #(
   input  wire                          bit_stall_i,  // the bit side waits this clock
   input  wire [31:0]                   queue_overflows_i,   // {to-bit, to-byte}
   input  wire [31:0]                   queue_underflows_i,
-  output reg  [31:0]                   stalls_bit_o,
-  output reg  [31:0]                   stalls_byte_o,
+  output wire [31:0]                   stalls_bit_o,
+  output wire [31:0]                   stalls_byte_o,
   output reg  [31:0]                   byte_flags_o
 );
   // Register addresses: rtl/byte_bus.vh, generated from bitbyte/definition.toml. The
@@ -88,28 +90,17 @@ module byte_port #(
 
   // ---------------------------------------------------------------- time base
   // Clock 0 is scan 0's latch, or in a plant core the plant's clock 0 (time_start_i,
-  // so that its timers run on plant time); TIME_MS = floor(clock / TICK_DIV) without
-  // a divider: a sub-counter wraps every TICK_DIV clocks.
-  reg        started_q;
-  reg [31:0] clock_q, ms_q, sub_q, tick_div_q;
-  wire       counting = started_q || latch_i || time_start_i;
-  always @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      started_q <= 1'b0;
-      clock_q   <= 32'd0;
-      ms_q      <= 32'd0;
-      sub_q     <= 32'd0;
-    end else if (counting) begin
-      started_q <= 1'b1;
-      clock_q   <= clock_q + 32'd1;
-      if (sub_q + 32'd1 >= tick_div_q) begin
-        sub_q <= 32'd0;
-        ms_q  <= ms_q + 32'd1;
-      end else begin
-        sub_q <= sub_q + 32'd1;
-      end
-    end
-  end
+  // so that its timers run on plant time). TICK_DIV is a register of the map below.
+  reg  [31:0] tick_div_q;
+  wire [31:0] clock_q, ms_q;           // registers of u_time_base (sim/bitbyte.gtkw: ms_q)
+  time_base u_time_base (
+    .clk_i     (clk_i),
+    .rst_ni    (rst_ni),
+    .start_i   (latch_i || time_start_i),
+    .tick_div_i(tick_div_q),
+    .clock_o   (clock_q),
+    .ms_o      (ms_q)
+  );
 
   // ---------------------------------------------------------------- dispatch snapshot
   // A byte instruction samples its inputs in its first clock (docs/isa.md): the time
@@ -214,6 +205,18 @@ module byte_port #(
     end
   end
 
+  // ---------------------------------------------------------------- statistics
+  // Every clock in which an access is refused is one byte-side stall (it is repeated).
+  wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;
+  bus_stats u_bus_stats (
+    .clk_i        (clk_i),
+    .rst_ni       (rst_ni),
+    .bit_stall_i  (bit_stall_i),
+    .byte_stall_i (byte_refused),
+    .stalls_bit_o (stalls_bit_o),
+    .stalls_byte_o(stalls_byte_o)
+  );
+
   // ---------------------------------------------------------------- registers
   assign byte_scan_end_o = bus_we_i && bus_addr_i == `BUS_SCAN_DONE;
 
@@ -228,21 +231,18 @@ module byte_port #(
     if (!rst_ni) begin
       tick_div_q    <= `BUS_TICK_DIV_RESET;   // 100 MHz
       out_words_o   <= {(OutWords*16){1'b0}};
-      stalls_bit_o  <= 32'd0;
-      stalls_byte_o <= 32'd0;
       byte_flags_o  <= 32'd0;
     end else begin
       if (bus_we_i && bus_addr_i == `BUS_TICK_DIV) tick_div_q <= bus_wdata_i;
       if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_o <= bus_wdata_i;
       if (bus_we_i && is_qw && ({28'd0, word} < OutWords))
         out_words_o[word*16 +: 16] <= bus_wdata_i[15:0];
-      if (bit_stall_i) stalls_bit_o <= stalls_bit_o + 32'd1;
-      if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;
     end
   end
 
 `ifdef FORMAL
-  // Bus protocol properties (formal/byte_port.sby, k-induction).
+  // Bus protocol properties (formal/byte_port.sby, k-induction; the time base's own
+  // are in time_base.v).
   reg f_past_valid = 1'b0;
   always @(posedge clk_i) f_past_valid <= 1'b1;
   always @(*) if (!f_past_valid) assume (!rst_ni);
@@ -271,10 +271,6 @@ module byte_port #(
     if ($past(bus_we_i) && $past(bus_addr_i) == `BUS_SCAN_DONE) assert (byte_scan_done_o);
     else if ($past(latch_i)) assert (!byte_scan_done_o);
     else assert (byte_scan_done_o == $past(byte_scan_done_o));
-    // the time base counts every clock from the first latch (or plant start) on
-    if ($past(started_q) || $past(latch_i) || $past(time_start_i))
-      assert (clock_q == $past(clock_q) + 32'd1);
-    else assert (clock_q == $past(clock_q));
   end
   always @(posedge clk_i) if (rst_ni) cover (stalls_byte_o == 32'd2);
 `endif

@@ -48,8 +48,8 @@ MUTATIONS = [
     ("hsem", "hsem.v", "end else if (locked_o && release_i[owner_o]) begin",
      "end else if (locked_o && |release_i) begin"),         # anybody frees it
     ("byte_port", "byte_port.v",
-     "if ((bus_re_i || bus_we_i) && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;",
-     "if (bus_re_i && !bus_ready_o) stalls_byte_o <= stalls_byte_o + 32'd1;"),  # misses
+     "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
+     "wire byte_refused = bus_re_i && !bus_ready_o;"),     # misses refused writes
     ("core_seq", "core_seq.v",
      "assign release_o  = lock_wanted && copy_done && (len_q != 0);",
      "assign release_o  = lock_wanted && copying && issued_q == len_q;"),  # frees mid-copy
