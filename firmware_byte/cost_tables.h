@@ -7,32 +7,13 @@
 
 #include "byteproc.h"
 
-/* Included by costs.c only: the named tables, the first is the default. */
+/* Included by costs.c only: the named tables, the first is the default;
+ * clocks in the order of enum bb_class: BB_CL_LOAD, BB_CL_TRANSFER, BB_CL_ARITH,
+ * BB_CL_MULDIV, BB_CL_COMPARE, BB_CL_TIMER, BB_CL_COUNTER, BB_CL_BINARY,
+ * BB_CL_ILLEGAL, BB_CL_END. */
 static const bb_costs bb_cost_tables[] = {
-  {"paper", {
-    [BB_CL_LOAD] = 10,
-    [BB_CL_TRANSFER] = 10,
-    [BB_CL_ARITH] = 10,
-    [BB_CL_MULDIV] = 10,
-    [BB_CL_COMPARE] = 10,
-    [BB_CL_TIMER] = 10,
-    [BB_CL_COUNTER] = 10,
-    [BB_CL_BINARY] = 1,
-    [BB_CL_ILLEGAL] = 1,
-    [BB_CL_END] = 0,
-  }},
-  {"c320", {
-    [BB_CL_LOAD] = 57,
-    [BB_CL_TRANSFER] = 57,
-    [BB_CL_ARITH] = 57,
-    [BB_CL_MULDIV] = 57,
-    [BB_CL_COMPARE] = 57,
-    [BB_CL_TIMER] = 57,
-    [BB_CL_COUNTER] = 57,
-    [BB_CL_BINARY] = 6,
-    [BB_CL_ILLEGAL] = 1,
-    [BB_CL_END] = 0,
-  }},
+  {"paper", {10, 10, 10, 10, 10, 10, 10, 1, 1, 0}},
+  {"c320", {57, 57, 57, 57, 57, 57, 57, 6, 1, 0}},
 };
 
 static const char *const bb_class_names[BB_NUM_CLASSES] = {

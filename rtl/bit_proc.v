@@ -91,28 +91,20 @@ module bit_proc #(
   // The instruction's index field is 12 bits (`ISA_INDEX`), a jump target 16 bits
   // (`ISA_TARGET`); an area needs at least one index bit. The fetch address wraps at
   // ProgWords only if it is a power of two.
-  if (ProgWords < 2 || ProgWords > 65536 || (ProgWords & (ProgWords - 1)) != 0)
-  begin : g_bad_prog_words
-    `PARAM_ERROR("bit_proc: ProgWords must be a power of two in 2..65536 (16-bit jump target)");
-  end
-  if (InBits < 2 || InBits > 4096) begin : g_bad_in_bits
-    `PARAM_ERROR("bit_proc: InBits must be 2..4096 (12-bit operand index)");
-  end
-  if (OutBits < 2 || OutBits > 4096) begin : g_bad_out_bits
-    `PARAM_ERROR("bit_proc: OutBits must be 2..4096 (12-bit operand index)");
-  end
-  if (MarkerBits < 2 || MarkerBits > 4096) begin : g_bad_marker_bits
-    `PARAM_ERROR("bit_proc: MarkerBits must be 2..4096 (12-bit operand index)");
-  end
-  if (StatusBits < 2 || StatusBits > 4096) begin : g_bad_status_bits
-    `PARAM_ERROR("bit_proc: StatusBits must be 2..4096 (12-bit operand index)");
-  end
-  if (Channels < 1 || Channels > 4096) begin : g_bad_channels
-    `PARAM_ERROR("bit_proc: Channels must be 1..4096 (12-bit operand index)");
-  end
-  if (NestDepth < 1) begin : g_bad_nest_depth
-    `PARAM_ERROR("bit_proc: NestDepth must be at least 1");
-  end
+  `PARAM_CHECK(g_bad_prog_words,
+               ProgWords < 2 || ProgWords > 65536 || (ProgWords & (ProgWords - 1)) != 0,
+               "bit_proc: ProgWords must be a power of two in 2..65536 (16-bit jump target)")
+  `PARAM_CHECK(g_bad_in_bits, InBits < 2 || InBits > 4096,
+               "bit_proc: InBits must be 2..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_out_bits, OutBits < 2 || OutBits > 4096,
+               "bit_proc: OutBits must be 2..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_marker_bits, MarkerBits < 2 || MarkerBits > 4096,
+               "bit_proc: MarkerBits must be 2..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_status_bits, StatusBits < 2 || StatusBits > 4096,
+               "bit_proc: StatusBits must be 2..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_channels, Channels < 1 || Channels > 4096,
+               "bit_proc: Channels must be 1..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_nest_depth, NestDepth < 1, "bit_proc: NestDepth must be at least 1")
 
   // ---------------------------------------------------------------- fetch / decode
   reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM

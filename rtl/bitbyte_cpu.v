@@ -66,15 +66,12 @@ module bitbyte_cpu #(
 
   // The leaves check the rest; these are the ranges in this module's own units (an
   // operand index is 12 bits: byte * 8 + bit).
-  if (InBytes < 1 || InBytes > 512) begin : g_bad_in_bytes
-    `PARAM_ERROR("bitbyte_cpu: InBytes must be 1..512 (12-bit operand index)");
-  end
-  if (OutBytes < 1 || OutBytes > 512) begin : g_bad_out_bytes
-    `PARAM_ERROR("bitbyte_cpu: OutBytes must be 1..512 (12-bit operand index)");
-  end
-  if (MarkerBytes < 1 || MarkerBytes > 512) begin : g_bad_marker_bytes
-    `PARAM_ERROR("bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)");
-  end
+  `PARAM_CHECK(g_bad_in_bytes, InBytes < 1 || InBytes > 512,
+               "bitbyte_cpu: InBytes must be 1..512 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_out_bytes, OutBytes < 1 || OutBytes > 512,
+               "bitbyte_cpu: OutBytes must be 1..512 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_marker_bytes, MarkerBytes < 1 || MarkerBytes > 512,
+               "bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)")
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
   wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now;

@@ -75,18 +75,14 @@ module byte_port #(
 
   // The register map fixes the sizes this port can serve (TC_BIT carries a 6-bit index,
   // the status registers are LO/HI pairs).
-  if (StatusBits < 2 || StatusBits > 64) begin : g_bad_status_bits
-    `PARAM_ERROR("byte_port: StatusBits must be 2..64 (the bus has LO/HI status registers only)");
-  end
-  if (Channels < 1 || Channels > 8) begin : g_bad_channels
-    `PARAM_ERROR("byte_port: Channels must be 1..8 (the bus decodes 8 FBY/FBI channels)");
-  end
-  if (InWords < 1 || InWords > 16) begin : g_bad_in_words
-    `PARAM_ERROR("byte_port: InWords must be 1..16 (the bus window IW has 16 registers)");
-  end
-  if (OutWords < 1 || OutWords > 16) begin : g_bad_out_words
-    `PARAM_ERROR("byte_port: OutWords must be 1..16 (the bus window QW has 16 registers)");
-  end
+  `PARAM_CHECK(g_bad_status_bits, StatusBits < 2 || StatusBits > 64,
+               "byte_port: StatusBits must be 2..64 (the bus has LO/HI status registers only)")
+  `PARAM_CHECK(g_bad_channels, Channels < 1 || Channels > 8,
+               "byte_port: Channels must be 1..8 (the bus decodes 8 FBY/FBI channels)")
+  `PARAM_CHECK(g_bad_in_words, InWords < 1 || InWords > 16,
+               "byte_port: InWords must be 1..16 (the bus window IW has 16 registers)")
+  `PARAM_CHECK(g_bad_out_words, OutWords < 1 || OutWords > 16,
+               "byte_port: OutWords must be 1..16 (the bus window QW has 16 registers)")
 
   // ---------------------------------------------------------------- time base
   // Clock 0 is scan 0's latch, or in a plant core the plant's clock 0 (time_start_i,

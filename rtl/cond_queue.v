@@ -35,9 +35,8 @@ module cond_queue #(
 
   // Strict full/empty tell the pointers apart by one extra bit: that needs the slot
   // index to wrap exactly at Depth.
-  if (Depth < 2 || (Depth & (Depth - 1)) != 0) begin : g_bad_depth
-    `PARAM_ERROR("cond_queue: Depth must be a power of two, at least 2");
-  end
+  `PARAM_CHECK(g_bad_depth, Depth < 2 || (Depth & (Depth - 1)) != 0,
+               "cond_queue: Depth must be a power of two; at least 2")
 
   reg [Depth-1:0] data_q;
   reg [Depth-1:0] fresh_q;           // written and not yet read

@@ -31,9 +31,8 @@ module dispatch #(
   output wire [$clog2(StatusBits)-1:0] ctl_idx_o,
   output wire                          ctl_val_o
 );
-  if (StatusBits < 2 || StatusBits > 4096) begin : g_bad_status_bits
-    `PARAM_ERROR("dispatch: StatusBits must be 2..4096 (12-bit operand index)");
-  end
+  `PARAM_CHECK(g_bad_status_bits, StatusBits < 2 || StatusBits > 4096,
+               "dispatch: StatusBits must be 2..4096 (12-bit operand index)")
 
   wire [7:0] op = instr_i[`ISA_OPCODE];
   // 0xB0..0xB4: SD SS SP SF, R T n; 0xB8..0xBB: CU CD, S C n, R C n

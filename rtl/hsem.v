@@ -21,9 +21,8 @@ module hsem #(
   localparam integer IdW = $clog2(Cores);
   localparam [31:0]  LastCore = Cores - 1;
 
-  if (Cores < 2) begin : g_bad_cores
-    `PARAM_ERROR("hsem: Cores must be at least 2 (an owner id needs a bit)");
-  end
+  `PARAM_CHECK(g_bad_cores, Cores < 2,
+               "hsem: Cores must be at least 2 (an owner id needs a bit)")
 
   reg [IdW-1:0] last_q;  // the last core granted: round-robin starts after it
 

@@ -24,9 +24,7 @@ module input_unit #(
   output wire [InBits-1:0] rise_now_o,
   output wire [InBits-1:0] fall_now_o
 );
-  if (InBits < 1) begin : g_bad_in_bits
-    `PARAM_ERROR("input_unit: InBits must be at least 1");
-  end
+  `PARAM_CHECK(g_bad_in_bits, InBits < 1, "input_unit: InBits must be at least 1")
 
   // Pin value one clock ago. Reset to 0: before the first scan every input counts as
   // having been 0, so an input that is 1 at the first latch shows a rising edge.

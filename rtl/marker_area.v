@@ -32,9 +32,7 @@ module marker_area #(
   input  wire             byte_wr_data_i,
   output wire [Cells-1:0] byte_rd_data_o
 );
-  if (Cells < 1) begin : g_bad_cells
-    `PARAM_ERROR("marker_area: Cells must be at least 1");
-  end
+  `PARAM_CHECK(g_bad_cells, Cells < 1, "marker_area: Cells must be at least 1")
 
   // Each side's region: the cells as written (`work`) and as published (`pub`).
   reg [Cells-1:0] bit_work_q, bit_pub_q, byte_work_q, byte_pub_q;

@@ -19,9 +19,8 @@ module output_unit #(
   output reg  [OutBits-1:0]         pio_o,
   output reg  [OutBits-1:0]         pins_o
 );
-  if (OutBits < 2) begin : g_bad_out_bits
-    `PARAM_ERROR("output_unit: OutBits must be at least 2 (a write index needs a bit)");
-  end
+  `PARAM_CHECK(g_bad_out_bits, OutBits < 2,
+               "output_unit: OutBits must be at least 2 (a write index needs a bit)")
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

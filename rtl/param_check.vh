@@ -23,4 +23,8 @@
 `define PARAM_ERROR(msg) $error(msg)
 `endif
 
+// `PARAM_CHECK(label, bad, msg): the generate-if above in one line; `bad` is the
+// violated condition, `label` names the generate block (g_bad_<parameter>).
+`define PARAM_CHECK(label, bad, msg) if (bad) begin : label `PARAM_ERROR(msg); end
+
 `endif

@@ -83,9 +83,8 @@ module plc_core #(
   localparam integer WaW        = $clog2(MwWords);
 
   // MW n is bus address 0x100 + n of a 9-bit bus: 8 bits of word number.
-  if (MwWords < 2 || MwWords > 256) begin : g_bad_mw_words
-    `PARAM_ERROR("plc_core: MwWords must be 2..256 (bus addresses 0x100 + n, 9-bit bus)");
-  end
+  `PARAM_CHECK(g_bad_mw_words, MwWords < 2 || MwWords > 256,
+               "plc_core: MwWords must be 2..256 (bus addresses 0x100 + n; 9-bit bus)")
 
   wire        cpu_run, cpu_ready, copy_en;
   wire        m_we, m_wdata, m_rdata;

@@ -70,9 +70,8 @@ module plc_system #(
 
   // The toolchain builds, links and runs plants of 2..8 cores (bitbyte/plantrun.py
   // MAX_CORES); the leaves check the rest.
-  if (Cores < 2 || Cores > 8) begin : g_bad_cores
-    `PARAM_ERROR("plc_system: Cores must be 2..8 (the plants bitbyte link and run build)");
-  end
+  `PARAM_CHECK(g_bad_cores, Cores < 2 || Cores > 8,
+               "plc_system: Cores must be 2..8 (the plants bitbyte link and run build)")
 
   wire [Cores-1:0]      ready, lock_req, lock_release, grant, sh_we, sh_flip, sel;
   // the read strobes: for the waveforms (the banks read in every clock)

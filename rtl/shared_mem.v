@@ -32,12 +32,10 @@ module shared_mem #(
   localparam integer AW  = $clog2(SharedWords) + 1;
   localparam integer IdW = $clog2(Cores);
 
-  if (Cores < 2) begin : g_bad_cores
-    `PARAM_ERROR("shared_mem: Cores must be at least 2 (a bank number needs a bit)");
-  end
-  if (SharedWords < 1 || (SharedWords & (SharedWords - 1)) != 0) begin : g_bad_shared_words
-    `PARAM_ERROR("shared_mem: SharedWords must be a power of two (buffer bit above the word)");
-  end
+  `PARAM_CHECK(g_bad_cores, Cores < 2,
+               "shared_mem: Cores must be at least 2 (a bank number needs a bit)")
+  `PARAM_CHECK(g_bad_shared_words, SharedWords < 1 || (SharedWords & (SharedWords - 1)) != 0,
+               "shared_mem: SharedWords must be a power of two (buffer bit above the word)")
 
   reg  [AW:0]            clear_q;             // 2 * SharedWords when done
   wire                   clearing = !clear_q[AW];

@@ -15,12 +15,9 @@ module sync_ram #(
   input  wire [$clog2(Words)-1:0] raddr_i,
   output reg  [Width-1:0]         rdata_o
 );
-  if (Words < 2) begin : g_bad_words
-    `PARAM_ERROR("sync_ram: Words must be at least 2 (an address needs a bit)");
-  end
-  if (Width < 1) begin : g_bad_width
-    `PARAM_ERROR("sync_ram: Width must be at least 1");
-  end
+  `PARAM_CHECK(g_bad_words, Words < 2,
+               "sync_ram: Words must be at least 2 (an address needs a bit)")
+  `PARAM_CHECK(g_bad_width, Width < 1, "sync_ram: Width must be at least 1")
 
   // no_rw_check: a read of the word written in the same clock may return either
   // value (the users never depend on it: the program is written while stopped, the

@@ -33,9 +33,8 @@ module tc_status #(
   output reg  [StatusBits-1:0]         timer_updated_o,
   output reg  [StatusBits-1:0]         counter_updated_o
 );
-  if (StatusBits < 2) begin : g_bad_status_bits
-    `PARAM_ERROR("tc_status: StatusBits must be at least 2 (an index needs a bit)");
-  end
+  `PARAM_CHECK(g_bad_status_bits, StatusBits < 2,
+               "tc_status: StatusBits must be at least 2 (an index needs a bit)")
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -6,10 +6,9 @@ import random
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
-from tbutil import start_in_reset
+from tbutil import offer, start_in_reset
 
 
 async def reset(dut):
@@ -17,16 +16,7 @@ async def reset(dut):
 
 
 async def clock(dut, wr=None, rd=False):
-    """Offer a write (value) and/or a read; return (write taken, value read or None)."""
-    dut.wr_req_i.value = int(wr is not None)
-    dut.wr_data_i.value = int(wr or 0)
-    dut.rd_req_i.value = int(rd)
-    await Timer(1, unit="ns")
-    taken = wr is not None and int(dut.wr_ready_o.value)
-    got = int(dut.rd_data_o.value) if rd and int(dut.rd_ready_o.value) else None
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    return taken, got
+    return await offer(dut, wr, rd)
 
 
 @cocotb.test()

@@ -7,10 +7,9 @@ import random
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from simrun import SIMULATORS, run_cocotb
-from tbutil import start_in_reset
+from tbutil import offer, start_in_reset
 
 DEPTH = 4
 
@@ -21,16 +20,7 @@ async def reset(dut, free):
 
 
 async def clock(dut, wr=None, rd=False, wr_start=False, rd_start=False):
-    dut.wr_req_i.value = int(wr is not None)
-    dut.wr_data_i.value = int(wr or 0)
-    dut.rd_req_i.value = int(rd)
-    dut.wr_start_i.value, dut.rd_start_i.value = int(wr_start), int(rd_start)
-    await Timer(1, unit="ns")
-    taken = wr is not None and int(dut.wr_ready_o.value)
-    got = int(dut.rd_data_o.value) if rd and int(dut.rd_ready_o.value) else None
-    await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    return taken, got
+    return await offer(dut, wr, rd, wr_start_i=int(wr_start), rd_start_i=int(rd_start))
 
 
 @cocotb.test()

@@ -160,15 +160,21 @@ def hard_group(rng, n):
                     rng.randint(400, 2400)) for i in range(n)]
 
 
+def best_of_one_group(tasks):
+    """The exact search on tasks of one period (10): the instance, the period, the bins,
+    whether optimality was proved, and the (load, memory) items."""
+    inst = al._Instance(tasks, al.Platform(100))
+    per = Fraction(10)
+    bins, proved = al.best_group(inst, per)
+    return inst, per, bins, proved, [(inst.load[i], inst.mem[i]) for i in inst.groups[per]]
+
+
 def test_exact_search_matches_brute_force():
     rng = random.Random(SEED + 1)
     checked = 0
     for _ in range(300):
         tasks = hard_group(rng, rng.randint(1, 9))
-        inst = al._Instance(tasks, al.Platform(100))
-        per = Fraction(10)
-        bins, proved = al.best_group(inst, per)
-        items = [(inst.load[i], inst.mem[i]) for i in inst.groups[per]]
+        inst, per, bins, proved, items = best_of_one_group(tasks)
         assert proved
         assert len(bins) == brute_force(items, inst.cap(per), 4096)
         assert sorted(i for b in bins for i in b) == list(range(len(tasks)))
@@ -189,10 +195,7 @@ def test_exact_search_matches_highs():
     rng = random.Random(SEED + 2)
     for _ in range(40):
         tasks = hard_group(rng, rng.randint(8, 14))
-        inst = al._Instance(tasks, al.Platform(100))
-        per = Fraction(10)
-        bins, proved = al.best_group(inst, per)
-        items = [(inst.load[i], inst.mem[i]) for i in inst.groups[per]]
+        inst, per, bins, proved, items = best_of_one_group(tasks)
         assert proved and len(bins) == highs_min_cores(items, inst.cap(per), 4096)
 
 

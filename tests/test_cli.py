@@ -149,13 +149,18 @@ def test_fp_fn_worked_example(tmp_path, sim):
     assert rows[1][1] == "0.07" and rows[6][1] == "0.42"
 
 
+def case_files(tmp_path, program: str, stimulus: str):
+    """t.il and s.csv written; returns their paths and the trace path t.csv."""
+    src, stim = tmp_path / "t.il", tmp_path / "s.csv"
+    src.write_text(program)
+    stim.write_text(stimulus)
+    return src, stim, tmp_path / "t.csv"
+
+
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
 def test_watchdog(tmp_path, sim):
-    src = tmp_path / "loop.il"
-    src.write_text("SET\n= Q0.0\nLD I0.0\nspin: JC spin\n")
-    stim = tmp_path / "s.csv"
-    stim.write_text("scan,I0.0\n0,0\n2,1\n")
-    trace = tmp_path / "t.csv"
+    src, stim, trace = case_files(tmp_path, "SET\n= Q0.0\nLD I0.0\nspin: JC spin\n",
+                                  "scan,I0.0\n0,0\n2,1\n")
     proc = bitbyte("run", src, "--stimulus", stim, "--scans", 5, "--watchdog", 50,
                    "--sim", sim, "--trace", trace)
     assert proc.returncode == 3
@@ -167,13 +172,11 @@ def test_watchdog(tmp_path, sim):
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
 def test_until_us_and_time_stimulus(tmp_path, sim):
     """t_us rows: I sees a change at the first latch at or after it; PI at once."""
-    src = tmp_path / "t.il"
-    src.write_text("NOP\nNOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n")
-    stim = tmp_path / "s.csv"
     # scans are 9 clocks = 0.09 us (scan k latches in clock 9k, LD PI0.0 runs in 9k+4);
     # the pin rises at 0.21 us = clock 21: after scan 2's latch (18), before its LD PI
-    stim.write_text("t_us,I0.0\n0.21,1\n")
-    trace = tmp_path / "t.csv"
+    src, stim, trace = case_files(tmp_path,
+                                  "NOP\nNOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
+                                  "t_us,I0.0\n0.21,1\n")
     proc = bitbyte("run", src, "--stimulus", stim, "--until-us", "0.4", "--sim", sim,
                    "--trace", trace)
     assert proc.returncode == 0, proc.stderr

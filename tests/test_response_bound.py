@@ -47,15 +47,21 @@ PROGRAM = """\
 """
 
 
-@pytest.mark.parametrize("mhz", ["100", "50.5"])
-def test_worst_case_response_within_bound(mhz, tmp_path):
-    f = Fraction(mhz)
+def response_program(tmp_path):
+    """PROGRAM written out; its static counts, the word cost and the clock offsets of
+    the direct read (`LD PI1.7`) and write (`= PQ1.6`) within a scan."""
     prog = tmp_path / "resp.il"
     prog.write_text(PROGRAM)
     st = bl.static_counts(prog)
     word = bl.cost_table("paper")["word"]
-    read_off = st.offset(st.find("LD", "PI1.7"), word)
-    write_off = st.offset(st.find("=", "PQ1.6"), word)
+    return (prog, st, word, st.offset(st.find("LD", "PI1.7"), word),
+            st.offset(st.find("=", "PQ1.6"), word))
+
+
+@pytest.mark.parametrize("mhz", ["100", "50.5"])
+def test_worst_case_response_within_bound(mhz, tmp_path):
+    f = Fraction(mhz)
+    prog, st, word, read_off, write_off = response_program(tmp_path)
     assert (read_off, write_off) == (4 + 2 * word + 2, 4 + 2 * word + 3)
 
     pre = bl.run_bitbyte(prog, clock_mhz=f, scans=5, trace=tmp_path / "pre.csv")
@@ -127,12 +133,7 @@ def test_direct_output_changes_in_the_modelled_clock(tmp_path):
     + 1: the pin is written on the edge that ends the write clock) is the one the
     waveform shows."""
     f = Fraction(100)
-    prog = tmp_path / "resp.il"
-    prog.write_text(PROGRAM)
-    st = bl.static_counts(prog)
-    word = bl.cost_table("paper")["word"]
-    read_off = st.offset(st.find("LD", "PI1.7"), word)
-    write_off = st.offset(st.find("=", "PQ1.6"), word)
+    prog, st, word, read_off, write_off = response_program(tmp_path)
     scan = st.serial_clocks(word)
     edges = [Fraction(1234, 1000), Fraction(4 * scan + read_off, 100),      # on the read
              Fraction(8 * scan + read_off + 1, 100)]                        # just after

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import re
 import sys
+import textwrap
 from pathlib import Path
 from typing import Callable
 
@@ -189,14 +190,15 @@ def c_isa(d: Definition) -> str:
 
 
 def c_cost_tables(d: Definition) -> str:
-    b = ["/* Included by costs.c only: the named tables, the first is the default. */",
+    order = textwrap.wrap("clocks in the order of enum bb_class: "
+                          + ", ".join(c["c"] for c in d.cost_class_rows) + ".", 84)
+    b = ["/* Included by costs.c only: the named tables, the first is the default;",
+         *[f" * {line}" for line in order[:-1]], f" * {order[-1]} */",
          "static const bb_costs bb_cost_tables[] = {"]
     for name, table in d.cost_tables.items():
-        b.append(f'  {{"{name}", {{')
-        for c in d.cost_class_rows:
-            v = d.fixed_costs.get(c["name"], table.get(c["name"]))
-            b.append(f"    [{c['c']}] = {v},")
-        b.append("  }},")
+        vals = ", ".join(str(d.fixed_costs.get(c["name"], table.get(c["name"])))
+                         for c in d.cost_class_rows)
+        b.append(f'  {{"{name}", {{{vals}}}}},')
     b += ["};", "", "static const char *const bb_class_names[BB_NUM_CLASSES] = {",
           "  " + ", ".join(f'"{c}"' for c in d.cost_classes) + ",", "};"]
     return _c_header("cost_tables.h", "the byte processor's cost tables", b,

@@ -200,20 +200,13 @@ class _TomlText:
         return self.error(1, 1, message)
 
 
+# TOML value types as the messages name them (bool before int: a bool is an int)
+_TYPE_NAMES = ((bool, "a boolean"), (int, "an integer"), (float, "a float"),
+               (str, "a string"), (list, "an array"), (dict, "a table"))
+
+
 def _type_name(value) -> str:
-    if isinstance(value, bool):
-        return "a boolean"
-    if isinstance(value, int):
-        return "an integer"
-    if isinstance(value, float):
-        return "a float"
-    if isinstance(value, str):
-        return "a string"
-    if isinstance(value, list):
-        return "an array"
-    if isinstance(value, dict):
-        return "a table"
-    return "a date/time"
+    return next((name for t, name in _TYPE_NAMES if isinstance(value, t)), "a date/time")
 
 
 def _read_text(path: str) -> str:
