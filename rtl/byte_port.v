@@ -66,7 +66,7 @@ module byte_port #(
   output wire [31:0]                   stalls_byte_o,
   output reg  [31:0]                   byte_flags_o
 );
-  // Register addresses: rtl/byte_bus.vh, generated from bitbyte/definition.toml. The
+  // Register addresses: rtl/byte_bus.vh, generated from bitbyte/lang/definition.toml. The
   // windows are decoded by their high address bits.
   localparam [7:0] AddrFby = `BUS_FBY;
   localparam [7:0] AddrFbi = `BUS_FBI;

@@ -68,7 +68,7 @@ module plc_system #(
   localparam integer PaW = $clog2(PlanWords);
   localparam integer AW  = $clog2(SharedWords) + 1;
 
-  // The toolchain builds, links and runs plants of 2..8 cores (bitbyte/plantrun.py
+  // The toolchain builds, links and runs plants of 2..8 cores (bitbyte/plant/run.py
   // MAX_CORES); the leaves check the rest.
   `PARAM_CHECK(g_bad_cores, Cores < 2 || Cores > 8,
                "plc_system: Cores must be 2..8 (the plants bitbyte link and run build)")

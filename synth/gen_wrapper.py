@@ -1,4 +1,4 @@
-"""Write synth/synth_top.v, the FPGA wrapper, from the core's own port list.
+"""Write synth_top.v (into synth/build/), the FPGA wrapper, from the core's own port list.
 
 The core (rtl/bitbyte_cpu.v) has far more ports than an FPGA package has pins, and
 its port list grows as modules land. The wrapper is therefore generated: every
@@ -374,6 +374,6 @@ def write_wrapper(core_path: Path, top: str, out: Path, core_file: str) -> dict:
 if __name__ == "__main__":
     root = Path(__file__).resolve().parent.parent
     s = write_wrapper(root / "rtl" / "bitbyte_cpu.v", "bitbyte_cpu",
-                      root / "synth" / "synth_top.v", "rtl/bitbyte_cpu.v")
+                      root / "synth" / "build" / "synth_top.v", "rtl/bitbyte_cpu.v")
     for role, names in s["roles"].items():
         print(f"{role:34s} {', '.join(names)}")

@@ -797,7 +797,8 @@ def main() -> int:
         except ValueError:
             pass
     rtl = sorted(str(p) for p in snap.glob("*.v"))
-    mine = sorted(str(p) for p in HERE.glob("synth_*.v")) + [str(top_file)]
+    mine = sorted(str(p) for p in HERE.glob("synth_*.v") if p.name != "synth_top.v") \
+        + [str(top_file)]
     files = mine + rtl
     lint(files)
     log(f"{len(rtl)} RTL files, top {TOP_CORE}, parameters: " + ", ".join(f"{k}={v}" for k, v in params))

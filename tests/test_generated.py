@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from bitbyte.lang import generate
-from bitbyte.lang.definition import PATH, DEF, Definition
+from bitbyte.lang.definition import DEF, PATH, Definition, DefinitionError
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -89,11 +89,27 @@ def test_definition_change_without_regenerating_is_caught():
     assert {"rtl/bit_isa.vh", "docs/isa.md"} <= set(generate.stale(_changed(recode)))
 
 
-def test_definition_rejects_a_double_opcode():
-    def clash(raw):
-        raw["bit_opcode"][1]["value"] = raw["bit_opcode"][0]["value"]
-    with pytest.raises(AssertionError):
-        _changed(clash)
+def _set_register(name, **values):
+    def mutate(raw):
+        for r in raw["register"]:
+            if r["name"] == name:
+                r.update(values)
+    return mutate
+
+
+@pytest.mark.parametrize("mutate, message", [
+    (lambda raw: raw["bit_opcode"][1].update(value=raw["bit_opcode"][0]["value"]),
+     "defined twice"),
+    (_set_register("FBY", addr=0x19), "multiple of 8"),             # RTL decodes [7:3]
+    (_set_register("CLOCK", addr=0x200), "does not fit 8 address bits"),
+    (_set_register("MW", addr=0x180), "does not fit 9 address bits"),
+    (_set_register("QW", addr=0x58), "multiple of 16"),
+    (_set_register("IW", count=8), "window IW holds 8"),
+    (_set_register("TIME_MS", addr=0x09), "overlap"),
+])
+def test_definition_rejects_contradictions(mutate, message):
+    with pytest.raises(DefinitionError, match=message):
+        _changed(mutate)
 
 
 def test_check_mode_exit_status():
@@ -105,11 +121,13 @@ def test_check_mode_exit_status():
 # Hosts name bus registers through the generated header / the definition, never by
 # number: hal_bus_read/hal_bus_write with a numeric address, or a bus address port set
 # to a number.
-HOSTS = [*ROOT.glob("sim/*.cpp"), *ROOT.glob("sim/*.h"), *ROOT.glob("bitbyte/*.py"),
+HOSTS = [*ROOT.glob("sim/*.cpp"), *ROOT.glob("sim/*.h"), *ROOT.glob("bitbyte/**/*.py"),
          *ROOT.glob("firmware_byte/*.c")]
-BARE = re.compile(r"hal_bus_(?:read|write)\(\s*(?:0x[0-9A-Fa-f]+|\d+)\b"
-                  r"|bus_addr_i(?:\.value)?\s*=\s*(?:0x[0-9A-Fa-f]+|\d+)\b"
-                  r"|set_field\(\s*(?:top\.)?bus_addr_i[^;]*,\s*(?:0x[0-9A-Fa-f]+)\)")
+NUMBER = r"(?:0x[0-9A-Fa-f]+|\d+)\b"
+BARE = re.compile(rf"hal_bus_(?:read|write)\(\s*(?:[a-z_&][\w.>&-]*\s*,\s*)?{NUMBER}"  # (ctx,) addr
+                  rf"|bus_addr_i(?:\.value)?\s*=\s*{NUMBER}"
+                  rf"|bus_addr_i\.value\s*,[^=]*=\s*{NUMBER}"            # a, b = 9, ..
+                  rf"|set_field\(\s*[\w.]*addr\w*\s*,[^;)]*,\s*{NUMBER}\s*\)")
 
 
 def test_no_bare_bus_register_numbers():
@@ -123,6 +141,10 @@ def test_bare_number_check_can_fail():
     assert BARE.search("    hal_bus_write(0x07, 1);")
     assert BARE.search("dut.bus_addr_i.value = 9")
     assert BARE.search("set_field(top.bus_addr_i, 9 * c, 9, 0x09);")
+    assert BARE.search("addr = _set_field(addr, 9 * c, 9, 0x09)")
+    assert BARE.search("dut.bus_addr_i.value, dut.bus_wdata_i.value = 0x09, hz // 1000")
+    assert BARE.search("hal_bus_write(ctx, 0x07, 1);")
+    assert any(p.match("bitbyte/sim/*.py") for p in (q.relative_to(ROOT) for q in HOSTS))
     assert not BARE.search("hal_bus_write(BB_BUS_SCAN_DONE, 1);")
 
 

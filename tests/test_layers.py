@@ -36,7 +36,14 @@ def imports_of(path: Path, modules: set[str]) -> set[str]:
     pkg = me if path.name == "__init__.py" else me.rpartition(".")[0]
     out = set()
     for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.Import):
+        if isinstance(node, ast.Call) and _dynamic_import(node):
+            arg = node.args[0] if node.args else None
+            names = [arg.value] if isinstance(arg, ast.Constant) and \
+                isinstance(arg.value, str) else ["<dynamic>"]
+            if names == ["<dynamic>"]:
+                out.add("<dynamic>")           # a computed module name: never allowed
+                continue
+        elif isinstance(node, ast.Import):
             names = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):
             base = node.module or ""
@@ -47,7 +54,15 @@ def imports_of(path: Path, modules: set[str]) -> set[str]:
         else:
             continue
         out |= {n for n in names if n in modules and n != me}
+    out.discard(me)
     return out
+
+
+def _dynamic_import(call: ast.Call) -> bool:
+    """importlib.import_module(...), import_module(...) or __import__(...)."""
+    f = call.func
+    name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else ""
+    return name in ("import_module", "__import__")
 
 
 def graph() -> dict[str, set[str]]:
@@ -70,6 +85,9 @@ def violations(g: dict[str, set[str]]) -> list[str]:
                 bad.append(f"{mod}: not in the layer table")
             continue
         for dep in deps:
+            if dep == "<dynamic>":
+                bad.append(f"{mod} imports a computed module name")
+                continue
             gd = group(dep)
             if gd == gm or gd == "":
                 continue
@@ -124,14 +142,17 @@ def test_the_checks_can_fail():
     assert cycles(g2)
 
 
-def test_function_level_imports_are_read(tmp_path):
+def test_function_level_and_dynamic_imports_are_read(tmp_path):
     src = tmp_path / "bitbyte" / "lang" / "x.py"
     src.parent.mkdir(parents=True)
-    src.write_text("def f():\n    from bitbyte.cli import main\n    return main\n")
+    src.write_text("import importlib\n\ndef f():\n    from bitbyte.cli import main\n"
+                   "    importlib.import_module('bitbyte.asm')\n"
+                   "    return __import__(name)\n")
     global ROOT
     old = ROOT
     try:
         ROOT = tmp_path
-        assert imports_of(src, {"bitbyte.cli", "bitbyte.lang.x"}) == {"bitbyte.cli"}
+        assert imports_of(src, {"bitbyte.cli", "bitbyte.asm", "bitbyte.lang.x"}) == \
+            {"bitbyte.cli", "bitbyte.asm", "<dynamic>"}
     finally:
         ROOT = old

@@ -174,20 +174,47 @@ class Definition:
         raise KeyError(name)
 
     def _check(self) -> None:
-        """The definition is consistent: no opcode or address used twice, byte opcodes
-        have bit 7 set and bit opcodes do not, every class is priced or fixed."""
+        """The definition is consistent, or DefinitionError says where not: no opcode
+        or address used twice, byte opcodes have bit 7 set and bit opcodes do not,
+        every class is priced or fixed, every register fits the bus address width, a
+        window of n registers starts at a multiple of n (n a power of two: the RTL
+        decodes it by its high address bits), and the windows hold the sizes the
+        firmware is built for."""
+        def need(ok: bool, message: str) -> None:
+            if not ok:
+                raise DefinitionError(f"{PATH.name}: {message}")
+
         values = list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) \
             + list(self.byte_program_opcodes.values())
-        assert len(values) == len(set(values)), "an opcode is defined twice"
-        assert all(v < 0x80 for v in self.bit_opcodes.values())
-        assert all(0x80 <= v <= 0xFF for v in values if v not in self.bit_opcodes.values())
+        need(len(values) == len(set(values)), "an opcode is defined twice")
+        need(all(v < 0x80 for v in self.bit_opcodes.values()),
+             "a bit opcode has bit 7 set")
+        need(all(0x80 <= v <= 0xFF for v in values if v not in self.bit_opcodes.values()),
+             "a byte opcode is outside 0x80..0xFF")
+        for r in self.registers:
+            bits = self.plant_bus_addr_bits if r.plant_only else self.bus_addr_bits
+            need(r.addr + r.count <= 1 << bits,
+                 f"register {r.name} does not fit {bits} address bits")
+            need(r.count & (r.count - 1) == 0 and r.addr % r.count == 0,
+                 f"window {r.name}: {r.count} registers must start at a multiple of "
+                 f"{r.count}")
         spans = sorted((r.addr, r.addr + r.count - 1, r.name) for r in self.registers)
         for (_, hi, a), (lo, _, b) in zip(spans, spans[1:]):
-            assert hi < lo, f"bus registers {a} and {b} overlap"
+            need(hi < lo, f"bus registers {a} and {b} overlap")
         for op in self.byte_opcode_rows:
-            assert op.cls in self.cost_classes, op
-        for t in self.cost_tables.values():
-            assert set(t) == set(self.priced_classes)
+            need(op.cls in self.cost_classes, f"{op.mnemonic}: unknown class {op.cls}")
+        for name, t in self.cost_tables.items():
+            need(set(t) == set(self.priced_classes), f"cost table {name}: classes")
+        for reg, size in (("IW", "in_words"), ("QW", "out_words"), ("MW", "data_words")):
+            need(self.register(reg).count == self.sizes[size],
+                 f"window {reg} holds {self.register(reg).count}, [sizes] {size} is "
+                 f"{self.sizes[size]}")
+        need(self.register("FBY").count == self.register("FBI").count >= self.sizes["channels"],
+             "the FBY and FBI windows must be alike and hold [sizes] channels")
+
+
+class DefinitionError(ValueError):
+    """bitbyte/lang/definition.toml contradicts itself."""
 
 
 def load(path: Path = PATH) -> Definition:

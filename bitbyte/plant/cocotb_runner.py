@@ -1,9 +1,9 @@
 """Run a multi-core plant through cocotb (Icarus or Verilator): the counterpart of
-`plantrun.run_plant`'s Verilator C++ harness, with the same traces.
+`bitbyte.plant.run.run_plant`'s Verilator C++ harness, with the same traces.
 
 `run_plant_cocotb` builds rtl/ with the toplevel plc_system (Cores = the plant's
 core count) once per simulator and core count under build/cocotb-plant<cores>-<sim>/
-and runs the cocotb test module `bitbyte.cocotb_plant`, which drives the plant clock
+and runs the cocotb test module `bitbyte.sim.cocotb_plant`, which drives the plant clock
 for clock exactly as sim/plant_harness.cpp does.
 """
 from __future__ import annotations
@@ -29,10 +29,10 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
     """Run the linked plant on cocotb + `sim` until every core has finished a scan
     ending at or after `until_clock`.
 
-    shared_map, jobs, plans, until_clock: as `plantrun.prepare_plant` returns them.
+    shared_map, jobs, plans, until_clock: as `bitbyte.plant.run.prepare_plant` returns them.
     trace_base: the traces go to `<trace_base>.<core>.csv` (else into tmpdir).
     fast: let the simulator clock stretches where every core's firmware is idle on
-    its own (bitbyte.cocotb_plant.Plant.fast_forward); False clocks every clock from
+    its own (bitbyte.sim.cocotb_plant.Plant.fast_forward); False clocks every clock from
     Python (slower, the same traces).
     Returns (status, summary text, {core name: trace rows as csv.DictReader gives}),
     status 0, or 3 when a core's scan watchdog fired (as the plant harness)."""

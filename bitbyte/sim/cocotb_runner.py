@@ -1,7 +1,7 @@
 """Run RunJobs on the RTL through cocotb (Icarus or Verilator).
 
 Builds rtl/ once per simulator under build/cocotb-<sim>/ and runs the driver
-`bitbyte.cocotb_driver`, which executes a list of jobs in one simulator process
+`bitbyte.sim.cocotb_driver`, which executes a list of jobs in one simulator process
 (program load and reset between jobs), so a test can run hundreds of programs
 without paying the simulator start-up each time.
 """
