@@ -18,7 +18,6 @@ from pathlib import Path
 
 from bitbyte import alloc as al
 from bitbyte.asm import assemble
-from bitbyte.lang import trace as tr
 from bitbyte.lang.config import Config
 from bitbyte.lang.errors import SimError, SourceError, UsageError, format_error
 from bitbyte.plant.link import format_map, link, load_plant
@@ -169,8 +168,6 @@ def cmd_run(args) -> int:
         if args.waves:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
         records, fault, summary = run_cocotb(job, columns, args.sim, f, args.trace)
-    if args.trace and args.sim != "verilator":
-        tr.write_trace(args.trace, columns, records, f)
     print(summary, end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "

@@ -15,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 from bitbyte.lang.errors import SimError
-from bitbyte.lang.trace import ScanRecord
+from bitbyte.lang.trace import ScanRecord, write_trace
 from bitbyte.run.summary import summary_text
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -107,10 +107,13 @@ def records_from_rows(columns, rows):
 
 
 def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
-    """One RunJob on cocotb: (records, watchdog fault?, the run summary text)."""
+    """One RunJob on cocotb: (records, watchdog fault?, the run summary text); the
+    trace CSV written to `trace` when given (the Verilator harness writes its own)."""
     try:
         (result,) = run_jobs([job], sim)
     except (SystemExit, RuntimeError, OSError) as e:
         raise SimError(f"cocotb on {sim} failed: {e}") from None
     records = records_from_rows(columns, result.rows)
+    if trace:
+        write_trace(trace, columns, records, f)
     return records, result.fault, summary_text(records, f, trace, result.stalls)
