@@ -162,6 +162,20 @@ def hard_tasks(rng: random.Random, n: int) -> list[al.Task]:
                     rng.randint(400, 2400)) for i in range(n)]
 
 
+def _mean_cores(row: dict, instances) -> None:
+    """Append to row[key] the mean over `instances` of each algorithm's cores, the
+    lower bound and the sum of the per-period bounds."""
+    acc = {key: [] for key in row}
+    for tasks in instances:
+        for alg in al.ALGORITHMS:
+            a = al.allocate(tasks, al.Platform(UNLIMITED), alg)
+            acc[alg].append(a.cores_used)
+        acc["lower_bound"].append(a.lower_bound)
+        acc["bound"].append(sum(g.bound for g in a.groups))
+    for key, v in acc.items():
+        row[key].append(statistics.mean(v))
+
+
 def cores_vs_networks(seeds: int) -> dict:
     ks = list(range(50, 801, 50))
     out = {"k": ks, "becker": {}, "hard_n": [10, 20, 40, 80, 120, 160, 200], "hard": {}}
@@ -169,28 +183,10 @@ def cores_vs_networks(seeds: int) -> dict:
         out["becker"][key] = []
         out["hard"][key] = []
     for k in ks:
-        acc = {key: [] for key in out["becker"]}
-        for s in range(1, seeds + 1):
-            tasks = al.generate_becker2015(k, s)
-            for alg in al.ALGORITHMS:
-                a = al.allocate(tasks, al.Platform(UNLIMITED), alg)
-                acc[alg].append(a.cores_used)
-            acc["lower_bound"].append(a.lower_bound)
-            acc["bound"].append(sum(g.bound for g in a.groups))
-        for key, v in acc.items():
-            out["becker"][key].append(statistics.mean(v))
+        _mean_cores(out["becker"], [al.generate_becker2015(k, s) for s in range(1, seeds + 1)])
     rng = random.Random(2015)
     for n in out["hard_n"]:
-        acc = {key: [] for key in out["hard"]}
-        for _ in range(seeds):
-            tasks = hard_tasks(rng, n)
-            for alg in al.ALGORITHMS:
-                a = al.allocate(tasks, al.Platform(UNLIMITED), alg)
-                acc[alg].append(a.cores_used)
-            acc["lower_bound"].append(a.lower_bound)
-            acc["bound"].append(sum(g.bound for g in a.groups))
-        for key, v in acc.items():
-            out["hard"][key].append(statistics.mean(v))
+        _mean_cores(out["hard"], [hard_tasks(rng, n) for _ in range(seeds)])
     return out
 
 

@@ -378,3 +378,35 @@ def random_scan_stimulus(seed: int, scans: int) -> str:
             [str(rng.choice([0, 1, -1, 5, 100, 32767, rng.randrange(-500, 500)]))
              for _ in range(4)]))
     return "\n".join(rows) + "\n"
+
+
+def plant_stimulus(rng, scans: int, min_flips: int = 0, word_p: float | None = None) -> str:
+    """A scan-keyed stimulus over I0.0..I11.7 and IW0..IW7 (the Table-1-sized programs'
+    inputs): each scan flips min_flips..11 random inputs and sets one random IW (with
+    probability word_p; None: always)."""
+    cols = [f"I{b}.{n}" for b in range(12) for n in range(8)] + [f"IW{n}" for n in range(8)]
+    state = dict.fromkeys(cols, 0)
+    rows = ["scan," + ",".join(cols)]
+    for s in range(scans):
+        for _ in range(rng.randrange(min_flips, 12)):
+            c = rng.choice(cols[:96])
+            state[c] ^= 1
+        if word_p is None or rng.random() < word_p:
+            state[rng.choice(cols[96:])] = rng.randrange(-200, 2000)
+        rows.append(f"{s}," + ",".join(str(state[c]) for c in cols))
+    return "\n".join(rows) + "\n"
+
+
+def matches_serial(sim, expected, scans: int, where, view: str) -> None:
+    """Run a ParSim scan by scan against the serial reference `expected` (per scan:
+    trace values and state snapshot, bitbyte.ref.parsim.serial_states): equal scans,
+    and both hit the watchdog / step limit at the same scan.  where(scan) names the
+    case in a failure, view is the side-by-side listing shown with it."""
+    from bitbyte.ref.parsim import state_snapshot
+    for scan in range(scans):
+        rec = sim.run_scan()
+        if scan >= len(expected):
+            assert rec is None, f"{where(scan)}: serial hit the watchdog, parallel not"
+            break
+        assert rec is not None, f"{where(scan)}: parallel hit its step limit"
+        assert (rec.values, state_snapshot(sim)) == expected[scan], f"{where(scan)}\n{view}"

@@ -27,8 +27,8 @@ from bitbyte.compiler.partition import partition
 from bitbyte.compiler.report import part_listing, report_text, side_by_side
 from bitbyte.lang.parts import TO_BIT, TO_BYTE
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
-from randprog import (random_mixed_program, random_mixed_stimulus, random_parallel_program,
-                      strip_timers)
+from randprog import (matches_serial, plant_stimulus, random_mixed_program,
+                      random_mixed_stimulus, random_parallel_program, strip_timers)
 
 ROOT = Path(__file__).resolve().parents[1]
 FIG5 = ROOT / "examples" / "fig5.il"
@@ -773,14 +773,8 @@ def assert_same_as_serial(part, stim_text, scans, timers=False, runs=4,
         sim = ParSim(part, Config(), stim, exchange=exchange, rng=seed * 101 + run,
                      max_steps=30_000, ms_per_scan=1 if timers else None,
                      queue_depth=queue_depth)
-        for scan in range(scans):
-            rec = sim.run_scan()
-            if scan >= len(expected):
-                assert rec is None, f"scan {scan}: serial hit the watchdog, parallel not"
-                break
-            assert rec is not None, f"scan {scan}: parallel hit its step limit"
-            assert (rec.values, state_snapshot(sim)) == expected[scan], \
-                f"scan {scan}, run {run}:\n{side_by_side(part)}"
+        matches_serial(sim, expected, scans, lambda scan: f"scan {scan}, run {run}",
+                       side_by_side(part))
 
 
 def scan_stimulus(seed: int) -> str:
@@ -880,18 +874,7 @@ def _plant_program(seed: int) -> str:
 
 def _plant_stimulus(seed: int, scans: int) -> str:
     import random
-    rng = random.Random(seed ^ 0x7AB1E)
-    cols = [f"I{b}.{n}" for b in range(12) for n in range(8)] + [f"IW{n}" for n in range(8)]
-    state = dict.fromkeys(cols, 0)
-    rows = ["scan," + ",".join(cols)]
-    for s in range(scans):
-        for _ in range(rng.randrange(0, 12)):
-            c = rng.choice(cols[:96])
-            state[c] ^= 1
-        if rng.random() < 0.5:
-            state[rng.choice(cols[96:])] = rng.randrange(-200, 2000)
-        rows.append(f"{s}," + ",".join(str(state[c]) for c in cols))
-    return "\n".join(rows) + "\n"
+    return plant_stimulus(random.Random(seed ^ 0x7AB1E), scans, min_flips=0, word_p=0.5)
 
 
 @pytest.mark.parametrize("batch", range(4))

@@ -35,11 +35,11 @@ from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
 from bitbyte.lang.config import Config
 from bitbyte.lang.parser import parse
-from bitbyte.ref.parsim import (POLICIES, Deadlock, ParSim, serial_states,
-                                state_snapshot)
+from bitbyte.ref.parsim import POLICIES, Deadlock, ParSim, serial_states
 from bitbyte.ref.refsim import RefSimError, refsim_trace
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from bitbyte.lang.trace import read_trace_rows
+from randprog import matches_serial
 
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -416,15 +416,9 @@ def compare(part, stim, expected, timers: bool, runs, scans: int = SCANS) -> Non
     for ex, qd, policy, seed in runs:
         sim = ParSim(part, Config(), stim, exchange=ex, queue_depth=qd, policy=policy,
                      rng=seed, max_steps=100_000, ms_per_scan=1 if timers else None)
-        for scan in range(scans):
-            rec = sim.run_scan()
-            where = f"scan {scan}, {ex} depth {qd}, {policy}, channels {part.channels}"
-            if scan >= len(expected):
-                assert rec is None, f"{where}: serial hit the watchdog, parallel not"
-                break
-            assert rec is not None, f"{where}: parallel hit its step limit"
-            assert (rec.values, state_snapshot(sim)) == expected[scan], \
-                f"{where}\n{R.side_by_side(part)}"
+        matches_serial(sim, expected, scans,
+                       lambda scan: f"scan {scan}, {ex} depth {qd}, {policy}, "
+                                    f"channels {part.channels}", R.side_by_side(part))
 
 
 def random_runs(rng: random.Random, n: int):

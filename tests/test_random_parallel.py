@@ -18,8 +18,8 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.sim.cocotb_runner import run_jobs
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import (random_mixed_program, random_mixed_watch, random_parallel_program,
-                      random_scan_stimulus, strip_timers)
+from randprog import (plant_stimulus, random_mixed_program, random_mixed_watch,
+                      random_parallel_program, random_scan_stimulus, strip_timers)
 
 PROGRAMS = int(os.environ.get("BITBYTE_PARALLEL_PROGRAMS", "100"))
 COCOTB = int(os.environ.get("BITBYTE_PARALLEL_COCOTB", "30"))
@@ -132,17 +132,8 @@ def _plant_case(tmp: Path, index: int):
     il = tmp / f"plant{seed}.il"
     from test_partition import crowd_addresses
     il.write_text(crowd_addresses(strip_timers("\n".join(g.lines) + "\n")))
-    cols = [f"I{b}.{n}" for b in range(12) for n in range(8)] + [f"IW{n}" for n in range(8)]
-    state = dict.fromkeys(cols, 0)
-    rows = ["scan," + ",".join(cols)]
-    for s in range(SCANS):
-        for _ in range(rng.randrange(1, 12)):
-            c = rng.choice(cols[:96])
-            state[c] ^= 1
-        state[rng.choice(cols[96:])] = rng.randrange(-200, 2000)
-        rows.append(f"{s}," + ",".join(str(state[c]) for c in cols))
     stim = tmp / f"plant{seed}.csv"
-    stim.write_text("\n".join(rows) + "\n")
+    stim.write_text(plant_stimulus(rng, SCANS, min_flips=1))
     watch = ",".join(f"M{b}.{n}" for b in range(6) for n in range(8)) + \
         ",MW0,MW1,MW2,MW3,QW0,QW1,C0,C1"
     return seed, il, stim, watch

@@ -105,14 +105,18 @@ def test_generator_covers_the_instruction_set(cases):
     assert any(c.fault for c in cases) and not all(c.fault for c in cases)
 
 
-def test_verilator_harness(cases, tmp_path, capsys):
-    """`bitbyte run --sim verilator` (the C++ harness) against the reference."""
+def check_on_harness(cases, tmp_path, capsys, what: str) -> None:
+    """Every case through `bitbyte run --sim verilator`, checked against the reference."""
     for case in cases:
         trace = tmp_path / f"{case.seed}.csv"
         rc = cli.main(case.argv(trace))
         assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
-        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
-                   "verilator harness")
+        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG, what)
+
+
+def test_verilator_harness(cases, tmp_path, capsys):
+    """`bitbyte run --sim verilator` (the C++ harness) against the reference."""
+    check_on_harness(cases, tmp_path, capsys, "verilator harness")
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
@@ -136,12 +140,7 @@ def test_mixed_generator_covers_the_byte_instructions(mixed_cases):
 
 def test_mixed_verilator_harness(mixed_cases, tmp_path, capsys):
     """Serial mode, `bitbyte run --sim verilator`, against the reference."""
-    for case in mixed_cases:
-        trace = tmp_path / f"{case.seed}.csv"
-        rc = cli.main(case.argv(trace))
-        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
-        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
-                   "verilator harness, serial mode")
+    check_on_harness(mixed_cases, tmp_path, capsys, "verilator harness, serial mode")
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
