@@ -1,8 +1,8 @@
 `default_nettype none
-`include "param_check.vh"
 // Core sequencer of a plant core (docs/multicore.md): when a scan starts, the
-// precycle, the scan itself, the postcycle, and the copy engine that moves the
-// shared variables (seed 000 Fig. 4: read at scan start, write at scan end).
+// precycle, the scan itself and the postcycle, each copy run by the copy engine
+// (copy_engine.v) that moves the shared variables (seed 000 Fig. 4: read at scan
+// start, write at scan end); and the lock handling around those copies (Fig. 8).
 //
 // Scan k starts at nominal_k = k * period (a common time base, time_i); a core that
 // is still busy then starts right after and counts an overrun. A scan is:
@@ -18,17 +18,9 @@
 // the buffer before the reader has read all it reads from it (a very fast writer), the
 // read could be torn: copy_fail is set. 2 none — no lock (shows tearing).
 //
-// The copy plan (plan RAM, written by the toolchain) is a list of copies, each a
-// descriptor followed by its items; the precycle's list starts at 0 (pre_len_i
-// entries), the postcycle's at post_base_i (post_len_i entries):
-//   descriptor [31] = 1, [23:16] the writing core (ping-pong buffer select)
-//   item       [31] = 0, [30] bit (1) / word (0), [29:25] bit in the shared word,
-//              [24:12] shared word, [11:0] local address (M bit index or MW index)
-// Entries stream through a 3-stage pipeline (fetch the entry, access the source,
-// write the destination), one per clock without stalls: a copy of n items takes
-// 1 + n clocks, a list 3 more (fill, drain, and the clock that releases the lock or
-// publishes the ping-pong buffer, with no access). In a postcycle consecutive bit
-// items of one shared word are gathered into one write (the writer owns the word).
+// A copy list of n entries takes n + 3 clocks: n + 2 in the engine (fill, drain) and
+// the clock that releases the lock or publishes the ping-pong buffer, with no access.
+// The copy plan's format: copy_engine.v.
 module core_seq #(
   parameter integer Cores       = 2,     // cores of the plant (writer ids)
   parameter integer PlanWords   = 1024,  // copy-plan entries (power of two)
@@ -94,29 +86,7 @@ module core_seq #(
   output reg  [31:0]                   skips_o        // precycles skipped
 );
   localparam integer PaW = $clog2(PlanWords);
-  localparam integer ShW = $clog2(SharedWords);
-  localparam integer MaW = $clog2(MarkerBits);
-  localparam integer WaW = $clog2(MwWords);
-  localparam integer IdW = (Cores > 1) ? $clog2(Cores) : 1;
-
-  // The copy plan's fields bound the sizes: descriptor [23:16] a writer, item [24:12]
-  // a shared word, [11:0] a local address.
-  if (Cores < 2 || Cores > 256) begin : g_bad_cores
-    `PARAM_ERROR("core_seq: Cores must be 2..256 (8-bit writer field of a descriptor)");
-  end
-  if (PlanWords < 2 || (PlanWords & (PlanWords - 1)) != 0) begin : g_bad_plan_words
-    `PARAM_ERROR("core_seq: PlanWords must be a power of two, at least 2");
-  end
-  if (SharedWords < 2 || SharedWords > 8192 || (SharedWords & (SharedWords - 1)) != 0)
-  begin : g_bad_shared_words
-    `PARAM_ERROR("core_seq: SharedWords must be a power of two in 2..8192 (13-bit item field)");
-  end
-  if (MarkerBits < 2 || MarkerBits > 4096) begin : g_bad_marker_bits
-    `PARAM_ERROR("core_seq: MarkerBits must be 2..4096 (12-bit local address of an item)");
-  end
-  if (MwWords < 2 || MwWords > 4096) begin : g_bad_mw_words
-    `PARAM_ERROR("core_seq: MwWords must be 2..4096 (12-bit local address of an item)");
-  end
+  // (the sizes are the copy engine's; copy_engine.v checks their ranges)
 
   localparam [1:0] ProtSem  = 2'd0;
   localparam [1:0] ProtPing = 2'd1;
@@ -134,84 +104,7 @@ module core_seq #(
                                        // 1/1000 clock: scan k at k * period exactly
   reg        started_q;                // scan 0 has been scheduled
 
-  // ---------------------------------------------------------------- copy pipeline
-  reg  [PaW:0]   issued_q;             // entries fetched of the current list
-  reg  [PaW-1:0] base_q;
-  reg  [PaW:0]   len_q;
-  reg            post_q;               // the list being copied is a postcycle
-  reg            f_valid_q;            // a plan entry arrives this clock (stage I)
-  reg            c_valid_q;            // stage C holds an item
-  reg            c_bit_q;
-  reg [4:0]      c_pos_q;              // bit position in the shared word
-  reg [ShW-1:0]  c_word_q;
-  // verilator lint_off UNUSEDSIGNAL
-  reg [11:0]     c_local_q;            // M bit index or MW index (fewer bits)
-  // verilator lint_on UNUSEDSIGNAL
-  reg [31:0]     gather_q;             // postcycle: bits of the shared word so far
-  reg [IdW-1:0]  writer_q;             // the current copy's writer
-  reg [Cores-1:0] sel_snap_q;          // ping-pong selects when the precycle began
-  reg [Cores-1:0] dirty_q;             // ping-pong: writers that began overwriting them
-  wire [31:0]    entry;
-
-  sync_ram #(.Words(PlanWords), .Width(32)) u_plan_ram (
-    .clk_i  (clk_i),
-    .we_i   (plan_we_i),
-    .waddr_i(plan_waddr_i),
-    .wdata_i(plan_wdata_i),
-    .raddr_i(base_q + issued_q[PaW-1:0]),
-    .rdata_o(entry)
-  );
-
-  wire copying   = (state_q == StPreCopy) || (state_q == StPostCopy);
-  wire fetch     = copying && (issued_q != len_q);
-  wire copy_done = copying && (issued_q == len_q) && !f_valid_q && !c_valid_q;
-
-  // stage I: the entry fetched in the last clock
-  wire           i_item  = f_valid_q && !entry[31];
-  wire           i_desc  = f_valid_q &&  entry[31];
-  wire           i_bit   = entry[30];
-  wire [ShW-1:0] i_word  = entry[12 +: ShW];
-  wire [11:0]    i_local = entry[11:0];
-  // ping-pong: readers read what each writer published last; a writer writes the other
-  wire           rd_buf  = (protect_i == ProtPing) && sel_snap_q[writer_q];
-  wire           own_sel = sh_sel_i[writer_q];
-  wire           wr_buf  = (protect_i == ProtPing) && !own_sel;
-
-  assign sh_re_o    = i_item && !post_q;
-  // Ping-pong: writer w overwrites the buffer this precycle reads once it has published
-  // again (its select moved) and writes; a read of w after that may mix two postcycles.
-  wire [Cores-1:0] overwrite = sh_posting_i & (sh_sel_i ^ sel_snap_q);
-  wire             overtaken = (protect_i == ProtPing) && sh_re_o &&
-                               (dirty_q[writer_q] || overwrite[writer_q]);
-  assign sh_raddr_o = {rd_buf, i_word};
-  assign sh_rbank_o = writer_q;
-
-  // stage C: finish the item of the last clock
-  wire        c_pre  = c_valid_q && !post_q;
-  wire        c_post = c_valid_q &&  post_q;
-  wire [31:0] gathered = gather_q | ({31'd0, m_rdata_i} << c_pos_q);
-  // the gathered word is complete unless the next item adds a bit to the same word
-  wire        gather_more = i_item && i_bit && (i_word == c_word_q);
-  assign sh_we_o    = c_post && (!c_bit_q || !gather_more);
-  assign sh_waddr_o = {wr_buf, c_word_q};
-  assign sh_wdata_o = c_bit_q ? gathered : {{16{w_rdata_i[15]}}, w_rdata_i};
-
-  // Local ports: a precycle writes in stage C, a postcycle reads in stage I.
-  assign copy_en_o = copying;
-  assign m_we_o    = c_pre && c_bit_q;
-  assign m_addr_o  = post_q ? i_local[MaW-1:0] : c_local_q[MaW-1:0];
-  assign m_wdata_o = sh_rdata_i[c_pos_q];
-  assign w_we_o    = c_pre && !c_bit_q;
-  assign w_addr_o  = post_q ? i_local[WaW-1:0] : c_local_q[WaW-1:0];
-  assign w_wdata_o = sh_rdata_i[15:0];
-
-  // ---------------------------------------------------------------- control
-  wire lock_wanted = (protect_i == ProtSem);
-  assign lock_req_o = (state_q == StPreLock) || (state_q == StPostLock);
-  assign release_o  = lock_wanted && copy_done && (len_q != 0);  // an empty list took no lock
-  assign sh_flip_o  = (protect_i == ProtPing) && copy_done && post_q;
-  assign cpu_run_o  = (state_q == StRunStart);
-
+  // ---------------------------------------------------------------- timing
   // Fig. 8: waiting is worth it only while the copies and the scan still fit.
   wire [63:0] need = {{(63-PaW){1'b0}}, pre_len_i} + {{(63-PaW){1'b0}}, post_len_i} +
                      {32'd0, cpu_scan_cycles_i} + 64'd6;
@@ -223,6 +116,74 @@ module core_seq #(
                  ((time_i + need) * 64'd1000 > nominal_q + period_i);
   // late: not in the first clock at or after the nominal start (period 0 has none)
   wire       late = started_q && (period_i != 64'd0) && (now_m >= nominal_q + 64'd1000);
+
+  // ---------------------------------------------------------------- the copies
+  wire copying = (state_q == StPreCopy) || (state_q == StPostCopy);
+  wire copy_done, list_empty, post, overtaken;
+  // a scan begins (the precycle's list) / the scan ended (the postcycle's)
+  wire begin_pre  = (state_q == StWait) && run_i && (now_m >= nominal_q || !started_q);
+  wire begin_post = (state_q == StScan) && cpu_scan_done_i;
+`ifdef FORMAL
+  wire f_started, f_local_rd;
+`endif
+
+  copy_engine #(
+    .Cores      (Cores),
+    .PlanWords  (PlanWords),
+    .SharedWords(SharedWords),
+    .MarkerBits (MarkerBits),
+    .MwWords    (MwWords)
+  ) u_copy (
+    .clk_i       (clk_i),
+    .rst_ni      (rst_ni),
+    .plan_we_i   (plan_we_i),
+    .plan_waddr_i(plan_waddr_i),
+    .plan_wdata_i(plan_wdata_i),
+    .pre_len_i   (pre_len_i),
+    .post_base_i (post_base_i),
+    .post_len_i  (post_len_i),
+    .ping_i      (protect_i == ProtPing),
+    .load_pre_i  (begin_pre),
+    .load_post_i (begin_post),
+    .run_i       (copying),
+    .done_o      (copy_done),
+    .empty_o     (list_empty),
+    .post_o      (post),
+    .overtaken_o (overtaken),
+    .sh_re_o     (sh_re_o),
+    .sh_raddr_o  (sh_raddr_o),
+    .sh_rbank_o  (sh_rbank_o),
+    .sh_rdata_i  (sh_rdata_i),
+    .sh_we_o     (sh_we_o),
+    .sh_waddr_o  (sh_waddr_o),
+    .sh_wdata_o  (sh_wdata_o),
+    .sh_sel_i    (sh_sel_i),
+    .sh_posting_i(sh_posting_i),
+    .m_we_o      (m_we_o),
+    .m_addr_o    (m_addr_o),
+    .m_wdata_o   (m_wdata_o),
+    .m_rdata_i   (m_rdata_i),
+    .w_we_o      (w_we_o),
+    .w_addr_o    (w_addr_o),
+    .w_wdata_o   (w_wdata_o),
+    .w_rdata_i   (w_rdata_i)
+`ifdef FORMAL
+    ,
+    .f_started_o (f_started),
+    .f_local_rd_o(f_local_rd)
+`endif
+  );
+
+  // The engine owns the local ports only in the copy states (nothing executes then).
+  assign copy_en_o = copying;
+
+  // ---------------------------------------------------------------- control
+  wire lock_wanted = (protect_i == ProtSem);
+  assign lock_req_o = (state_q == StPreLock) || (state_q == StPostLock);
+  assign release_o  = lock_wanted && copy_done && !list_empty;  // an empty list took no lock
+  assign sh_flip_o  = (protect_i == ProtPing) && copy_done && post;
+  assign cpu_run_o  = (state_q == StRunStart);
+
   reg [31:0] pre_cnt_q, post_cnt_q, wait_cnt_q;
   wire       in_pre  = (state_q == StPreLock) || (state_q == StPreCopy) ||
                        (state_q == StRunStart);
@@ -235,20 +196,6 @@ module core_seq #(
       state_q       <= StWait;
       nominal_q     <= 64'd0;
       started_q     <= 1'b0;
-      issued_q      <= {(PaW+1){1'b0}};
-      base_q        <= {PaW{1'b0}};
-      len_q         <= {(PaW+1){1'b0}};
-      post_q        <= 1'b0;
-      f_valid_q     <= 1'b0;
-      c_valid_q     <= 1'b0;
-      c_bit_q       <= 1'b0;
-      c_pos_q       <= 5'd0;
-      c_word_q      <= {ShW{1'b0}};
-      c_local_q     <= 12'd0;
-      gather_q      <= 32'd0;
-      writer_q      <= {IdW{1'b0}};
-      sel_snap_q    <= {Cores{1'b0}};
-      dirty_q       <= {Cores{1'b0}};
       pre_cnt_q     <= 32'd0;
       post_cnt_q    <= 32'd0;
       wait_cnt_q    <= 32'd0;
@@ -265,24 +212,10 @@ module core_seq #(
       if (in_pre)  pre_cnt_q  <= pre_cnt_q + 32'd1;
       if (in_post) post_cnt_q <= post_cnt_q + 32'd1;
       if (waiting) wait_cnt_q <= wait_cnt_q + 32'd1;
-
-      // the pipeline
-      f_valid_q <= fetch;
-      if (fetch) issued_q <= issued_q + 1'b1;
-      if (i_desc) writer_q <= entry[16 +: IdW];
-      c_valid_q <= i_item;
-      if (i_item) begin
-        c_bit_q   <= i_bit;
-        c_pos_q   <= entry[29:25];
-        c_word_q  <= i_word;
-        c_local_q <= i_local;
-      end
-      if (c_post && c_bit_q) gather_q <= sh_we_o ? 32'd0 : gathered;
-      if (state_q == StPreCopy) dirty_q <= dirty_q | overwrite;
       if (overtaken) copy_fail_o <= 1'b1;
 
       case (state_q)
-        StWait: if (run_i && (now_m >= nominal_q || !started_q)) begin
+        StWait: if (begin_pre) begin
           // scan 0 starts at time 0; later ones at their nominal start or, late, now
           // late: after its nominal start (back to back, period 0, has none)
           overrun_o  <= late;
@@ -292,13 +225,7 @@ module core_seq #(
           pre_cnt_q  <= 32'd1;           // the precycle begins in this clock
           post_cnt_q <= 32'd0;
           wait_cnt_q <= 32'd0;
-          sel_snap_q <= sh_sel_i;
-          dirty_q    <= {Cores{1'b0}};
           state_q    <= (lock_wanted && pre_len_i != 0) ? StPreLock : StPreCopy;
-          base_q     <= {PaW{1'b0}};
-          len_q      <= pre_len_i;
-          issued_q   <= {(PaW+1){1'b0}};
-          post_q     <= 1'b0;
         end
         StPreLock:
           if (grant_i) state_q <= StPreCopy;
@@ -309,13 +236,8 @@ module core_seq #(
           end
         StPreCopy: if (copy_done) state_q <= StRunStart;
         StRunStart: if (cpu_ready_i) state_q <= StScan;
-        StScan: if (cpu_scan_done_i) begin
-          state_q  <= (lock_wanted && post_len_i != 0) ? StPostLock : StPostCopy;
-          base_q   <= post_base_i;
-          len_q    <= post_len_i;
-          issued_q <= {(PaW+1){1'b0}};
-          post_q   <= 1'b1;
-        end
+        StScan: if (begin_post)
+          state_q <= (lock_wanted && post_len_i != 0) ? StPostLock : StPostCopy;
         StPostLock: if (grant_i) state_q <= StPostCopy;
         StPostCopy: if (copy_done) begin
           state_q       <= StWait;
@@ -330,14 +252,11 @@ module core_seq #(
     end
   end
 
-  // verilator lint_off UNUSEDSIGNAL
-  wire unused_entry = ^entry;          // not every field is used by every entry kind
-  // verilator lint_on UNUSEDSIGNAL
-
 `ifdef FORMAL
   // formal/core_seq.sby: the sequencer's protocol with the semaphore, the CPU and the
   // local memories, by k-induction (small parameters; the plan RAM and every input
   // of the CPU, the shared memory and the time base are free, within the assumptions).
+  // The copy engine's own guarantees are in copy_engine.v, proved together with these.
   reg f_past_valid = 1'b0;
   always @(posedge clk_i) f_past_valid <= 1'b1;
   always @(*) if (!f_past_valid) assume (!rst_ni);
@@ -371,8 +290,6 @@ module core_seq #(
   wire f_prest   = (state_q == StPreLock) || (state_q == StPreCopy) ||
                    (state_q == StRunStart) || (state_q == StScan);
   wire f_postst  = (state_q == StPostLock) || (state_q == StPostCopy);
-  wire f_m_read  = post_q && i_item && i_bit;    // postcycle: local reads in stage I
-  wire f_w_read  = post_q && i_item && !i_bit;
 
   always @(*) if (rst_ni) begin
     // ---- (a) semaphore: shared memory is read and written only under the lock
@@ -387,33 +304,29 @@ module core_seq #(
     // and does not release either).
     if (release_o) assert (f_owned);
 
-    // ---- (b) the CPU is never started while a copy runs; the sequencer owns the
-    // local ports only in the copy states, and uses them only then
-    if (cpu_run_o) assert (!copy_en_o && !f_valid_q && !c_valid_q && !copying);
+    // ---- (b) the CPU is never started while a copy runs (the engine's pipeline is
+    // empty whenever it does not run: copy_engine.v); the sequencer owns the local
+    // ports only in the copy states, and uses them only then
+    if (cpu_run_o) assert (!copy_en_o && !copying);
     assert (copy_en_o == ((state_q == StPreCopy) || (state_q == StPostCopy)));
-    if (m_we_o || w_we_o || f_m_read || f_w_read) assert (copy_en_o);
+    if (m_we_o || w_we_o || f_local_rd) assert (copy_en_o);
     if ((state_q == StRunStart) || (state_q == StScan)) assert (!copy_en_o);
 
     // ---- (c) local writes only in a precycle, shared writes only in a postcycle
-    if (m_we_o || w_we_o) assert (state_q == StPreCopy && !post_q);
-    if (sh_re_o)          assert (state_q == StPreCopy && !post_q);
-    if (sh_we_o)          assert (state_q == StPostCopy && post_q);
-    if (f_m_read || f_w_read) assert (state_q == StPostCopy);
+    if (m_we_o || w_we_o) assert (state_q == StPreCopy && !post);
+    if (sh_re_o)          assert (state_q == StPreCopy && !post);
+    if (sh_we_o)          assert (state_q == StPostCopy && post);
+    if (f_local_rd)       assert (state_q == StPostCopy);
 
     // ---- (d) no lock across a scan: the CPU starts and runs without the lock
     if (cpu_run_o || state_q == StScan || state_q == StWait) assert (!f_owned);
 
-    // ---- inductive invariants of the state machine and the pipeline
+    // ---- inductive invariants of the state machine and the engine's list
     assert (state_q <= StPostCopy);
-    if (f_prest)  assert (!post_q);
-    if (f_postst) assert (post_q);
-    if (!copying) assert (!f_valid_q && !c_valid_q);
-    if (f_lockst) assert (issued_q == {(PaW+1){1'b0}} && len_q != {(PaW+1){1'b0}});
-    if (copying)  assert (issued_q <= len_q);
-    if (f_valid_q || c_valid_q) assert (issued_q != {(PaW+1){1'b0}});
-    if (f_sem && copying && len_q != {(PaW+1){1'b0}} && !copy_done) assert (f_owned);
-    // a gathered postcycle word is pending only while stage C holds its next bit
-    if (gather_q != 32'd0) assert (c_post && c_bit_q && state_q == StPostCopy);
+    if (f_prest)  assert (!post);
+    if (f_postst) assert (post);
+    if (f_lockst) assert (!f_started && !list_empty);
+    if (f_sem && copying && !list_empty && !copy_done) assert (f_owned);
   end
 
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
@@ -434,11 +347,11 @@ module core_seq #(
     if ($past(grant_i)) assert (f_owned && copying);
   end
 
-  // the interesting runs exist (formal/core_seq.sby, task cover)
+  // the interesting runs exist (formal/core_seq.sby, task cover; copy_engine.v has
+  // the gathered postcycle write)
   always @(posedge clk_i) if (rst_ni) begin
     cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
     cover (f_sem && copy_fail_o && state_q == StScan);
-    cover (f_sem && sh_we_o && !sh_re_o && m_we_o == 1'b0 && gather_q != 32'd0);
   end
 `endif
 endmodule

@@ -50,9 +50,12 @@ MUTATIONS = [
     ("byte_port", "byte_port.v",
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
      "wire byte_refused = bus_re_i && !bus_ready_o;"),     # misses refused writes
+    ("core_seq", "copy_engine.v",
+     "assign done_o  = run_i && (issued_q == len_q) && !f_valid_q && !c_valid_q;",
+     "assign done_o  = run_i && (issued_q == len_q);"),   # done (lock freed) mid-copy
     ("core_seq", "core_seq.v",
-     "assign release_o  = lock_wanted && copy_done && (len_q != 0);",
-     "assign release_o  = lock_wanted && copying && issued_q == len_q;"),  # frees mid-copy
+     "assign release_o  = lock_wanted && copy_done && !list_empty;",
+     "assign release_o  = lock_wanted && copying && !list_empty;"),  # frees mid-copy
     ("core_seq", "core_seq.v", "StPostLock: if (grant_i) state_q <= StPostCopy;",
      "StPostLock: if (grant_i || give_up) state_q <= StPostCopy;"),  # postcycle gives up
 ]
