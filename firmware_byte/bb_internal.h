@@ -46,8 +46,8 @@ void bb_counter_update(bb_counter *c, unsigned op, int rlo, int32_t accu1);
 void bb_proc_counter(bb_state *s, unsigned op, unsigned n, int rlo);
 
 /* exchange.c */
-int  bb_proc_read(unsigned k);                 /* READ FBY k: the new F_B */
-void bb_proc_write(unsigned k, int rlo);       /* WRITE FBI k */
+int  bb_proc_read(bb_state *s, unsigned k);              /* READ FBY k: the new F_B */
+void bb_proc_write(bb_state *s, unsigned k, int rlo);    /* WRITE FBI k */
 
 /* interp.c: sets a sticky flag and mirrors the flag word to BYTE_FLAGS (one write). */
 void bb_raise_flag(bb_state *s, uint32_t flag);

@@ -86,15 +86,23 @@ typedef struct bb_state {
   uint32_t   scan_steps;     /* instructions the last bb_run_scan executed */
   int        mw_on_bus;      /* MW n lives in the FPGA at bus address MW(n) (plant core) */
   uint64_t   byte_scans;     /* parallel / free-running: byte scans reported (SCAN_DONE) */
+  void      *hal_ctx;        /* the first argument of every HAL call (bb_set_hal_ctx) */
 } bb_state;
 
 
 /* --- set-up ------------------------------------------------------------------------ */
 
 /* Reset everything to the spec's state after reset (all 0, no byte program,
- * max_steps = BB_MAX_STEPS_DEFAULT) and select a cost table (NULL: the default,
- * "paper"). No bus access. */
+ * max_steps = BB_MAX_STEPS_DEFAULT, HAL context NULL) and select a cost table (NULL:
+ * the default, "paper"). No bus access. */
 void bb_init(bb_state *s, const bb_costs *costs);
+
+/* The HAL context of this byte processor: every HAL call the firmware makes for state
+ * `s` passes s->hal_ctx as its first argument (hal.h), so a host that runs several
+ * byte processors in one process tells their calls apart without globals. Set it
+ * after bb_init() / bb_new(), before the first call that can reach the bus. */
+void  bb_set_hal_ctx(bb_state *s, void *ctx);
+void *bb_hal_ctx(const bb_state *s);
 
 /* Copy the constant pool (PROG.pool.hex); at most BB_POOL_WORDS words are kept. */
 void bb_load_pool(bb_state *s, const uint32_t *words, unsigned n);

@@ -40,6 +40,6 @@ void bb_counter_update(bb_counter *c, unsigned op, int rlo, int32_t accu1) {
 void bb_proc_counter(bb_state *s, unsigned op, unsigned n, int rlo) {
   bb_counter *c = &s->counter[n];
   bb_counter_update(c, op, rlo, s->accu1);
-  hal_bus_write(BB_BUS_TC_BIT,
+  hal_bus_write(s->hal_ctx, BB_BUS_TC_BIT,
                 (c->value > 0 ? BB_TC_VALUE : 0u) | BB_TC_COUNTER | (n & BB_TC_INDEX_MASK));
 }

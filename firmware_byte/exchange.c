@@ -9,10 +9,10 @@
 #include "bus_map.h"
 #include "hal.h"
 
-int bb_proc_read(unsigned k) {
-  return (int)(hal_bus_read((uint16_t)BB_BUS_FBY(k)) & 1u);
+int bb_proc_read(bb_state *s, unsigned k) {
+  return (int)(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_FBY(k)) & 1u);
 }
 
-void bb_proc_write(unsigned k, int rlo) {
-  hal_bus_write((uint16_t)BB_BUS_FBI(k), rlo ? 1u : 0u);
+void bb_proc_write(bb_state *s, unsigned k, int rlo) {
+  hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_FBI(k), rlo ? 1u : 0u);
 }

@@ -56,7 +56,7 @@ void bb_free(bb_state *s) { free(s); }
 
 void bb_raise_flag(bb_state *s, uint32_t flag) {
   s->flags |= flag;
-  hal_bus_write(BB_BUS_BYTE_FLAGS, s->flags);
+  hal_bus_write(s->hal_ctx, BB_BUS_BYTE_FLAGS, s->flags);
 }
 
 /* ------------------------------------------------------------------- decode */
@@ -112,10 +112,13 @@ int bb_classify(uint32_t instr) {
 static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int serial) {
   switch (area) {
     case BB_AREA_IW:
-      return bb_int16(hal_bus_read(serial ? BB_BUS_DISPATCH_IW : (uint16_t)BB_BUS_IW(n)));
-    case BB_AREA_QW: return bb_int16(hal_bus_read((uint16_t)BB_BUS_QW(n)));  /* no copy */
+      return bb_int16(hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_IW
+                                                      : (uint16_t)BB_BUS_IW(n)));
+    case BB_AREA_QW:  /* no copy */
+      return bb_int16(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_QW(n)));
     case BB_AREA_MW:  /* a plant core keeps MW in the FPGA, where its copy engine is */
-      return s->mw_on_bus ? bb_int16(hal_bus_read((uint16_t)BB_BUS_MW(n))) : s->mw[n];
+      return s->mw_on_bus ? bb_int16(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_MW(n)))
+                          : s->mw[n];
     case BB_AREA_T:  return s->timer[n].elapsed;
     case BB_AREA_C:  return s->counter[n].value;
     default:         return 0;   /* excluded by bb_classify() */
@@ -125,9 +128,9 @@ static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int seria
 /* T w: the low 16 bits of ACCU1. One bus write for QW. */
 static void transfer_word(bb_state *s, unsigned area, unsigned n) {
   if (area == BB_AREA_QW)
-    hal_bus_write((uint16_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
+    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
   else if (s->mw_on_bus)
-    hal_bus_write((uint16_t)BB_BUS_MW(n), (uint32_t)s->accu1 & 0xFFFFu);
+    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_MW(n), (uint32_t)s->accu1 & 0xFFFFu);
   else
     s->mw[n] = (int16_t)bb_int16((uint32_t)s->accu1);
 }
@@ -185,7 +188,7 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
     case BB_CL_TIMER: {
       uint32_t now = 0;
       if (op != BB_OP_RT)
-        now = hal_bus_read(serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
+        now = hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
       bb_proc_timer(s, op, n, r, now);
       break;
     }
@@ -205,10 +208,10 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
           s->jumped = 1;
         }
       } else if (op == BB_OP_READ) {
-        r = bb_proc_read(n);
+        r = bb_proc_read(s, n);
         s->rlo_written = 1;
       } else {
-        bb_proc_write(n, r);
+        bb_proc_write(s, n, r);
       }
       break;
     case BB_CL_END:             /* bb_run_scan() stops on the class */
@@ -237,12 +240,13 @@ int bb_exec(bb_state *s, uint32_t instr, int *rlo) {
  * whatever it leaves is spent with hal_spend(). Bus accesses that stall can make the
  * instruction longer than its cost: never spend a negative amount, count an overrun. */
 int bb_step(bb_state *s, uint32_t instr, int *rlo) {
-  const uint64_t t0 = hal_now();
+  void *const hal = s->hal_ctx;
+  const uint64_t t0 = hal_now(hal);
   const int cls = bb_exec(s, instr, rlo);
   const uint64_t cost = bb_cost(s, cls);
-  const uint64_t used = hal_now() - t0;
-  if (used < cost) hal_spend((uint32_t)(cost - used));
-  const uint64_t taken = hal_now() - t0;
+  const uint64_t used = hal_now(hal) - t0;
+  if (used < cost) hal_spend(hal, (uint32_t)(cost - used));
+  const uint64_t taken = hal_now(hal) - t0;
   if (taken > cost) s->overruns++;
   s->last_clocks = (uint32_t)taken;
   return (int)taken;
@@ -255,7 +259,7 @@ int bb_step(bb_state *s, uint32_t instr, int *rlo) {
  * (bit side) bounds the scan time; this only keeps a byte-side loop from hanging the
  * firmware. */
 int bb_run_scan(bb_state *s) {
-  const uint64_t t0 = hal_now();
+  const uint64_t t0 = hal_now(s->hal_ctx);
   int rlo = 0;
   bb_scan_start(s);
   s->rlo = 0;
@@ -272,15 +276,16 @@ int bb_run_scan(bb_state *s) {
     bb_step(s, instr, &rlo);
     if (s->last_class == BB_CL_END) break;
   }
-  const uint64_t taken = hal_now() - t0;
+  const uint64_t taken = hal_now(s->hal_ctx) - t0;
   return taken > (uint64_t)INT_MAX ? INT_MAX : (int)taken;
 }
 
 int bb_serial_step(bb_state *s) {
-  hal_wait_dispatch();
-  const uint64_t t0 = hal_now();                              /* the dispatch clock */
-  const uint32_t instr = hal_bus_read(BB_BUS_DISPATCH_INSTR); /* t0 */
-  const uint32_t ctx = hal_bus_read(BB_BUS_DISPATCH_CTX);     /* t0 + 1 */
+  void *const hal = s->hal_ctx;
+  hal_wait_dispatch(hal);
+  const uint64_t t0 = hal_now(hal);                              /* the dispatch clock */
+  const uint32_t instr = hal_bus_read(hal, BB_BUS_DISPATCH_INSTR); /* t0 */
+  const uint32_t ctx = hal_bus_read(hal, BB_BUS_DISPATCH_CTX);     /* t0 + 1 */
   const uint32_t scan = ctx >> BB_CTX_SCAN_SHIFT;
   if (!s->scan_seen || scan != s->last_scan) {                /* a new scan: ACCUs := 0 */
     bb_scan_start(s);
@@ -290,10 +295,11 @@ int bb_serial_step(bb_state *s) {
   int rlo = (ctx & BB_CTX_RLO) != 0;
   const int cls = exec(s, instr, &rlo, 1);
   const uint64_t cost = bb_cost(s, cls);
-  const uint64_t used = hal_now() - t0;
-  if (used + 1 < cost) hal_spend((uint32_t)(cost - used - 1)); /* leave 1 for DONE */
-  hal_bus_write(BB_BUS_DONE, (rlo ? BB_DONE_RLO : 0u) | (s->rlo_written ? BB_DONE_RLO_WE : 0u));
-  const uint64_t taken = hal_now() - t0;
+  const uint64_t used = hal_now(hal) - t0;
+  if (used + 1 < cost) hal_spend(hal, (uint32_t)(cost - used - 1)); /* leave 1 for DONE */
+  hal_bus_write(hal, BB_BUS_DONE,
+                (rlo ? BB_DONE_RLO : 0u) | (s->rlo_written ? BB_DONE_RLO_WE : 0u));
+  const uint64_t taken = hal_now(hal) - t0;
   if (taken > cost) s->overruns++;
   s->last_clocks = (uint32_t)taken;
   return (int)taken;
@@ -302,6 +308,8 @@ int bb_serial_step(bb_state *s) {
 /* ------------------------------------------------------------------- accessors */
 
 void bb_set_mw_bus(bb_state *s, int on) { s->mw_on_bus = on != 0; }
+void bb_set_hal_ctx(bb_state *s, void *ctx) { s->hal_ctx = ctx; }
+void *bb_hal_ctx(const bb_state *s) { return s->hal_ctx; }
 int16_t bb_mw(const bb_state *s, unsigned n) { return n < BB_NUM_MW ? s->mw[n] : 0; }
 
 int32_t bb_timer_elapsed(const bb_state *s, unsigned n) {
@@ -340,18 +348,18 @@ int bb_run_step(bb_state *s, bb_mode mode) {
     case BB_MODE_SERIAL:
       return bb_serial_step(s);
     case BB_MODE_PARALLEL:
-      hal_wait_dispatch();                 /* NEXT: this scan's latch clock */
+      hal_wait_dispatch(s->hal_ctx);       /* NEXT: this scan's latch clock */
       break;
     case BB_MODE_FREE:                     /* its own scans, back to back */
       break;
     default:
       return -1;
   }
-  const uint64_t t0 = hal_now();
+  const uint64_t t0 = hal_now(s->hal_ctx);
   bb_run_scan(s);
-  hal_bus_write(BB_BUS_SCAN_DONE, 1);      /* the byte part of this scan is done */
+  hal_bus_write(s->hal_ctx, BB_BUS_SCAN_DONE, 1);   /* the byte part of this scan is done */
   ++s->byte_scans;
-  return (int)(hal_now() - t0);
+  return (int)(hal_now(s->hal_ctx) - t0);
 }
 
 void bb_run(bb_state *s, bb_mode mode) {

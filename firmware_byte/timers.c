@@ -71,5 +71,6 @@ void bb_timer_update(bb_timer *t, unsigned op, int en, int32_t preset, uint32_t 
 void bb_proc_timer(bb_state *s, unsigned op, unsigned n, int rlo, uint32_t now) {
   bb_timer *t = &s->timer[n];
   bb_timer_update(t, op, rlo, s->accu1, now);
-  hal_bus_write(BB_BUS_TC_BIT, (t->status ? BB_TC_VALUE : 0u) | (n & BB_TC_INDEX_MASK));
+  hal_bus_write(s->hal_ctx, BB_BUS_TC_BIT,
+                (t->status ? BB_TC_VALUE : 0u) | (n & BB_TC_INDEX_MASK));
 }

@@ -186,11 +186,10 @@ struct Run {
   bool next() const { return top->rootp->bitbyte_cpu__DOT__next; }
 };
 
-static Run* g_run;  // the HAL's view of the simulation
-
 // ------------------------------------------------------------------ the HAL (hal.h)
-extern "C" uint32_t hal_bus_read(uint16_t addr) {
-  Run& r = *g_run;
+// The firmware's HAL context (bb_set_hal_ctx) is the Run.
+extern "C" uint32_t hal_bus_read(void* ctx, uint16_t addr) {
+  Run& r = *static_cast<Run*>(ctx);
   for (;;) {
     r.top->bus_addr_i = addr;
     r.top->bus_re_i = 1;
@@ -202,8 +201,8 @@ extern "C" uint32_t hal_bus_read(uint16_t addr) {
   }
 }
 
-extern "C" void hal_bus_write(uint16_t addr, uint32_t data) {
-  Run& r = *g_run;
+extern "C" void hal_bus_write(void* ctx, uint16_t addr, uint32_t data) {
+  Run& r = *static_cast<Run*>(ctx);
   for (;;) {
     r.top->bus_addr_i = addr;
     r.top->bus_wdata_i = data;
@@ -215,15 +214,17 @@ extern "C" void hal_bus_write(uint16_t addr, uint32_t data) {
   }
 }
 
-extern "C" void hal_spend(uint32_t clocks) {
-  for (uint32_t i = 0; i < clocks; ++i) g_run->idle_clock();
+extern "C" void hal_spend(void* ctx, uint32_t clocks) {
+  Run& r = *static_cast<Run*>(ctx);
+  for (uint32_t i = 0; i < clocks; ++i) r.idle_clock();
 }
 
-extern "C" void hal_wait_dispatch(void) {
-  while (!g_run->next()) g_run->idle_clock();
+extern "C" void hal_wait_dispatch(void* ctx) {
+  Run& r = *static_cast<Run*>(ctx);
+  while (!r.next()) r.idle_clock();
 }
 
-extern "C" uint64_t hal_now(void) { return g_run->n; }
+extern "C" uint64_t hal_now(void* ctx) { return static_cast<Run*>(ctx)->n; }
 
 static RunFile read_run_file(const char* path) {
   RunFile rf;
@@ -271,7 +272,7 @@ int main(int argc, char** argv) {
   run.rf = &rf;
   run.bb = &bb;
   run.out = &out;
-  g_run = &run;
+  bb_set_hal_ctx(&bb, &run);
 
   // Trace columns resolved once: the per-scan cost is a load each.
   for (const Col& c : rf.cols) {

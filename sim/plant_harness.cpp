@@ -10,7 +10,8 @@
 // asks for the clock (a bus access, hal_spend, hal_wait_dispatch), the bus inputs of
 // all cores are applied, the clock-low half is evaluated (bus read data), the rising
 // edge follows, finished postcycles write their trace rows and then apply the next
-// scan's scan-keyed inputs.
+// scan's scan-keyed inputs. Every core's firmware state has its core as its HAL
+// context (bb_set_hal_ctx), so the HAL needs no "current core" global.
 #include "Vplc_system.h"
 #include "Vplc_system___024root.h"
 #include "verilated.h"
@@ -154,54 +155,59 @@ struct Core {
 };
 
 static std::vector<Core> g_cores;
-static Core* g_cur;                // the core whose firmware runs
 static ucontext_t g_sched;         // the scheduler's context
 static uint64_t g_n;               // the clock being prepared (plant time)
 static Vplc_system* g_top;         // for hal_wait_dispatch: NEXT after the last edge
 
-static void yield_clock() { swapcontext(&g_cur->ctx, &g_sched); }
+// ------------------------------------------------------------------ the HAL (hal.h)
+// The HAL context of a core's firmware is its Core: the call hands the clock back to
+// the scheduler from that core's coroutine.
+static Core& core_of(void* ctx) { return *static_cast<Core*>(ctx); }
+static void yield_clock(Core& c) { swapcontext(&c.ctx, &g_sched); }
 
-extern "C" uint32_t hal_bus_read(uint16_t addr) {
-  Core& c = *g_cur;
+extern "C" uint32_t hal_bus_read(void* ctx, uint16_t addr) {
+  Core& c = core_of(ctx);
   for (;;) {
     c.want = Core::kBus;
     c.addr = addr;
     c.re = true;
     c.we = false;
-    yield_clock();
+    yield_clock(c);
     if (c.ready) return c.rdata;   // else a not-ready clock: the access repeats
   }
 }
 
-extern "C" void hal_bus_write(uint16_t addr, uint32_t data) {
-  Core& c = *g_cur;
+extern "C" void hal_bus_write(void* ctx, uint16_t addr, uint32_t data) {
+  Core& c = core_of(ctx);
   for (;;) {
     c.want = Core::kBus;
     c.addr = addr;
     c.wdata = data;
     c.we = true;
     c.re = false;
-    yield_clock();
+    yield_clock(c);
     if (c.ready) return;
   }
 }
 
-extern "C" void hal_spend(uint32_t clocks) {
+extern "C" void hal_spend(void* ctx, uint32_t clocks) {
   if (!clocks) return;
-  g_cur->want = Core::kSleep;
-  g_cur->wake = g_n + clocks;
-  yield_clock();
+  Core& c = core_of(ctx);
+  c.want = Core::kSleep;
+  c.wake = g_n + clocks;
+  yield_clock(c);
 }
 
-extern "C" void hal_wait_dispatch(void) {
+extern "C" void hal_wait_dispatch(void* ctx) {
   // NEXT already up after the last edge: the dispatch clock is this one (as in
   // harness.cpp, waiting costs no clock then)
-  if (get_field(g_top->byte_next_o, g_cur->idx, 1)) return;
-  g_cur->want = Core::kWaitNext;
-  yield_clock();
+  Core& c = core_of(ctx);
+  if (get_field(g_top->byte_next_o, c.idx, 1)) return;
+  c.want = Core::kWaitNext;
+  yield_clock(c);
 }
 
-extern "C" uint64_t hal_now(void) { return g_n; }
+extern "C" uint64_t hal_now(void*) { return g_n; }
 
 // A core's coroutine: the firmware's own main loop (it never returns; the harness
 // stops resuming it).
@@ -325,6 +331,7 @@ int main(int argc, char** argv) {
     const bb_costs* costs = bb_cost_table(rf.costs.c_str());
     if (!costs) die("unknown cost table '%s'", rf.costs.c_str());
     bb_init(&k.bb, costs);
+    bb_set_hal_ctx(&k.bb, &k);
     bb_set_mw_bus(&k.bb, 1);
     if (!rf.pool.empty()) bb_load_pool(&k.bb, rf.pool.data(), unsigned(rf.pool.size()));
     if (rf.parallel) {
@@ -401,7 +408,7 @@ int main(int argc, char** argv) {
                        (k.want == Core::kWaitNext && get_field(top.byte_next_o, k.idx, 1));
       if (!run && !k.strobed) continue;            // an idle core: its bus stays idle
       k.re = k.we = false;
-      if (run) { g_cur = &k; swapcontext(&g_sched, &k.ctx); }
+      if (run) swapcontext(&g_sched, &k.ctx);
       const bool access = k.want == Core::kBus;
       set_field(top.bus_addr_i, 9 * k.idx, 9, k.addr);
       set_field(top.bus_wdata_i, 32 * k.idx, 32, k.wdata);

@@ -138,7 +138,8 @@ def test_no_bare_bus_register_numbers():
 
 
 def test_bare_number_check_can_fail():
-    assert BARE.search("    hal_bus_write(0x07, 1);")
+    assert BARE.search("    hal_bus_write(s->hal_ctx, 0x07, 1);")
+    assert BARE.search("  v = hal_bus_read(ctx, 64 + n);")
     assert BARE.search("dut.bus_addr_i.value = 9")
     assert BARE.search("set_field(top.bus_addr_i, 9 * c, 9, 0x09);")
     assert BARE.search("addr = _set_field(addr, 9 * c, 9, 0x09)")
@@ -146,6 +147,7 @@ def test_bare_number_check_can_fail():
     assert BARE.search("hal_bus_write(ctx, 0x07, 1);")
     assert any(p.match("bitbyte/sim/*.py") for p in (q.relative_to(ROOT) for q in HOSTS))
     assert not BARE.search("hal_bus_write(BB_BUS_SCAN_DONE, 1);")
+    assert not BARE.search("hal_bus_write(s->hal_ctx, BB_BUS_SCAN_DONE, 1);")
 
 
 def rtl_parameter_defaults(top: str) -> dict[str, int]:

@@ -7,10 +7,12 @@ cocotb (bitbyte/sim/cocotb_plant.py) on Icarus and on Verilator: every core's tr
 the summary must be the same text. Variants: ping-pong, the random layout, periods
 shorter than the scans (overruns, skipped precycles, copy_fail) with a scan-keyed
 stimulus and input / output words, the scan watchdog, every clock clocked from Python
-(no fast-forward), and a three-core plant (plc_system built with Cores = 3).
+(no fast-forward), a three-core plant (plc_system built with Cores = 3), and a
+four-core plant whose cores all run on one loaded copy of the firmware library.
 """
 from __future__ import annotations
 
+import json
 import sys
 import tempfile
 from pathlib import Path
@@ -164,5 +166,63 @@ def test_three_cores_equal_plant_harness(tmp_path, sim):
     assert status == 0, summary
     assert summary == ref_summary
     for core in ("w", "r1", "r2"):
+        assert ((tmp_path / f"C.{core}.csv").read_text()
+                == (tmp_path / f"H.{core}.csv").read_text()), core
+
+
+# A fourth kind of core for the four-core plant: a marker toggling every scan, a
+# counter and a timer on it (byte instructions with bus traffic of their own: TC_BIT,
+# TIME_MS), its count in MW3.
+TOGGLE = """VAR
+  Tog AT M0.0;
+  Cnt AT C0;
+  Tmr AT T1;
+END_VAR
+      LDN   Tog
+      =     Tog
+      LD    Tog
+      CU    Cnt
+      L     Cnt
+      T     MW3
+      LD    Tog
+      L     2
+      SD    Tmr
+      END
+"""
+
+
+def test_four_cores_one_firmware_library(tmp_path):
+    """Four cores in one cocotb simulator process run the firmware from ONE loaded
+    copy of libbyteproc_cb.so (no per-core copies): each core's firmware state has its
+    own HAL context, a table of that core's callbacks. The traces (markers and words
+    of several cores looked up through the observation ports) and the summary equal
+    the Verilator plant harness's."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    import plantgen
+    writer, reader = plantgen.tearing_pair(8)
+    plant = plantgen.write_plant(tmp_path / "four", [("w", writer, 100), ("r1", reader, 0),
+                                                     ("r2", reader, 30), ("t", TOGGLE, 70)],
+                                 clock_mhz=1, layout="random")
+    watch = "w.MW200,r1.MW0,r1.MW7,r2.MW0,t.M0.0,t.MW3,t.T1,t.C0"
+    until = "400"
+    ref_status, ref_summary, ref_rows = run_plant(str(plant), until_us=until, watch=watch,
+                                                  trace=str(tmp_path / "H.csv"))
+    assert ref_status == 0, ref_summary
+    assert len({r["MW0"] for r in ref_rows["r1"]}) >= 3
+    assert {r["M0.0"] for r in ref_rows["t"]} == {"0", "1"} and ref_rows["t"][-1]["MW3"] != "0"
+    shared_map, jobs, _, plans, until_clock = prepare_plant(str(plant), until_us=until,
+                                                            watch=watch)
+    with tempfile.TemporaryDirectory() as tmp:
+        status, summary, _ = run_plant_cocotb(shared_map, jobs, plans, until_clock, "icarus",
+                                              str(tmp_path / "C"), tmp)
+        results = json.loads((Path(tmp) / "plant_results.json").read_text())
+        copies = sorted(p.name for p in Path(tmp).iterdir() if p.suffix == ".so")
+    assert status == 0, summary
+    assert results["firmware_loads"] == 1
+    assert len(results["firmware_mapped"]) == 1, results["firmware_mapped"]
+    assert results["firmware_mapped"][0].endswith("firmware_byte/build/libbyteproc_cb.so")
+    assert copies == []
+    assert summary == ref_summary
+    for core in ("w", "r1", "r2", "t"):
         assert ((tmp_path / f"C.{core}.csv").read_text()
                 == (tmp_path / f"H.{core}.csv").read_text()), core

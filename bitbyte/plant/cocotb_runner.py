@@ -13,7 +13,6 @@ import csv
 import fcntl
 import json
 import os
-import shutil
 from pathlib import Path
 
 from bitbyte.plant.plans import PlantRunError, period_clocks
@@ -40,12 +39,7 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
         raise PlantRunError(f"unknown simulator {sim!r} (cocotb runs {', '.join(SIMS)})")
     plant = shared_map.plant
     tmp = Path(tmpdir)
-    build_firmware()
-    libs = []
-    for i in range(len(plant.cores)):          # one library copy: its own C globals each
-        lib = tmp / f"libbyteproc_cb.core{i}.so"
-        shutil.copyfile(FIRMWARE_LIB, lib)
-        libs.append(str(lib))
+    build_firmware()            # one library for all cores: a HAL context per core
     traces = [(f"{trace_base}.{core.name}.csv" if trace_base
                else str(tmp / f"trace.{core.name}.csv")) for core in plant.cores]
     results = tmp / "plant_results.json"
@@ -55,7 +49,7 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
         "until_clock": until_clock,
         "fast": fast,
         "protect": plant.protection,
-        "libs": libs,
+        "lib": str(FIRMWARE_LIB),
         "results": str(results),
         "cores": [{"name": core.name, "job": job.to_json(), "plan": plan.words,
                    "period": period_clocks(core.period_us, plant.clock_mhz),

@@ -9,7 +9,9 @@ clock n; a scan's results are read at the falling edge after the edge that ended
 The byte processor is the real firmware (firmware_byte/, loaded with ctypes). It runs
 in a bridged thread (cocotb.task.bridge); each HAL call it makes is a resume-wrapped
 coroutine that drives the bus and awaits clock edges, so the C code blocks exactly
-as long as its bus accesses and its `hal_spend` take in simulated clocks.
+as long as its bus accesses and its `hal_spend` take in simulated clocks. The HAL
+reaches this job's callbacks through the state's HAL context (a bb_hal_callbacks
+table, firmware_byte/hal_callbacks.h), not through globals of the library.
 """
 from __future__ import annotations
 
@@ -72,6 +74,25 @@ def _reader(dut, kind: str, index: int, firmware=None):
     return lambda: 0
 
 
+class HalCallbacks(ctypes.Structure):
+    """firmware_byte/hal_callbacks.h: bb_hal_callbacks, one per firmware state (its HAL
+    context)."""
+    _fields_ = [("bus_read", ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint16)),
+                ("bus_write", ctypes.CFUNCTYPE(None, ctypes.c_uint16, ctypes.c_uint32)),
+                ("spend", ctypes.CFUNCTYPE(None, ctypes.c_uint32)),
+                ("wait_dispatch", ctypes.CFUNCTYPE(None)),
+                ("now", ctypes.CFUNCTYPE(ctypes.c_uint64))]
+
+
+def hal_callbacks(read, write, spend, wait, now) -> HalCallbacks:
+    """A callback table of Python functions (they must outlive the C calls: keep the
+    table)."""
+    types = dict((name, t) for name, t in HalCallbacks._fields_)
+    return HalCallbacks(types["bus_read"](read), types["bus_write"](write),
+                        types["spend"](spend), types["wait_dispatch"](wait),
+                        types["now"](now))
+
+
 class Firmware:
     """The byte processor: firmware_byte's C code with a HAL onto this simulation."""
 
@@ -91,12 +112,11 @@ class Firmware:
         if self.parallel or self.free:
             words = (ctypes.c_uint32 * len(job.byte_prog))(*job.byte_prog)
             lib.bb_load_program(self.state, words, len(job.byte_prog))
-        # The HAL: each callback runs in the firmware's thread and blocks on a coroutine.
-        hal = (lib.HalRead(resume(self._read)), lib.HalWrite(resume(self._write)),
-               lib.HalSpend(resume(self._spend)), lib.HalWait(resume(self._wait)),
-               lib.HalNow(self._now))
-        self._keep = hal                       # ctypes callbacks must outlive the C calls
-        lib.bb_hal_set_callbacks(*hal)
+        # The HAL: each callback runs in the firmware's thread and blocks on a coroutine;
+        # the table is this state's HAL context.
+        self._hal = hal_callbacks(resume(self._read), resume(self._write),
+                                  resume(self._spend), resume(self._wait), self._now)
+        lib.bb_set_hal_ctx(self.state, ctypes.byref(self._hal))
 
     @classmethod
     def _load(cls):
@@ -107,19 +127,14 @@ class Firmware:
             lib.bb_cost_table.restype = ctypes.c_void_p
             lib.bb_cost_table.argtypes = [ctypes.c_char_p]
             lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+            lib.bb_set_hal_ctx.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
             lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_serial_step.argtypes = [ctypes.c_void_p]
             lib.bb_run_scan.argtypes = [ctypes.c_void_p]
             lib.bb_run_step.argtypes = [ctypes.c_void_p, ctypes.c_int]
-            lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
             lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.restype = ctypes.c_int16
-            lib.HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint16)
-            lib.HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint16, ctypes.c_uint32)
-            lib.HalSpend = ctypes.CFUNCTYPE(None, ctypes.c_uint32)
-            lib.HalWait = ctypes.CFUNCTYPE(None)
-            lib.HalNow = ctypes.CFUNCTYPE(ctypes.c_uint64)
             cls._lib = lib
         return cls._lib
 
@@ -127,7 +142,7 @@ class Firmware:
         return int(self._lib.bb_mw(self.state, n))
 
     def close(self):
-        self._lib.bb_hal_set_callbacks(None, None, None, None, None)
+        self._lib.bb_set_hal_ctx(self.state, None)
         self._lib.bb_free(self.state)
 
     # HAL (docs/byte-bus.md). Each runs at a falling edge: "this clock" is the clock

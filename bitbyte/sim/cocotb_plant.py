@@ -26,11 +26,13 @@ dispatch that has not come) a cocotb Clock runs instead until the first clock wh
 a core is due or an output the loop reacts to changes (`Plant.fast_forward`): the
 same waveform and the same traces, without Python in every clock.
 
-Firmware and concurrency. Every core runs the real firmware (firmware_byte/) from its
-own copy of libbyteproc_cb.so, so that each core has its own C globals (the HAL
-callback pointers of hal_callbacks.c). The firmware's loop runs in an OS thread of
-its own, and exactly one of {the cocotb scheduler, core 0's firmware, core 1's
-firmware, ...} runs at any time: the clock coroutine hands the CPU to a core's thread
+Firmware and concurrency. Every core runs the real firmware (firmware_byte/), all of
+them from one loaded libbyteproc_cb.so: the firmware keeps no globals, and each
+core's state has its own HAL context, a bb_hal_callbacks table of that core's
+callbacks (firmware_byte/hal_callbacks.h). The results file says how many times the
+library was loaded and which copies of it the process maps (one). The firmware's
+loop runs in an OS thread of its own, and exactly one of {the cocotb scheduler,
+core 0's firmware, core 1's firmware, ...} runs at any time: the clock coroutine hands the CPU to a core's thread
 (a pair of locks) and blocks until that thread asks for the next clock (a HAL call),
 as the harness's ucontext coroutines do. The firmware threads never touch a
 simulator handle or cocotb; they only post their bus request in Python fields, which
@@ -57,6 +59,7 @@ from cocotb.triggers import First, Timer
 from cocotb.utils import get_sim_steps, get_sim_time
 
 from bitbyte.lang.definition import DEF
+from bitbyte.sim.cocotb_driver import hal_callbacks
 from bitbyte.run.runjob import RunJob
 from bitbyte.lang.trace import format_decimal
 
@@ -99,36 +102,44 @@ def _slice(value, lsb: int, width: int) -> int:
         return int(bits[len(bits) - lsb - width:len(bits) - lsb], 2)
 
 
+LIB_LOADS = 0        # ctypes loads of the firmware library in this process (one)
+
+
 def _load_lib(path: str):
+    global LIB_LOADS
+    LIB_LOADS += 1
     lib = ctypes.CDLL(path)
     lib.bb_new.restype = ctypes.c_void_p
     lib.bb_free.argtypes = [ctypes.c_void_p]
     lib.bb_cost_table.restype = ctypes.c_void_p
     lib.bb_cost_table.argtypes = [ctypes.c_char_p]
     lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+    lib.bb_set_hal_ctx.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
     lib.bb_set_mw_bus.argtypes = [ctypes.c_void_p, ctypes.c_int]
     lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
     lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
     lib.bb_serial_step.argtypes = [ctypes.c_void_p]
     lib.bb_run_scan.argtypes = [ctypes.c_void_p]
     lib.bb_run.argtypes = [ctypes.c_void_p, ctypes.c_int]
-    lib.hal_bus_write.argtypes = [ctypes.c_uint16, ctypes.c_uint32]
-    lib.hal_wait_dispatch.argtypes = []
     return lib
 
 
-HalRead = ctypes.CFUNCTYPE(ctypes.c_uint32, ctypes.c_uint16)
-HalWrite = ctypes.CFUNCTYPE(None, ctypes.c_uint16, ctypes.c_uint32)
-HalSpend = ctypes.CFUNCTYPE(None, ctypes.c_uint32)
-HalWait = ctypes.CFUNCTYPE(None)
-HalNow = ctypes.CFUNCTYPE(ctypes.c_uint64)
+def _mapped_copies(name: str = "libbyteproc") -> list[str]:
+    """The files named *name* this process maps (/proc/self/maps): the copies of the
+    firmware library that are loaded."""
+    try:
+        with open("/proc/self/maps") as f:
+            return sorted({line.split()[-1] for line in f
+                           if len(line.split()) >= 6 and name in line.split()[-1]})
+    except OSError:
+        return []
 
 
 class CoreFirmware:
-    """One core's byte processor: its library copy, its state, its thread, and the
-    bus request it has posted for the clock being prepared."""
+    """One core's byte processor: its state on the shared library, its HAL context,
+    its thread, and the bus request it has posted for the clock being prepared."""
 
-    def __init__(self, plant: "Plant", idx: int, job: RunJob, lib_path: str):
+    def __init__(self, plant: "Plant", idx: int, job: RunJob, lib):
         self.plant, self.idx, self.job = plant, idx, job
         self.want = START
         self.wake = 0
@@ -138,7 +149,7 @@ class CoreFirmware:
         self.ready = False
         self.rdata = 0
         self.error: BaseException | None = None
-        lib = self.lib = _load_lib(lib_path)
+        self.lib = lib
         self.state = lib.bb_new()
         costs = lib.bb_cost_table(job.costs.encode())
         if not costs:
@@ -156,9 +167,10 @@ class CoreFirmware:
             if (len(job.byte_prog) > BB_PROG_WORDS
                     or lib.bb_load_program(self.state, words, len(job.byte_prog)) != 0):
                 raise RuntimeError("byte part too large")
-        self._hal = (HalRead(self._read), HalWrite(self._write), HalSpend(self._spend),
-                     HalWait(self._wait), HalNow(self._now))
-        lib.bb_hal_set_callbacks(*self._hal)
+        # this core's HAL context: its own callback table (kept alive with the core)
+        self._hal = hal_callbacks(self._read, self._write, self._spend, self._wait,
+                                  self._now)
+        lib.bb_set_hal_ctx(self.state, ctypes.byref(self._hal))
         # hand-off: exactly one of the clock coroutine and this thread runs
         self._to_fw = threading.Lock()
         self._to_main = threading.Lock()
@@ -398,9 +410,11 @@ class Plant:
         await self.tick()                            # the next clock is clock 0
         self.bus = (addr, wdata, 0, 0)               # what the bus ports hold now
 
-    def open_traces(self, lib_paths: list[str]) -> None:
+    def open_traces(self, lib) -> None:
+        """Every core's firmware on `lib` (the one loaded library), its readers, its
+        trace file."""
         for core in self.cores:
-            core.fw = CoreFirmware(self, core.idx, core.job, lib_paths[core.idx])
+            core.fw = CoreFirmware(self, core.idx, core.job, lib)
             core.readers = [self.column_reader(core, kind, index)
                             for _, kind, index in core.job.cols]
             path = core.cfg.get("trace")
@@ -624,7 +638,7 @@ async def run_plant(dut):
         cfg = json.load(f)
     plant = Plant(dut, cfg)
     await plant.reset_and_load()
-    plant.open_traces(cfg["libs"])
+    plant.open_traces(_load_lib(cfg["lib"]))           # once, for every core
     try:
         fault = await plant.clocks()
     finally:
@@ -633,4 +647,5 @@ async def run_plant(dut):
                 k.trace.close()
     out, err = plant.summary(fault)
     with open(cfg["results"], "w") as f:
-        json.dump({"status": 3 if fault else 0, "stdout": out, "stderr": err}, f)
+        json.dump({"status": 3 if fault else 0, "stdout": out, "stderr": err,
+                   "firmware_loads": LIB_LOADS, "firmware_mapped": _mapped_copies()}, f)

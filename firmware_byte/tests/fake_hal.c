@@ -9,9 +9,21 @@
 
 fake_hal FH;
 
-void fh_reset(void) {
-  memset(&FH, 0, sizeof FH);
-  FH.tick_div = 1000;     /* 1 MHz in the tests: 1000 clocks per ms */
+void fh_init(fake_hal *h) {
+  memset(h, 0, sizeof *h);
+  h->tick_div = 1000;     /* 1 MHz in the tests: 1000 clocks per ms */
+}
+
+void fh_reset(void) { fh_init(&FH); }
+
+/* The HAL context of a call: a fake_hal. NULL means the firmware lost the context it
+ * was given (bb_set_hal_ctx): fail loudly instead of guessing a global. */
+static fake_hal *fh_of(void *ctx) {
+  if (ctx == NULL) {
+    fprintf(stderr, "fake_hal: HAL call with a NULL context\n");
+    abort();
+  }
+  return (fake_hal *)ctx;
 }
 
 void fh_set_ms(uint32_t ms) { FH.clock = (uint64_t)ms * FH.tick_div; }
@@ -32,128 +44,134 @@ void fh_iw_at(unsigned n, uint32_t value, uint64_t at) {
 }
 
 /* Bring the inputs up to the current clock: the scheduled IW changes that are due. */
-static void sync_inputs(void) {
-  for (unsigned i = 0; i < sizeof FH.iw_change / sizeof FH.iw_change[0]; i++)
-    if (FH.iw_change[i].armed && FH.iw_change[i].at <= FH.clock) {
-      FH.iw[FH.iw_change[i].n] = FH.iw_change[i].value;
-      FH.iw_change[i].armed = 0;
+static void sync_inputs(fake_hal *h) {
+  for (unsigned i = 0; i < sizeof h->iw_change / sizeof h->iw_change[0]; i++)
+    if (h->iw_change[i].armed && h->iw_change[i].at <= h->clock) {
+      h->iw[h->iw_change[i].n] = h->iw_change[i].value;
+      h->iw_change[i].armed = 0;
     }
 }
 
-static uint32_t time_ms(void) { return (uint32_t)(FH.clock / FH.tick_div); }
+static uint32_t time_ms(const fake_hal *h) { return (uint32_t)(h->clock / h->tick_div); }
 
 static uint32_t sext16(uint32_t v) {
   return (v & 0x8000u) ? (0xFFFF0000u | (v & 0xFFFFu)) : (v & 0xFFFFu);
 }
 
-static void log_access(uint16_t addr, int write, uint32_t data) {
-  if (FH.nlog < FH_LOG_MAX) {
-    fh_access *a = &FH.log[FH.nlog++];
+static void log_access(fake_hal *h, uint16_t addr, int write, uint32_t data) {
+  if (h->nlog < FH_LOG_MAX) {
+    fh_access *a = &h->log[h->nlog++];
     a->addr = addr;
     a->write = (uint8_t)write;
     a->data = data;
-    a->clock = FH.clock;
+    a->clock = h->clock;
   }
 }
 
-static void stall(uint32_t *n) {     /* not-ready clocks before an access completes */
+static void stall(fake_hal *h, uint32_t *n) {  /* not-ready clocks before an access completes */
   while (*n > 0) {
     --*n;
-    FH.clock++;
-    FH.stalls_byte++;
+    h->clock++;
+    h->stalls_byte++;
   }
 }
 
-uint32_t hal_bus_read(uint16_t addr) {
+uint32_t hal_bus_read(void *ctx, uint16_t addr) {
+  fake_hal *h = fh_of(ctx);
   uint32_t v = 0;
-  if (addr >= 0x20 && addr < 0x28) stall(&FH.fby_stall[addr - 0x20u]);
-  sync_inputs();                     /* the value of the clock the access completes in */
+  if (addr >= 0x20 && addr < 0x28) stall(h, &h->fby_stall[addr - 0x20u]);
+  sync_inputs(h);                     /* the value of the clock the access completes in */
   if (addr >= 0x20 && addr < 0x28) {
     unsigned k = addr - 0x20u;
-    v = FH.fby_val[k];
-    FH.fby_reads[k]++;
+    v = h->fby_val[k];
+    h->fby_reads[k]++;
   } else if (addr >= 0x40 && addr < 0x50) {
-    v = FH.iw[addr - 0x40];
+    v = h->iw[addr - 0x40];
   } else if (addr >= 0x50 && addr < 0x60) {
-    v = sext16(FH.qw[addr - 0x50]);
+    v = sext16(h->qw[addr - 0x50]);
   } else if (addr >= 0x100 && addr < 0x200) {
-    v = FH.mw[addr - 0x100];       /* raw 16 bits: the firmware sign-extends */
+    v = h->mw[addr - 0x100];       /* raw 16 bits: the firmware sign-extends */
   } else {
     switch (addr) {
       case BB_BUS_ID:             v = BB_BUS_ID_VALUE; break;
-      case BB_BUS_DISPATCH_INSTR: v = FH.dispatch_instr; break;
-      case BB_BUS_DISPATCH_CTX:   v = FH.dispatch_ctx; break;
-      case BB_BUS_DISPATCH_MS:    v = FH.disp_ms; break;
-      case BB_BUS_DISPATCH_IW:    v = sext16(FH.disp_iw); break;
-      case BB_BUS_TIME_MS:        v = time_ms(); break;
-      case BB_BUS_TICK_DIV:       v = FH.tick_div; break;
-      case BB_BUS_CLOCK:          v = (uint32_t)FH.clock; break;
-      case BB_BUS_T_STATUS_LO:    v = (uint32_t)FH.t_status; break;
-      case BB_BUS_T_STATUS_HI:    v = (uint32_t)(FH.t_status >> 32); break;
-      case BB_BUS_C_STATUS_LO:    v = (uint32_t)FH.c_status; break;
-      case BB_BUS_C_STATUS_HI:    v = (uint32_t)(FH.c_status >> 32); break;
-      case BB_BUS_BYTE_FLAGS:     v = FH.byte_flags; break;
-      case BB_BUS_STALLS_BYTE:    v = FH.stalls_byte; break;
+      case BB_BUS_DISPATCH_INSTR: v = h->dispatch_instr; break;
+      case BB_BUS_DISPATCH_CTX:   v = h->dispatch_ctx; break;
+      case BB_BUS_DISPATCH_MS:    v = h->disp_ms; break;
+      case BB_BUS_DISPATCH_IW:    v = sext16(h->disp_iw); break;
+      case BB_BUS_TIME_MS:        v = time_ms(h); break;
+      case BB_BUS_TICK_DIV:       v = h->tick_div; break;
+      case BB_BUS_CLOCK:          v = (uint32_t)h->clock; break;
+      case BB_BUS_T_STATUS_LO:    v = (uint32_t)h->t_status; break;
+      case BB_BUS_T_STATUS_HI:    v = (uint32_t)(h->t_status >> 32); break;
+      case BB_BUS_C_STATUS_LO:    v = (uint32_t)h->c_status; break;
+      case BB_BUS_C_STATUS_HI:    v = (uint32_t)(h->c_status >> 32); break;
+      case BB_BUS_BYTE_FLAGS:     v = h->byte_flags; break;
+      case BB_BUS_STALLS_BYTE:    v = h->stalls_byte; break;
       default:                    v = 0; break;
     }
   }
-  log_access(addr, 0, v);
-  FH.clock++;
+  log_access(h, addr, 0, v);
+  h->clock++;
+  if (h->after_access) h->after_access(h->after_access_arg);
   return v;
 }
 
-void hal_bus_write(uint16_t addr, uint32_t data) {
+void hal_bus_write(void *ctx, uint16_t addr, uint32_t data) {
+  fake_hal *h = fh_of(ctx);
   if (addr >= 0x28 && addr < 0x30) {
     unsigned k = addr - 0x28u;
-    stall(&FH.fbi_stall[k]);
-    FH.fbi_val[k] = data & 1u;
-    FH.fbi_writes[k]++;
+    stall(h, &h->fbi_stall[k]);
+    h->fbi_val[k] = data & 1u;
+    h->fbi_writes[k]++;
   } else if (addr >= 0x50 && addr < 0x60) {
-    FH.qw[addr - 0x50] = (uint16_t)(data & 0xFFFFu);
+    h->qw[addr - 0x50] = (uint16_t)(data & 0xFFFFu);
   } else if (addr >= 0x100 && addr < 0x200) {
-    FH.mw[addr - 0x100] = (uint16_t)(data & 0xFFFFu);
+    h->mw[addr - 0x100] = (uint16_t)(data & 0xFFFFu);
   } else {
     switch (addr) {
       case BB_BUS_DONE:              /* ends the dispatch: the next one snapshots anew */
-        FH.pending = 0;
-        FH.done_count++;
-        FH.done_data = data;
-        FH.done_clock = FH.clock;
+        h->pending = 0;
+        h->done_count++;
+        h->done_data = data;
+        h->done_clock = h->clock;
         break;
       case BB_BUS_TC_BIT: {
         uint64_t bit = 1ull << (data & BB_TC_INDEX_MASK);
-        uint64_t *v = (data & BB_TC_COUNTER) ? &FH.c_status : &FH.t_status;
+        uint64_t *v = (data & BB_TC_COUNTER) ? &h->c_status : &h->t_status;
         if (data & BB_TC_VALUE) *v |= bit; else *v &= ~bit;
         break;
       }
-      case BB_BUS_TICK_DIV:   FH.tick_div = data; break;
-      case BB_BUS_BYTE_FLAGS: FH.byte_flags = data; break;
+      case BB_BUS_TICK_DIV:   h->tick_div = data; break;
+      case BB_BUS_BYTE_FLAGS: h->byte_flags = data; break;
       default: break;
     }
   }
-  log_access(addr, 1, data);
-  FH.clock++;
+  log_access(h, addr, 1, data);
+  h->clock++;
+  if (h->after_access) h->after_access(h->after_access_arg);
 }
 
-void hal_spend(uint32_t clocks) {
-  FH.clock += clocks;
-  FH.spent += clocks;
-  FH.spend_calls++;
+void hal_spend(void *ctx, uint32_t clocks) {
+  fake_hal *h = fh_of(ctx);
+  h->clock += clocks;
+  h->spent += clocks;
+  h->spend_calls++;
 }
 
 /* Returns in the dispatch clock. As the port's disp_first (next_i && !pending_q): a
  * dispatch that begins here captures TIME_MS and IW[instr bits 3..0] of this clock. */
-void hal_wait_dispatch(void) {
-  if (FH.dispatch_at > FH.clock) FH.clock = FH.dispatch_at;
-  FH.waits++;
-  sync_inputs();
-  if (!FH.pending) {
-    FH.pending = 1;
-    FH.disp_ms = time_ms();
-    FH.disp_iw = (uint16_t)(FH.iw[FH.dispatch_instr & 0xFu] & 0xFFFFu);
-    FH.disp_clock = FH.clock;
-    FH.snapshots++;
+void hal_wait_dispatch(void *ctx) {
+  fake_hal *h = fh_of(ctx);
+  if (h->dispatch_at > h->clock) h->clock = h->dispatch_at;
+  h->waits++;
+  sync_inputs(h);
+  if (!h->pending) {
+    h->pending = 1;
+    h->disp_ms = time_ms(h);
+    h->disp_iw = (uint16_t)(h->iw[h->dispatch_instr & 0xFu] & 0xFFFFu);
+    h->disp_clock = h->clock;
+    h->snapshots++;
   }
 }
 
-uint64_t hal_now(void) { return FH.clock; }
+uint64_t hal_now(void *ctx) { return fh_of(ctx)->clock; }

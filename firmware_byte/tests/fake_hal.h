@@ -62,11 +62,18 @@ typedef struct {
   /* log */
   fh_access log[FH_LOG_MAX];
   unsigned nlog;
+  /* called after every bus access (test_contexts.c: another state's step inside) */
+  void (*after_access)(void *arg);
+  void *after_access_arg;
 } fake_hal;
 
+/* The tests' default instance: setup() (tt.h) makes it the HAL context of S. Any
+ * fake_hal can be a context (bb_set_hal_ctx): each is a separate bus and clock. */
 extern fake_hal FH;
 
-void fh_reset(void);
+void fh_init(fake_hal *h);     /* a fresh fake HAL: no log, clock 0, 1000 clocks per ms */
+void fh_reset(void);           /* fh_init(&FH) */
+/* These act on FH. */
 void fh_set_ms(uint32_t ms);   /* clock := ms * tick_div */
 void fh_clear_log(void);
 /* From clock `at` on, IW n reads `value` (0x40+n live; DISPATCH_IW if a dispatch

@@ -171,8 +171,7 @@ static void test_no_crash_any_opcode(void) {
 /* A plant core: MW lives in the FPGA; L / T MW n are one bus access each, values and
  * sign as with the firmware's own array. */
 static void test_mw_on_bus(void) {
-  fh_reset();
-  bb_init(&S, NULL);
+  setup();
   bb_set_mw_bus(&S, 1);
   FH.mw[7] = 0xFFFEu;                       /* -2 */
   int rlo = 0;

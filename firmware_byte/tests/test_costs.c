@@ -33,6 +33,8 @@ static void test_tables(void) {
   CHECK_EQ(bb_cost(&S, BB_CL_COMPARE), 57);
   bb_init(&S, q);
   CHECK(S.costs == q);
+  CHECK(bb_hal_ctx(&S) == NULL);             /* bb_init() forgets the HAL context */
+  bb_set_hal_ctx(&S, &FH);
   CHECK(strcmp(bb_class_name(BB_CL_TIMER), "timer") == 0);
   CHECK(strcmp(bb_class_name(99), "?") == 0);
 }
@@ -68,6 +70,7 @@ static void test_new_free_accessors(void) {
   CHECK(s != NULL);
   if (s == NULL) return;
   CHECK(s->costs == bb_cost_table(NULL));
+  CHECK(bb_hal_ctx(s) == NULL);
   CHECK_EQ(bb_accu1(s), 0);
   CHECK_EQ(bb_accu2(s), 0);
   CHECK_EQ(bb_flags(s), 0);
@@ -80,6 +83,8 @@ static void test_new_free_accessors(void) {
   }
   for (unsigned n = 0; n < BB_NUM_COUNTERS; n++) CHECK_EQ(bb_counter_value(s, n), 0);
   fh_reset();
+  bb_set_hal_ctx(s, &FH);
+  CHECK(bb_hal_ctx(s) == &FH);
   int rlo = 1;
   bb_exec(s, 0x80000007u, &rlo);
   bb_exec(s, 0x80000009u, NULL);           /* NULL: the state's own F_B */

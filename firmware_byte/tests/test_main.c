@@ -16,6 +16,7 @@ int main(void) {
   suite_bus();
   suite_costs();
   suite_program();
+  suite_contexts();
   printf("firmware_byte unit tests: %d tests, %d checks, %d failed\n", tt_tests, tt_checks,
          tt_fails);
   return tt_fails == 0 ? 0 : 1;

@@ -363,6 +363,7 @@ static void test_load_program(void) {
   bb_init(&S, NULL);
   CHECK_EQ(S.prog_len, 0);
   CHECK_EQ(S.max_steps, BB_MAX_STEPS_DEFAULT);
+  bb_set_hal_ctx(&S, &FH);
 }
 
 static void test_classify_and_step(void) {

@@ -297,34 +297,34 @@ static void test_fake_snapshot(void) {
    * and the next dispatch, not retaken while the dispatch is pending */
   setup();
   FH.tick_div = 2;
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_MS), 0);
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_IW), 0);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_MS), 0);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_IW), 0);
   FH.iw[3] = 0x1111;
-  FH.dispatch_instr = 0x8200A003u;                       /* L IW3 */
-  FH.dispatch_at = 7;                                     /* ms 3 */
-  hal_wait_dispatch();
+  FH.dispatch_instr = 0x8200A003u;                      /* L IW3 */
+  FH.dispatch_at = 7;                                   /* ms 3 */
+  hal_wait_dispatch(&FH);
   CHECK_EQ(FH.clock, 7);
   FH.iw[3] = 0x2222;
-  hal_spend(3);                                           /* clock 10: ms 5 */
-  CHECK_EQ(hal_bus_read(BB_BUS_TIME_MS), 5);
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_MS), 3);
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_IW), 0x1111);
-  hal_wait_dispatch();                                    /* still pending: no snapshot */
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_MS), 3);
+  hal_spend(&FH, 3);                                    /* clock 10: ms 5 */
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_TIME_MS), 5);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_MS), 3);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_IW), 0x1111);
+  hal_wait_dispatch(&FH);                               /* still pending: no snapshot */
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_MS), 3);
   CHECK_EQ(FH.snapshots, 1);
-  hal_bus_write(BB_BUS_DONE, 0);                          /* clock 14 */
+  hal_bus_write(&FH, BB_BUS_DONE, 0);                   /* clock 14 */
   FH.iw[3] = 0xF000;
   FH.dispatch_at = 0;
-  hal_wait_dispatch();                                    /* clock 15: ms 7 */
+  hal_wait_dispatch(&FH);                               /* clock 15: ms 7 */
   CHECK_EQ(FH.snapshots, 2);
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_MS), 7);
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_IW), 0xFFFFF000u);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_MS), 7);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_IW), 0xFFFFF000u);
   /* whatever the instruction: bits 3..0 name the word */
-  hal_bus_write(BB_BUS_DONE, 0);
+  hal_bus_write(&FH, BB_BUS_DONE, 0);
   FH.iw[5] = 0x0042;
-  FH.dispatch_instr = 0x88000005u;                        /* +I, index bits 5 */
-  hal_wait_dispatch();
-  CHECK_EQ(hal_bus_read(BB_BUS_DISPATCH_IW), 0x42);
+  FH.dispatch_instr = 0x88000005u;                      /* +I, index bits 5 */
+  hal_wait_dispatch(&FH);
+  CHECK_EQ(hal_bus_read(&FH, BB_BUS_DISPATCH_IW), 0x42);
 }
 
 static void test_illegal(void) {

@@ -42,10 +42,11 @@ extern const char *tt_current;
 extern bb_state S;   /* the state under test */
 extern int RLO;      /* F_B for bb_exec */
 
-/* Fresh state, fresh fake HAL, default table. */
+/* Fresh state, fresh fake HAL (FH, the state's HAL context), default table. */
 static inline void setup(void) {
   fh_reset();
   bb_init(&S, NULL);
+  bb_set_hal_ctx(&S, &FH);
   RLO = 0;
 }
 
@@ -98,5 +99,6 @@ void suite_serial(void);
 void suite_bus(void);
 void suite_costs(void);
 void suite_program(void);
+void suite_contexts(void);
 
 #endif
