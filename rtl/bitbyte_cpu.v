@@ -13,6 +13,8 @@ module bitbyte_cpu #(
   parameter integer StatusBits  = 64,    // timers T0.. and counters C0.. (status bits each)
   parameter integer Channels    = 4,     // exchange channels FBI k / FBY k (handshake)
   parameter integer QueueDepth  = 8,     // condition queue depth per direction
+  parameter integer Exchanges   = 7,     // exchange circuits built (cond_exchange.v): 1 the
+                                         // flip-flops, 2 the queues, 4 the marker area
   parameter integer NestDepth   = 8,     // parenthesis nesting levels
   parameter integer InWords     = 16,    // word inputs IW n (analog)
   parameter integer OutWords    = 16     // word outputs QW n (analog)
@@ -29,7 +31,8 @@ module bitbyte_cpu #(
   input  wire                         parallel_i,        // parallel mode: parts meet at END
   input  wire                         free_i,            // free-running mode: they never meet
   input  wire                         marker_write_buffer_i,  // marker area: publish at scan end
-  input  wire [1:0]                   exchange_i,        // 0 handshake, 1 queue, 2 queue-free
+  input  wire [1:0]                   exchange_i,        // 0 handshake, 1 queue, 2 queue-free,
+                                                         // 3 marker (cond_exchange.v)
   input  wire [31:0]                  watchdog_limit_i,  // clocks per scan at most
   output wire                         ready_o,           // stopped, ready to run
   output wire                         fault_o,           // scan watchdog fired
@@ -199,10 +202,15 @@ module bitbyte_cpu #(
     .exec_valid_o    (exec_valid)
   );
 
-  // The condition exchange (Fig. 11 flip-flops or Fig. 16 queues, by exchange_i):
-  // F_bB k carries a condition to the byte side (`= FBY k` / READ FBY k), F_Bb k to
-  // the bit side (WRITE FBI k / `A FBI k`).
-  cond_exchange #(.Channels(Channels), .QueueDepth(QueueDepth)) u_exchange (
+  // The condition exchange (Fig. 11 flip-flops, Fig. 16 queues or the Fig. 17 marker
+  // area, by exchange_i, among the circuits Exchanges builds): F_bB k carries a
+  // condition to the byte side (`= FBY k` / READ FBY k), F_Bb k to the bit side
+  // (WRITE FBI k / `A FBI k`).
+  cond_exchange #(
+    .Channels  (Channels),
+    .QueueDepth(QueueDepth),
+    .Exchanges (Exchanges)
+  ) u_exchange (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .exchange_i    (exchange_i),

@@ -9,9 +9,16 @@
 //   3 marker:     the dual-port marker area with auxiliary buffer (Fig. 17): cell k
 //                 per direction, written any time, read from the reader's snapshot
 // Direction "fby": bit side writes, byte side reads; "fbi": byte writes, bit reads.
+//
+// Exchanges says which circuits are built (a mask: 1 the flip-flops, 2 the queues, 4
+// the marker area; 7, all, by default), so that a synthesized CPU carries only the
+// exchange it uses. A setting whose circuit is not built is served by one that is (the
+// queues, else the marker area, else the flip-flops): a one-circuit build ignores
+// exchange_i, except for queue against queue-free.
 module cond_exchange #(
   parameter integer Channels   = 4,  // handshake channels per direction
-  parameter integer QueueDepth = 8   // queue depth per direction (a power of two)
+  parameter integer QueueDepth = 8,  // queue depth per direction (a power of two)
+  parameter integer Exchanges  = 7   // circuits built: 1 flip-flops, 2 queues, 4 marker area
 ) (
   input  wire                clk_i,
   input  wire                rst_ni,
@@ -41,20 +48,34 @@ module cond_exchange #(
   output wire [31:0]         overflows_o,
   output wire [31:0]         underflows_o
 );
+  localparam [0:0] HasFf     = (Exchanges & 1) != 0;
+  localparam [0:0] HasQueue  = (Exchanges & 2) != 0;
+  localparam [0:0] HasMarker = (Exchanges & 4) != 0;
+
   if (Channels < 1) begin : g_bad_channels
     `PARAM_ERROR("cond_exchange: Channels must be at least 1");
   end
+  if (Exchanges < 1 || Exchanges > 7) begin : g_bad_exchanges
+    `PARAM_ERROR("cond_exchange: Exchanges must be 1..7 (1 flip-flops, 2 queues, 4 marker area)");
+  end
 
-  wire use_queue  = exchange_i == 2'd1 || exchange_i == 2'd2;
-  wire use_marker = exchange_i == 2'd3;
-  wire use_ff     = exchange_i == 2'd0;
-  wire free       = exchange_i == 2'd2;
+  // What exchange_i asks for, and which built circuit serves it. With all three built
+  // this is exactly exchange_i; constants in a one-circuit build, so its selection
+  // multiplexers vanish.
+  wire want_ff     = exchange_i == 2'd0;
+  wire want_queue  = exchange_i == 2'd1 || exchange_i == 2'd2;
+  wire want_marker = exchange_i == 2'd3;
+  wire use_queue   = HasQueue && (want_queue || (!(HasFf && want_ff) &&
+                                                 !(HasMarker && want_marker)));
+  wire use_marker  = HasMarker && !use_queue && (want_marker || !(HasFf && want_ff));
+  wire use_ff      = HasFf && !use_queue && !use_marker;
+  wire free        = exchange_i == 2'd2;
 
   // ------------------------------------------------------------ handshake channels
   wire [Channels-1:0] ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full;
   wire [Channels-1:0] ff_fbi_wr_ready, ff_fbi_rd_data, ff_fbi_rd_ready, ff_fbi_full;
   genvar k;
-  generate
+  if (HasFf) begin : g_ff
     for (k = 0; k < Channels; k = k + 1) begin : g_channel
       cond_ff u_fby (
         .clk_i     (clk_i),
@@ -79,63 +100,80 @@ module cond_exchange #(
         .full_o    (ff_fbi_full[k])
       );
     end
-  endgenerate
+  end else begin : g_no_ff
+    // never selected
+    assign {ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full} = {(4*Channels){1'b0}};
+    assign {ff_fbi_wr_ready, ff_fbi_rd_data, ff_fbi_rd_ready, ff_fbi_full} = {(4*Channels){1'b0}};
+  end
 
   // ------------------------------------------------------------ queues
   wire q_fby_wr_ready, q_fby_rd_data, q_fby_rd_ready, q_fby_full, q_fby_empty;
   wire q_fbi_wr_ready, q_fbi_rd_data, q_fbi_rd_ready, q_fbi_full, q_fbi_empty;
-  cond_queue #(.Depth(QueueDepth)) u_queue_fby (
-    .clk_i       (clk_i),
-    .rst_ni      (rst_ni),
-    .free_i      (free),
-    .wr_start_i  (bit_start_i),
-    .rd_start_i  (byte_start_i),
-    .wr_req_i    (use_queue && |fby_wr_req_i),
-    .wr_data_i   (fby_wr_data_i),
-    .wr_ready_o  (q_fby_wr_ready),
-    .rd_req_i    (use_queue && |fby_rd_req_i),
-    .rd_data_o   (q_fby_rd_data),
-    .rd_ready_o  (q_fby_rd_ready),
-    .full_o      (q_fby_full),
-    .empty_o     (q_fby_empty),
-    .overflows_o (overflows_o[15:0]),
-    .underflows_o(underflows_o[15:0])
-  );
-  cond_queue #(.Depth(QueueDepth)) u_queue_fbi (
-    .clk_i       (clk_i),
-    .rst_ni      (rst_ni),
-    .free_i      (free),
-    .wr_start_i  (byte_start_i),
-    .rd_start_i  (bit_start_i),
-    .wr_req_i    (use_queue && |fbi_wr_req_i),
-    .wr_data_i   (fbi_wr_data_i),
-    .wr_ready_o  (q_fbi_wr_ready),
-    .rd_req_i    (use_queue && |fbi_rd_req_i),
-    .rd_data_o   (q_fbi_rd_data),
-    .rd_ready_o  (q_fbi_rd_ready),
-    .full_o      (q_fbi_full),
-    .empty_o     (q_fbi_empty),
-    .overflows_o (overflows_o[31:16]),
-    .underflows_o(underflows_o[31:16])
-  );
+  if (HasQueue) begin : g_queue
+    cond_queue #(.Depth(QueueDepth)) u_queue_fby (
+      .clk_i       (clk_i),
+      .rst_ni      (rst_ni),
+      .free_i      (free),
+      .wr_start_i  (bit_start_i),
+      .rd_start_i  (byte_start_i),
+      .wr_req_i    (use_queue && |fby_wr_req_i),
+      .wr_data_i   (fby_wr_data_i),
+      .wr_ready_o  (q_fby_wr_ready),
+      .rd_req_i    (use_queue && |fby_rd_req_i),
+      .rd_data_o   (q_fby_rd_data),
+      .rd_ready_o  (q_fby_rd_ready),
+      .full_o      (q_fby_full),
+      .empty_o     (q_fby_empty),
+      .overflows_o (overflows_o[15:0]),
+      .underflows_o(underflows_o[15:0])
+    );
+    cond_queue #(.Depth(QueueDepth)) u_queue_fbi (
+      .clk_i       (clk_i),
+      .rst_ni      (rst_ni),
+      .free_i      (free),
+      .wr_start_i  (byte_start_i),
+      .rd_start_i  (bit_start_i),
+      .wr_req_i    (use_queue && |fbi_wr_req_i),
+      .wr_data_i   (fbi_wr_data_i),
+      .wr_ready_o  (q_fbi_wr_ready),
+      .rd_req_i    (use_queue && |fbi_rd_req_i),
+      .rd_data_o   (q_fbi_rd_data),
+      .rd_ready_o  (q_fbi_rd_ready),
+      .full_o      (q_fbi_full),
+      .empty_o     (q_fbi_empty),
+      .overflows_o (overflows_o[31:16]),
+      .underflows_o(underflows_o[31:16])
+    );
+  end else begin : g_no_queue
+    // never selected; no losses to count
+    assign {q_fby_wr_ready, q_fby_rd_data, q_fby_rd_ready, q_fby_full, q_fby_empty} = 5'd0;
+    assign {q_fbi_wr_ready, q_fbi_rd_data, q_fbi_rd_ready, q_fbi_full, q_fbi_empty} = 5'd0;
+    assign overflows_o  = 32'd0;
+    assign underflows_o = 32'd0;
+  end
 
   // ------------------------------------------------------------ marker area
   wire [Channels-1:0] m_bit_rd, m_byte_rd;
-  marker_area #(.Cells(Channels)) u_marker (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .write_buffer_i(marker_write_buffer_i),
-    .bit_start_i   (bit_start_i),
-    .bit_end_i     (bit_end_i),
-    .bit_wr_i      (use_marker ? fby_wr_req_i : {Channels{1'b0}}),
-    .bit_wr_data_i (fby_wr_data_i),
-    .bit_rd_data_o (m_bit_rd),
-    .byte_start_i  (byte_start_i),
-    .byte_end_i    (byte_end_i),
-    .byte_wr_i     (use_marker ? fbi_wr_req_i : {Channels{1'b0}}),
-    .byte_wr_data_i(fbi_wr_data_i),
-    .byte_rd_data_o(m_byte_rd)
-  );
+  if (HasMarker) begin : g_marker
+    marker_area #(.Cells(Channels)) u_marker (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .write_buffer_i(marker_write_buffer_i),
+      .bit_start_i   (bit_start_i),
+      .bit_end_i     (bit_end_i),
+      .bit_wr_i      (use_marker ? fby_wr_req_i : {Channels{1'b0}}),
+      .bit_wr_data_i (fby_wr_data_i),
+      .bit_rd_data_o (m_bit_rd),
+      .byte_start_i  (byte_start_i),
+      .byte_end_i    (byte_end_i),
+      .byte_wr_i     (use_marker ? fbi_wr_req_i : {Channels{1'b0}}),
+      .byte_wr_data_i(fbi_wr_data_i),
+      .byte_rd_data_o(m_byte_rd)
+    );
+  end else begin : g_no_marker
+    assign m_bit_rd  = {Channels{1'b0}};     // never selected
+    assign m_byte_rd = {Channels{1'b0}};
+  end
 
   // ------------------------------------------------------------ selection
   wire [Channels-1:0] ones = {Channels{1'b1}};
@@ -150,8 +188,12 @@ module cond_exchange #(
   assign fbi_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fbi_full} :
                           use_marker ? {Channels{1'b0}} : ff_fbi_full;
 
+  // The queues' empty flags are not needed; a build without some circuit leaves its
+  // inputs (scan starts and ends, read strobes, the settings) unused.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_empty = ^{q_fby_empty, q_fbi_empty};
+  wire unused_absent = ^{q_fby_empty, q_fbi_empty, bit_start_i, bit_end_i, byte_start_i,
+                         byte_end_i, marker_write_buffer_i, fby_rd_req_i, fbi_rd_req_i,
+                         use_ff, free};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

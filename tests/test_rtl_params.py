@@ -52,6 +52,8 @@ CPU_CORNERS = [
     {"NestDepth": 1}, {"NestDepth": 2}, {"NestDepth": 5},
     {"ProgWords": 2}, {"ProgWords": 16}, {"ProgWords": 65536},
     {"QueueDepth": 2}, {"InWords": 1}, {"OutWords": 1},
+    {"Exchanges": 1}, {"Exchanges": 2}, {"Exchanges": 4}, {"Exchanges": 3}, {"Exchanges": 5},
+    {"Exchanges": 6}, {"Exchanges": 2, "Channels": 1}, {"Exchanges": 4, "Channels": 8},
     CPU_MIN, CPU_MAX,
 ]
 PLANT_CORNERS = [
@@ -92,6 +94,8 @@ BAD = [
     ("bitbyte_cpu", {"InWords": 17}, "InWords"),
     ("bitbyte_cpu", {"OutWords": 0}, "OutWords"),
     ("bitbyte_cpu", {"QueueDepth": 6}, "Depth"),        # cond_queue's name for it
+    ("bitbyte_cpu", {"Exchanges": 0}, "Exchanges"),
+    ("bitbyte_cpu", {"Exchanges": 8}, "Exchanges"),
     ("bitbyte_cpu", {"InBytes": 513}, "InBytes"),
     ("bitbyte_cpu", {"OutBytes": 0}, "OutBytes"),
     ("bitbyte_cpu", {"MarkerBytes": 1024}, "MarkerBytes"),
