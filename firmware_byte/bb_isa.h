@@ -17,6 +17,18 @@
 #define BB_MAX_STEPS_DEFAULT    1000000u /* bb_state.max_steps after bb_init() */
 #define BB_COUNTER_MAX          32767
 
+/* The FPGA part's default build (the rtl/ parameter defaults): the sizes the
+ * simulation hosts (sim/) check their model's ports against and load up to. */
+#define BB_HW_PROG_WORDS        4096u  /* ProgWords */
+#define BB_HW_IN_BYTES          16u    /* InBytes */
+#define BB_HW_OUT_BYTES         16u    /* OutBytes */
+#define BB_HW_MARKER_BYTES      256u   /* MarkerBytes */
+#define BB_HW_STATUS_BITS       64u    /* StatusBits */
+#define BB_HW_IN_WORDS          16u    /* InWords */
+#define BB_HW_OUT_WORDS         16u    /* OutWords */
+#define BB_HW_MW_WORDS          256u   /* MwWords (plant core) */
+#define BB_HW_PLAN_WORDS        1024u  /* PlanWords (plant core) */
+
 /* Instruction word fields (docs/isa.md). */
 #define BB_OPCODE_SHIFT         24
 #define BB_AREA_SHIFT           12

@@ -41,6 +41,8 @@
 
 #define BB_BUS_ID_VALUE         0xB17B7E01u
 #define BB_BUS_TICK_DIV_RESET   100000u
+#define BB_BUS_ADDR_BITS        8      /* bitbyte_cpu bus_addr_i */
+#define BB_BUS_PLANT_ADDR_BITS  9      /* a plant core's, per core */
 
 /* Field layout. */
 #define BB_CTX_RLO              0x1u   /* DISPATCH_CTX */

@@ -74,6 +74,9 @@ module bit_proc #(
   input  wire [$clog2(MarkerBits)-1:0] copy_addr_i,   // read and write address
   input  wire                         copy_wdata_i,
   output wire                         copy_rdata_o,   // M[copy_addr_i] of the last clock
+  // marker peek: M[m_peek_addr_i] now, without a clock (simulation hosts only)
+  input  wire [$clog2(MarkerBits)-1:0] m_peek_addr_i,
+  output wire                         m_peek_o,
   // observation (waveforms, test benches)
   output reg                          rlo_o,
   output wire                         rlo_now_o,      // the RLO execute works with
@@ -114,13 +117,18 @@ module bit_proc #(
   reg  [PcW-1:0] e_pc_q;
   reg            e_valid_q;
 
+  // verilator lint_off UNUSEDSIGNAL
+  wire [31:0]    unused_prog_peek;  // no host looks at the program
+  // verilator lint_on UNUSEDSIGNAL
   sync_ram #(.Words(ProgWords), .Width(32)) u_prog_ram (
     .clk_i  (clk_i),
     .we_i   (prog_we_i),
     .waddr_i(prog_waddr_i),
     .wdata_i(prog_wdata_i),
     .raddr_i(fetch_addr),
-    .rdata_o(d_instr)
+    .rdata_o(d_instr),
+    .peek_addr_i({PcW{1'b0}}),
+    .peek_data_o(unused_prog_peek)
   );
 
   // ---------------------------------------------------------------- execute decode
@@ -214,7 +222,9 @@ module bit_proc #(
     .waddr_i(m_waddr),
     .wdata_i(m_wdata),
     .raddr_i(m_raddr),
-    .rdata_o(m_rdata)
+    .rdata_o(m_rdata),
+    .peek_addr_i(m_peek_addr_i),
+    .peek_data_o(m_peek_o)
   );
 
   always @(posedge clk_i or negedge rst_ni) begin

@@ -62,7 +62,19 @@ module bitbyte_cpu #(
   input  wire [$clog2(MarkerBytes*8)-1:0] mcopy_addr_i,
   input  wire                         mcopy_wdata_i,
   output wire                         mcopy_rdata_o,
-  output wire                         byte_next_o        // STATUS.NEXT (harnesses wait on it)
+  output wire                         byte_next_o,       // STATUS.NEXT (harnesses wait on it)
+  // observation (dbg_*): what the simulation hosts trace besides the ports above, so
+  // that they read the design through its ports only. No logic uses them; the FPGA
+  // wrapper (synth/gen_wrapper.py) ties dbg_* inputs to 0 and leaves the outputs open.
+  output wire [InBytes*8-1:0]         dbg_pii_o,         // I: the input image of the last latch
+  output wire [InBytes*8-1:0]         dbg_rise_o,        // IR: rising edges at that latch
+  output wire [InBytes*8-1:0]         dbg_fall_o,        // IF: falling edges
+  output wire [StatusBits-1:0]        dbg_timer_status_o,    // T n as the bit side reads it
+  output wire [StatusBits-1:0]        dbg_counter_status_o,  // C n
+  output wire [31:0]                  dbg_queue_overflows_o, // as bus QUEUE_OVERFLOWS
+  output wire [31:0]                  dbg_queue_underflows_o, // as bus QUEUE_UNDERFLOWS
+  input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,  // a marker bit M to look at ...
+  output wire                         dbg_m_o            // ... its value now, without a clock
 );
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
@@ -99,6 +111,15 @@ module bitbyte_cpu #(
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
   wire [31:0] byte_flags, queue_overflows, queue_underflows;
   assign byte_next_o = next;
+
+  // ---------------------------------------------------------------- observation
+  assign dbg_pii_o              = pii;
+  assign dbg_rise_o             = rise;
+  assign dbg_fall_o             = fall;
+  assign dbg_timer_status_o     = timer_status;
+  assign dbg_counter_status_o   = counter_status;
+  assign dbg_queue_overflows_o  = queue_overflows;
+  assign dbg_queue_underflows_o = queue_underflows;
 
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
@@ -199,7 +220,9 @@ module bitbyte_cpu #(
     .rlo_o           (rlo),
     .rlo_now_o       (rlo_now),
     .exec_pc_o       (exec_pc),
-    .exec_valid_o    (exec_valid)
+    .exec_valid_o    (exec_valid),
+    .m_peek_addr_i   (dbg_m_addr_i),
+    .m_peek_o        (dbg_m_o)
   );
 
   // The condition exchange (Fig. 11 flip-flops, Fig. 16 queues or the Fig. 17 marker
@@ -335,7 +358,7 @@ module bitbyte_cpu #(
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags, pii, rise, fall};
+  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

@@ -117,13 +117,18 @@ module copy_engine #(
   reg [Cores-1:0] dirty_q;             // ping-pong: writers that began overwriting them
   wire [31:0]    entry;
 
+  // verilator lint_off UNUSEDSIGNAL
+  wire [31:0]    unused_plan_peek;  // no host looks at the plan
+  // verilator lint_on UNUSEDSIGNAL
   sync_ram #(.Words(PlanWords), .Width(32)) u_plan_ram (
     .clk_i  (clk_i),
     .we_i   (plan_we_i),
     .waddr_i(plan_waddr_i),
     .wdata_i(plan_wdata_i),
     .raddr_i(base_q + issued_q[PaW-1:0]),
-    .rdata_o(entry)
+    .rdata_o(entry),
+    .peek_addr_i({PaW{1'b0}}),
+    .peek_data_o(unused_plan_peek)
   );
 
   wire fetch = run_i && (issued_q != len_q);

@@ -77,7 +77,17 @@ module plc_core #(
   output wire                          overrun_o,
   output wire                          copy_fail_o,
   output wire [31:0]                   overruns_o,
-  output wire [31:0]                   skips_o
+  output wire [31:0]                   skips_o,
+  // observation (dbg_*, as bitbyte_cpu's): no logic uses them
+  output wire [InBytes*8-1:0]          dbg_pii_o,     // I, IR, IF of the last latch
+  output wire [InBytes*8-1:0]          dbg_rise_o,
+  output wire [InBytes*8-1:0]          dbg_fall_o,
+  output wire [63:0]                   dbg_timer_status_o,   // T n (bitbyte_cpu StatusBits)
+  output wire [63:0]                   dbg_counter_status_o, // C n
+  input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,   // M bit to look at ...
+  output wire                          dbg_m_o,       // ... its value now, without a clock
+  input  wire [$clog2(MwWords)-1:0]    dbg_mw_addr_i, // MW word to look at ...
+  output wire [15:0]                   dbg_mw_o       // ... its value now, without a clock
 );
   localparam integer MarkerBits = MarkerBytes * 8;
   localparam integer WaW        = $clog2(MwWords);
@@ -94,9 +104,9 @@ module plc_core #(
   wire [15:0] w_wdata, w_rdata;
   wire [31:0] cpu_rdata;
   wire        cpu_bus_ready;
-  // read by the harness from inside (waveforms, summary), not needed by the plant
+  // for the waveforms, not needed by the plant
   // verilator lint_off UNUSEDSIGNAL
-  wire [31:0] scan_cycles_max, stalls_bit, stalls_byte;
+  wire [31:0] scan_cycles_max, stalls_bit, stalls_byte, queue_overflows, queue_underflows;
   // verilator lint_on UNUSEDSIGNAL
 
   // ---------------------------------------------------------------- MW word RAM
@@ -115,7 +125,9 @@ module plc_core #(
     .waddr_i(clearing ? clear_q[WaW-1:0] : copy_en ? w_addr : bus_w_addr),
     .wdata_i(clearing ? 16'd0 : copy_en ? w_wdata : bus_wdata_i[15:0]),
     .raddr_i(copy_en ? w_addr : bus_w_addr),
-    .rdata_o(w_rdata)
+    .rdata_o(w_rdata),
+    .peek_addr_i(dbg_mw_addr_i),
+    .peek_data_o(dbg_mw_o)
   );
 
   always @(posedge clk_i or negedge rst_ni) begin
@@ -176,7 +188,16 @@ module plc_core #(
     .mcopy_addr_i         (m_addr),
     .mcopy_wdata_i        (m_wdata),
     .mcopy_rdata_o        (m_rdata),
-    .byte_next_o          (byte_next_o)
+    .byte_next_o          (byte_next_o),
+    .dbg_pii_o            (dbg_pii_o),
+    .dbg_rise_o           (dbg_rise_o),
+    .dbg_fall_o           (dbg_fall_o),
+    .dbg_timer_status_o   (dbg_timer_status_o),
+    .dbg_counter_status_o (dbg_counter_status_o),
+    .dbg_queue_overflows_o (queue_overflows),
+    .dbg_queue_underflows_o(queue_underflows),
+    .dbg_m_addr_i         (dbg_m_addr_i),
+    .dbg_m_o              (dbg_m_o)
   );
 
   // ---------------------------------------------------------------- the sequencer

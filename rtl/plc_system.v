@@ -63,7 +63,20 @@ module plc_system #(
   output wire [Cores*32-1:0]               overruns_o,
   output wire [Cores*32-1:0]               skips_o,
   output wire                              locked_o,         // the semaphore
-  output wire [$clog2(Cores)-1:0]          lock_owner_o
+  output wire [$clog2(Cores)-1:0]          lock_owner_o,
+  // observation per core (plc_core's dbg_*: what the simulation hosts trace besides
+  // the ports above; no logic uses them). Core c's marker and word addresses select
+  // what its dbg_m_o / dbg_mw_o show, without a clock (plc_core has 2048 M bits and
+  // 256 MW words).
+  output wire [Cores*InBytes*8-1:0]        dbg_pii_o,        // I
+  output wire [Cores*InBytes*8-1:0]        dbg_rise_o,       // IR
+  output wire [Cores*InBytes*8-1:0]        dbg_fall_o,       // IF
+  output wire [Cores*64-1:0]               dbg_timer_status_o,   // T n
+  output wire [Cores*64-1:0]               dbg_counter_status_o, // C n
+  input  wire [Cores*11-1:0]               dbg_m_addr_i,
+  output wire [Cores-1:0]                  dbg_m_o,
+  input  wire [Cores*8-1:0]                dbg_mw_addr_i,
+  output wire [Cores*16-1:0]               dbg_mw_o
 );
   localparam integer PaW = $clog2(PlanWords);
   localparam integer AW  = $clog2(SharedWords) + 1;
@@ -188,7 +201,16 @@ module plc_system #(
         .overrun_o       (overrun_o[c]),
         .copy_fail_o     (copy_fail_o[c]),
         .overruns_o      (overruns_o[c*32 +: 32]),
-        .skips_o         (skips_o[c*32 +: 32])
+        .skips_o         (skips_o[c*32 +: 32]),
+        .dbg_pii_o           (dbg_pii_o[c*InBytes*8 +: InBytes*8]),
+        .dbg_rise_o          (dbg_rise_o[c*InBytes*8 +: InBytes*8]),
+        .dbg_fall_o          (dbg_fall_o[c*InBytes*8 +: InBytes*8]),
+        .dbg_timer_status_o  (dbg_timer_status_o[c*64 +: 64]),
+        .dbg_counter_status_o(dbg_counter_status_o[c*64 +: 64]),
+        .dbg_m_addr_i        (dbg_m_addr_i[c*11 +: 11]),
+        .dbg_m_o             (dbg_m_o[c]),
+        .dbg_mw_addr_i       (dbg_mw_addr_i[c*8 +: 8]),
+        .dbg_mw_o            (dbg_mw_o[c*16 +: 16])
       );
     end
   endgenerate

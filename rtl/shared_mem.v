@@ -48,13 +48,18 @@ module shared_mem #(
   generate
     for (w = 0; w < Cores; w = w + 1) begin : g_writer
       for (r = 0; r < Cores; r = r + 1) begin : g_reader
+        // verilator lint_off UNUSEDSIGNAL
+        wire [31:0] unused_peek;  // the hosts see shared words through the cores
+        // verilator lint_on UNUSEDSIGNAL
         sync_ram #(.Words(2 * SharedWords), .Width(32)) u_bank (
           .clk_i  (clk_i),
           .we_i   (clearing || we_i[w]),
           .waddr_i(clearing ? clear_q[AW-1:0] : waddr_i[w*AW +: AW]),
           .wdata_i(clearing ? 32'd0 : wdata_i[w*32 +: 32]),
           .raddr_i(raddr_i[r*AW +: AW]),
-          .rdata_o(bank_rdata[(w*Cores + r)*32 +: 32])
+          .rdata_o(bank_rdata[(w*Cores + r)*32 +: 32]),
+          .peek_addr_i({AW{1'b0}}),
+          .peek_data_o(unused_peek)
         );
       end
     end

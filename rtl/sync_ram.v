@@ -2,6 +2,9 @@
 `include "param_check.vh"
 // One write port and one synchronous read port: the shape of an FPGA block RAM, so
 // that Yosys maps program and marker memory onto BRAM instead of flip-flops.
+// The peek port is a look at one word without a clock, for the simulation hosts'
+// observation ports (dbg_*); no logic uses it, and where its output is left open (as
+// the synthesis wrapper leaves dbg_* open) Yosys removes it and the RAM stays a BRAM.
 // A read of the address written in the same clock returns the old word; the bit
 // processor forwards around that itself.
 module sync_ram #(
@@ -13,7 +16,9 @@ module sync_ram #(
   input  wire [$clog2(Words)-1:0] waddr_i,
   input  wire [Width-1:0]         wdata_i,
   input  wire [$clog2(Words)-1:0] raddr_i,
-  output reg  [Width-1:0]         rdata_o
+  output reg  [Width-1:0]         rdata_o,
+  input  wire [$clog2(Words)-1:0] peek_addr_i,
+  output wire [Width-1:0]         peek_data_o
 );
   `PARAM_CHECK(g_bad_words, Words < 2,
                "sync_ram: Words must be at least 2 (an address needs a bit)")
@@ -30,5 +35,6 @@ module sync_ram #(
     if (we_i) mem[waddr_i] <= wdata_i;
     rdata_o <= mem[raddr_i];
   end
+  assign peek_data_o = mem[peek_addr_i];
 endmodule
 `default_nettype wire

@@ -10,8 +10,11 @@
 // clock 0 is the PII latch of scan 0, pins for clock n are set before the rising edge
 // that ends clock n, and a scan's end_clock is the number of clocks since clock 0
 // when scan_done_o shows it.
+//
+// The model is observed through its ports only (rtl/bitbyte_cpu.v; the dbg_* ports
+// carry what the trace needs beyond the functional ones) and evaluated through
+// Verilator's public API (eval()): no Verilator internals, no public signals.
 #include "Vbitbyte_cpu.h"
-#include "Vbitbyte_cpu___024root.h"  // internal signals, made public by harness.vlt
 #include "verilated.h"
 
 extern "C" {
@@ -37,13 +40,13 @@ static const char* const kWaveExt = "";
 #include "harness_common.h"
 
 // ------------------------------------------------------------------ the DUT
-// Verilator's eval() wraps the model's evaluation in runtime housekeeping (deferred
-// deletes, the cross-thread message queue) that takes two mutexes per call: measured
-// at ~45 % of the run time of this small design, which uses neither.  So once the
-// model is initialised and when no waves are written (the wrapper also flags activity
-// for the tracer) the hot loop calls the generated evaluation function directly.
-// Build with -DHARNESS_PLAIN_EVAL to always use eval().
-void Vbitbyte_cpu___024root___eval(Vbitbyte_cpu___024root* vlSelf);
+// The port widths the harness relies on, checked against the generated build sizes.
+static_assert(sizeof(Vbitbyte_cpu::in_pins_i) * 8 == kInPins, "in_pins_i: InBytes * 8");
+static_assert(sizeof(Vbitbyte_cpu::dbg_pii_o) == sizeof(Vbitbyte_cpu::in_pins_i), "dbg_pii_o");
+static_assert(sizeof(Vbitbyte_cpu::in_words_i) * 8 == 16 * kInWords, "in_words_i: InWords * 16");
+static_assert(sizeof(Vbitbyte_cpu::out_words_o) * 8 == 16 * BB_HW_OUT_WORDS, "out_words_o");
+static_assert(sizeof(Vbitbyte_cpu::out_pins_o) * 8 == 8 * BB_HW_OUT_BYTES, "out_pins_o");
+static_assert(sizeof(Vbitbyte_cpu::dbg_timer_status_o) * 8 == BB_HW_STATUS_BITS, "StatusBits");
 
 // One clock = falling half, rising half.  Waves get both halves.
 struct Dut {
@@ -51,14 +54,8 @@ struct Dut {
   std::unique_ptr<Vbitbyte_cpu> top;
   std::unique_ptr<WaveWriter> wave;
   uint64_t t_ps = 0, half_ps = 5000, period_ps = 10000;  // waveform time, 1 ps units
-  bool direct = false;                                    // bypass eval()'s housekeeping
 
-  void eval() {
-#ifndef HARNESS_PLAIN_EVAL
-    if (direct) { Vbitbyte_cpu___024root___eval(top->rootp); return; }
-#endif
-    top->eval();
-  }
+  void eval() { top->eval(); }
   void tick() {
     top->clk_i = 0;
     eval();
@@ -74,20 +71,19 @@ struct Dut {
 struct ColSrc {
   enum Kind { kBit, kMarker, kWord16, kMw, kZero } kind;
   const uint32_t* word;     // kBit: the 32-bit word of a packed vector; kWord16: vector base
-  const uint8_t* byte;      // kMarker
   uint32_t mask;            // kBit
-  uint32_t index;           // kWord16: word number; kMw: MW n
+  uint32_t index;           // kWord16: word number; kMw: MW n; kMarker: M bit number
 };
 
 template <class W> static ColSrc wide_bit(const W& v, uint32_t idx, const Col& c) {
   const uint32_t bits = sizeof(W) * 8;
   if (idx >= bits) die("column %s: index %u out of range (0..%u)", c.header.c_str(), idx, bits - 1);
-  return {ColSrc::kBit, reinterpret_cast<const uint32_t*>(&v) + idx / 32, nullptr, 1u << (idx % 32), 0};
+  return {ColSrc::kBit, reinterpret_cast<const uint32_t*>(&v) + idx / 32, 1u << (idx % 32), 0};
 }
 
 template <class W> static ColSrc word16(const W& v, uint32_t idx, const Col& c) {
   if (idx >= sizeof(W) / 2) die("column %s: word %u out of range", c.header.c_str(), idx);
-  return {ColSrc::kWord16, reinterpret_cast<const uint32_t*>(&v), nullptr, 0, idx};
+  return {ColSrc::kWord16, reinterpret_cast<const uint32_t*>(&v), 0, idx};
 }
 
 // ------------------------------------------------------------------ the run
@@ -115,10 +111,11 @@ struct Run {
     const Stim* st = nullptr;
     while (next_stim < rf->stim.size() && rf->stim[next_stim].key <= key) st = &rf->stim[next_stim++];
     if (!st) return;
-    std::memcpy(&top->in_pins_i, st->pins, 16);
+    static_assert(sizeof st->pins == sizeof top->in_pins_i, "a stimulus row holds every pin");
+    std::memcpy(&top->in_pins_i, st->pins, sizeof top->in_pins_i);
     if (st->has_words) {
       uint32_t* w = reinterpret_cast<uint32_t*>(&top->in_words_i);
-      for (unsigned i = 0; i < 16; ++i) {
+      for (unsigned i = 0; i < kInWords; ++i) {
         w[i / 2] &= ~(0xFFFFu << (16 * (i % 2)));
         w[i / 2] |= uint32_t(uint16_t(st->words[i])) << (16 * (i % 2));
       }
@@ -135,10 +132,15 @@ struct Run {
     d->eval();
     if (d->wave) d->wave->dump(d->t_ps + d->half_ps);
   }
-  uint32_t value(const ColSrc& c) const {
+  uint32_t value(const ColSrc& c) {
     switch (c.kind) {
       case ColSrc::kBit: return (*c.word & c.mask) ? 1 : 0;
-      case ColSrc::kMarker: return *c.byte & 1;
+      case ColSrc::kMarker:  // M[n] through the look-up port: settle it when n is new
+        if (top->dbg_m_addr_i != c.index) {
+          top->dbg_m_addr_i = c.index;
+          top->eval();  // no clock edge: combinational only
+        }
+        return top->dbg_m_o & 1;
       case ColSrc::kWord16: return (c.word[c.index / 2] >> (16 * (c.index % 2))) & 0xFFFF;
       case ColSrc::kMw: return uint16_t(bb_mw(bb, c.index));
       default: return 0;
@@ -183,7 +185,7 @@ struct Run {
     inputs_for_clock();
   }
   void idle_clock() { fall(); end_clock(); }
-  bool next() const { return top->rootp->bitbyte_cpu__DOT__next; }
+  bool next() const { return top->byte_next_o; }
 };
 
 // ------------------------------------------------------------------ the HAL (hal.h)
@@ -243,10 +245,7 @@ int main(int argc, char** argv) {
   if (!rf.waves.empty()) d.ctx->traceEverOn(true);  // before the model is built
   d.top.reset(new Vbitbyte_cpu{d.ctx.get(), "TOP"});
   Vbitbyte_cpu& top = *d.top;
-  auto* rp = top.rootp;
-  auto& marker = rp->bitbyte_cpu__DOT__u_bit_proc__DOT__u_marker_ram__DOT__mem;
-  const uint32_t prog_words = sizeof(rp->bitbyte_cpu__DOT__u_bit_proc__DOT__u_prog_ram__DOT__mem) / 4;
-  static_assert(sizeof(top.in_pins_i) == 16, "harness assumes 128 input pins (InBytes = 16)");
+  const uint32_t prog_words = BB_HW_PROG_WORDS;
 
   // The byte processor: firmware state, cost table, constant pool.
   static bb_state bb;
@@ -279,21 +278,21 @@ int main(int argc, char** argv) {
     auto& srcs = run.srcs;
     if (c.kind == "q") srcs.push_back(wide_bit(top.out_pins_o, c.index, c));
     else if (c.kind == "pi") srcs.push_back(wide_bit(top.in_pins_i, c.index, c));
-    else if (c.kind == "i") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__pii_o, c.index, c));
-    else if (c.kind == "ir") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__rise_o, c.index, c));
-    else if (c.kind == "if") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_input_unit__DOT__fall_o, c.index, c));
-    else if (c.kind == "t") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_tc_status__DOT__timer_status_o, c.index, c));
-    else if (c.kind == "c") srcs.push_back(wide_bit(rp->bitbyte_cpu__DOT__u_tc_status__DOT__counter_status_o, c.index, c));
+    else if (c.kind == "i") srcs.push_back(wide_bit(top.dbg_pii_o, c.index, c));
+    else if (c.kind == "ir") srcs.push_back(wide_bit(top.dbg_rise_o, c.index, c));
+    else if (c.kind == "if") srcs.push_back(wide_bit(top.dbg_fall_o, c.index, c));
+    else if (c.kind == "t") srcs.push_back(wide_bit(top.dbg_timer_status_o, c.index, c));
+    else if (c.kind == "c") srcs.push_back(wide_bit(top.dbg_counter_status_o, c.index, c));
     else if (c.kind == "qw") srcs.push_back(word16(top.out_words_o, c.index, c));
     else if (c.kind == "iw") srcs.push_back(word16(top.in_words_i, c.index, c));
     else if (c.kind == "mw") {
       if (c.index >= BB_NUM_MW) die("column %s: MW %u out of range", c.header.c_str(), c.index);
-      srcs.push_back({ColSrc::kMw, nullptr, nullptr, 0, c.index});
+      srcs.push_back({ColSrc::kMw, nullptr, 0, c.index});
     } else if (c.kind == "m") {
-      const uint32_t nm = sizeof(marker) / sizeof(marker[0]);
+      const uint32_t nm = BB_HW_MARKER_BYTES * 8;
       if (c.index >= nm) die("column %s: marker %u out of range (0..%u)", c.header.c_str(), c.index, nm - 1);
-      srcs.push_back({ColSrc::kMarker, nullptr, &marker[c.index], 0, 0});
-    } else srcs.push_back({ColSrc::kZero, nullptr, nullptr, 0, 0});
+      srcs.push_back({ColSrc::kMarker, nullptr, 0, c.index});
+    } else srcs.push_back({ColSrc::kZero, nullptr, 0, 0});
   }
 
   // Waveform: 1 ps resolution, real clock period, time 0 = start of reset.
@@ -373,7 +372,6 @@ int main(int argc, char** argv) {
   run.until = rf.until_clock < 0 ? UINT64_MAX : uint64_t(rf.until_clock);
   if (run.by_scan) run.apply_stim(0);
   run.inputs_for_clock();
-  d.direct = !d.wave;  // the model is initialised by now (first eval() done)
   const auto wall0 = std::chrono::steady_clock::now();
   if (setjmp(run.stop) == 0) {
     // the firmware's own main loop, until Run::end_clock() jumps back here
@@ -417,7 +415,7 @@ int main(int argc, char** argv) {
   if (rf.free_running)
     std::printf("byte side        %llu scans (free-running)\n", (unsigned long long)bb_byte_scans(&bb));
   if (rf.exchange == 2) {
-    const uint32_t ovf = rp->bitbyte_cpu__DOT__queue_overflows, unf = rp->bitbyte_cpu__DOT__queue_underflows;
+    const uint32_t ovf = top.dbg_queue_overflows_o, unf = top.dbg_queue_underflows_o;
     std::printf("queue losses     overflows to-byte %u to-bit %u, underflows to-byte %u to-bit %u\n",
                 ovf & 0xFFFF, ovf >> 16, unf & 0xFFFF, unf >> 16);
   }

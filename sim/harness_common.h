@@ -85,11 +85,18 @@ static char* put_t_us(char* p, uint64_t end_clock, uint64_t clock_hz) {
 }
 
 // ------------------------------------------------------------------ run file
+// One CPU's (one plant core's) process inputs: the generated build sizes (bb_isa.h);
+// each harness checks its model's ports against them.
+constexpr unsigned kInPins = BB_HW_IN_BYTES * 8;                   // I 0.0 .. InBytes-1.7
+constexpr unsigned kInPinWords = (kInPins + 31) / 32;
+constexpr unsigned kInWords = BB_HW_IN_WORDS;                      // IW 0 .. InWords-1
+static_assert(kInPins % 32 == 0, "the models store the pins in whole 32-bit words");
+
 struct Stim {                                                      // one stimulus row
   uint64_t key;
-  uint32_t pins[4];                                                // 128 pins, word 0 = I0.0..I3.7
+  uint32_t pins[kInPinWords];                                      // word 0 = I0.0..I3.7
   bool has_words;
-  int16_t words[16];                                               // IW0..IW15
+  int16_t words[kInWords];                                         // IW0..
 };
 struct Col  { std::string header, kind; uint32_t index; };
 
@@ -121,16 +128,16 @@ static uint64_t parse_u64(const std::string& s, const char* what) {
   return v;
 }
 
-// Hex pin vector, most significant digit first, any length (leading digits beyond bit
-// 127 must be 0).
-static void parse_pins(const std::string& s, uint32_t pins[4]) {
-  std::memset(pins, 0, 16);
+// Hex pin vector, most significant digit first, any length (leading digits beyond the
+// last pin must be 0).
+static void parse_pins(const std::string& s, uint32_t (&pins)[kInPinWords]) {
+  std::memset(pins, 0, sizeof pins);
   unsigned bit = 0;
   for (auto it = s.rbegin(); it != s.rend(); ++it) {
     if (*it == '_') continue;
     const int d = hex_digit(*it);
     if (d < 0) die("bad hex pin vector '%s'", s.c_str());
-    if (bit >= 128) { if (d) die("pin vector '%s' wider than 128 bits", s.c_str()); continue; }
+    if (bit >= kInPins) { if (d) die("pin vector '%s' wider than %u bits", s.c_str(), kInPins); continue; }
     pins[bit / 32] |= uint32_t(d) << (bit % 32);
     bit += 4;
   }
@@ -156,14 +163,15 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
     if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");
     rf.stim_kind = w[1];
   } else if (k == "stim") {
-    // stim KEY HEXPINS [IW0 .. IW15]: the input words, signed decimal, all 16
-    if (w.size() != 3 && w.size() != 19) die("'stim' takes KEY HEXPINS [16 input words]");
+    // stim KEY HEXPINS [IW0 .. IW15]: the input words, signed decimal, all of them
+    if (w.size() != 3 && w.size() != 3 + kInWords)
+      die("'stim' takes KEY HEXPINS [%u input words]", kInWords);
     Stim s{};
     s.key = parse_u64(w[1], "stim key");
     if (!rf.stim.empty() && s.key < rf.stim.back().key) die("stim keys must be ascending");
     parse_pins(w[2], s.pins);
-    s.has_words = w.size() == 19;
-    for (size_t i = 0; s.has_words && i < 16; ++i) {
+    s.has_words = w.size() == 3 + kInWords;
+    for (size_t i = 0; s.has_words && i < kInWords; ++i) {
       const std::string& t = w[3 + i];
       long v = std::strtol(t.c_str(), nullptr, 10);
       if (v < -32768 || v > 65535) die("input word '%s' out of range", t.c_str());

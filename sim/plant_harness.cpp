@@ -10,12 +10,14 @@
 // asks for the clock (a bus access, hal_spend, hal_wait_dispatch), the bus inputs of
 // all cores are applied, the clock-low half is evaluated (bus read data), the rising
 // edge follows, finished postcycles write their trace rows and then apply the next
-// scan's scan-keyed inputs. Every core's firmware state has its core as its HAL
-// context (bb_set_hal_ctx), so the HAL needs no "current core" global.
+// scan's scan-keyed inputs.
+//
+// As harness.cpp: the model is observed through its ports only (plc_system's dbg_*
+// ports carry what the trace needs beyond the functional ones), evaluated with eval().
+// Every core's firmware state has its core as its HAL context (bb_set_hal_ctx), so
+// the HAL needs no "current core" global.
 #include "Vplc_system.h"
-#include "Vplc_system___024root.h"
 #include "verilated.h"
-#include "verilated_syms.h"
 
 extern "C" {
 #include "byteproc.h"
@@ -32,10 +34,6 @@ typedef VerilatedVcdC WaveWriter;
 struct WaveWriter { void dump(uint64_t) {} void close() {} };
 #endif
 #include <ucontext.h>
-
-// As in harness.cpp: without waves, call the model's evaluation directly, skipping the
-// wrapper's per-call housekeeping (two mutexes per eval).
-void Vplc_system___024root___eval(Vplc_system___024root* vlSelf);
 
 #include "harness_common.h"
 
@@ -144,7 +142,6 @@ struct Core {
   uint32_t rdata = 0;
   // trace and statistics
   std::FILE* trace = nullptr;
-  std::vector<const uint8_t*> col_base;  // per column: storage, or nullptr (port / zero)
   uint64_t scans = 0, rows = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
   uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0, skips = 0;
   unsigned copy_fail = 0;          // at the last traced scan
@@ -216,17 +213,30 @@ static void core_main(int idx) {
   bb_run(&c.bb, c.cf->rf.parallel ? BB_MODE_PARALLEL : BB_MODE_SERIAL);
 }
 
-// ------------------------------------------------------------------ trace columns
-// A column reads core-internal state through Verilator's scope table (harness.vlt
-// makes those signals public), so that one binary serves any core count.
-static const uint8_t* find_var(VerilatedContext* ctx, unsigned core, const std::string& path,
-                               const char* var) {
-  const std::string scope = "TOP.plc_system.g_core[" + std::to_string(core) + "].u_core." + path;
-  const VerilatedScope* s = ctx->scopeFind(scope.c_str());
-  if (!s) die("no scope %s (harness built without it?)", scope.c_str());
-  const VerilatedVar* v = s->varFind(var);
-  if (!v) die("no variable %s in %s", var, scope.c_str());
-  return reinterpret_cast<const uint8_t*>(v->datap());
+// ------------------------------------------------------------------ sizes
+// Per-core field widths of the flattened ports: the generated build sizes (bb_isa.h,
+// bus_map.h), checked against the model's port sizes in main().
+static constexpr unsigned log2u(unsigned v) { return v > 1 ? 1 + log2u(v / 2) : 0; }
+constexpr unsigned kOutPins = BB_HW_OUT_BYTES * 8;
+constexpr unsigned kWordBits = 16 * kInWords;                  // in_words_i per core
+constexpr unsigned kMarkerBits = BB_HW_MARKER_BYTES * 8;
+constexpr unsigned kMAddrBits = log2u(kMarkerBits);            // dbg_m_addr_i per core
+constexpr unsigned kMwAddrBits = log2u(BB_HW_MW_WORDS);        // dbg_mw_addr_i per core
+constexpr unsigned kBusAddrBits = BB_BUS_PLANT_ADDR_BITS;      // bus_addr_i per core
+constexpr unsigned kPlanAddrBits = log2u(BB_HW_PLAN_WORDS);    // post_base_i per core
+static_assert((1u << kMAddrBits) == kMarkerBits && (1u << kMwAddrBits) == BB_HW_MW_WORDS &&
+              (1u << kPlanAddrBits) == BB_HW_PLAN_WORDS, "powers of two");
+static_assert(16 * BB_HW_OUT_WORDS == kWordBits, "out_words_o per core as in_words_i");
+
+// The elements a trace column kind can address (run-file `col`).
+static unsigned col_range(const std::string& kind) {
+  if (kind == "q") return kOutPins;
+  if (kind == "i" || kind == "pi" || kind == "ir" || kind == "if") return kInPins;
+  if (kind == "qw" || kind == "iw") return kInWords;
+  if (kind == "t" || kind == "c") return BB_HW_STATUS_BITS;
+  if (kind == "m") return kMarkerBits;
+  if (kind == "mw") return BB_HW_MW_WORDS;
+  return ~0u;  // zero
 }
 
 int main(int argc, char** argv) {
@@ -240,14 +250,18 @@ int main(int argc, char** argv) {
   const unsigned hw_cores = unsigned(sizeof(top.scan_count_o) * 8 / 32);
   if (pf.cores.size() != hw_cores)
     die("this harness is built for %u cores, the run file has %zu", hw_cores, pf.cores.size());
+  if (sizeof(top.in_pins_i) * 8 != hw_cores * kInPins || sizeof(top.dbg_pii_o) != sizeof(top.in_pins_i) ||
+      sizeof(top.out_pins_o) * 8 != hw_cores * kOutPins ||
+      sizeof(top.in_words_i) * 8 != hw_cores * kWordBits ||
+      sizeof(top.out_words_o) * 8 != hw_cores * kWordBits ||
+      sizeof(top.dbg_timer_status_o) * 8 != hw_cores * BB_HW_STATUS_BITS)
+    die("the model's port widths differ from the build sizes of bb_isa.h (regenerate?)");
 
   std::unique_ptr<WaveWriter> wave;
   uint64_t t_ps = 0, period_ps = 10000;
-  bool direct = false;
   auto tick_half = [&](int clk) {
     top.clk_i = clk;
-    if (direct) Vplc_system___024root___eval(top.rootp);
-    else top.eval();
+    top.eval();
     if (wave) wave->dump(t_ps + (clk ? period_ps : period_ps / 2));
     if (clk) t_ps += period_ps;
   };
@@ -266,10 +280,9 @@ int main(int argc, char** argv) {
   }
 
   // Plan address width: post_len_i holds Cores fields of (aw + 1) bits.
-  unsigned aw = 0;
-  while ((1u << aw) < 1024u) ++aw;  // PlanWords default (plc_system.v)
-  const unsigned plan_words = 1u << aw;
-  const unsigned prog_words = 4096;
+  const unsigned aw = kPlanAddrBits;
+  const unsigned plan_words = BB_HW_PLAN_WORDS;
+  const unsigned prog_words = BB_HW_PROG_WORDS;
 
   // ---- reset, programs, plans, configuration
   top.rst_ni = 0;
@@ -312,7 +325,7 @@ int main(int argc, char** argv) {
     tick();
   }
   for (unsigned c = 0; c < hw_cores; ++c) {  // TICK_DIV on every core, before the start
-    set_field(top.bus_addr_i, 9 * c, 9, BB_BUS_TICK_DIV);
+    set_field(top.bus_addr_i, kBusAddrBits * c, kBusAddrBits, BB_BUS_TICK_DIV);
     set_field(top.bus_wdata_i, 32 * c, 32, pf.clock_hz / 1000);
     set_field(top.bus_we_i, c, 1, 1);
   }
@@ -348,17 +361,8 @@ int main(int argc, char** argv) {
     k.ctx.uc_stack.ss_size = k.stack.size();
     k.ctx.uc_link = &g_sched;
     makecontext(&k.ctx, reinterpret_cast<void (*)()>(core_main), 1, int(c));
-    for (const Col& col : rf.cols) {
-      const uint8_t* base = nullptr;
-      if (col.kind == "i") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "pii_o");
-      else if (col.kind == "ir") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "rise_o");
-      else if (col.kind == "if") base = find_var(ctx.get(), c, "u_cpu.u_input_unit", "fall_o");
-      else if (col.kind == "m") base = find_var(ctx.get(), c, "u_cpu.u_bit_proc.u_marker_ram", "mem");
-      else if (col.kind == "mw") base = find_var(ctx.get(), c, "u_mw_ram", "mem");
-      else if (col.kind == "t") base = find_var(ctx.get(), c, "u_cpu.u_tc_status", "timer_status_o");
-      else if (col.kind == "c") base = find_var(ctx.get(), c, "u_cpu.u_tc_status", "counter_status_o");
-      k.col_base.push_back(base);
-    }
+    for (const Col& col : rf.cols)  // each reads a field of core c's slice of a port
+      if (col.index >= col_range(col.kind)) die("column %s: index out of range", col.header.c_str());
     if (!rf.trace.empty()) {
       k.trace = std::fopen(rf.trace.c_str(), "w");
       if (!k.trace) die("cannot write trace %s", rf.trace.c_str());
@@ -367,27 +371,44 @@ int main(int argc, char** argv) {
       std::fputc('\n', k.trace);
     }
   }
-  const unsigned in_bits = 128, out_bits = 128;
   auto apply_stim = [&](Core& k, uint64_t key) {  // the last row with KEY <= key, if due
     const RunFile& rf = k.cf->rf;
     const Stim* st = nullptr;
     while (k.next_stim < rf.stim.size() && rf.stim[k.next_stim].key <= key) st = &rf.stim[k.next_stim++];
     if (!st) return;
-    for (unsigned i = 0; i < 4; ++i) set_field(top.in_pins_i, in_bits * k.idx + 32 * i, 32, st->pins[i]);
+    for (unsigned i = 0; i < kInPinWords; ++i)
+      set_field(top.in_pins_i, kInPins * k.idx + 32 * i, 32, st->pins[i]);
     if (st->has_words)
-      for (unsigned i = 0; i < 16; ++i) set_field(top.in_words_i, 256 * k.idx + 16 * i, 16, uint16_t(st->words[i]));
+      for (unsigned i = 0; i < kInWords; ++i)
+        set_field(top.in_words_i, kWordBits * k.idx + 16 * i, 16, uint16_t(st->words[i]));
+  };
+  // M / MW through core c's look-up ports: a new address is settled by an eval without
+  // a clock edge (combinational only)
+  auto look = [&](auto& addr_port, unsigned width, unsigned c, unsigned n) {
+    if (get_field(addr_port, width * c, width) == n) return;
+    set_field(addr_port, width * c, width, n);
+    top.eval();
   };
   auto col_value = [&](Core& k, size_t i) -> int {
     const Col& col = k.cf->rf.cols[i];
-    const uint8_t* b = k.col_base[i];
     const unsigned c = k.idx, n = col.index;
-    if (col.kind == "q") return int(get_field(top.out_pins_o, out_bits * c + n, 1));
-    if (col.kind == "pi") return int(get_field(top.in_pins_i, in_bits * c + n, 1));
-    if (col.kind == "qw") return int16_t(get_field(top.out_words_o, 256 * c + 16 * n, 16));
-    if (col.kind == "iw") return int16_t(get_field(top.in_words_i, 256 * c + 16 * n, 16));
-    if (col.kind == "m") return b[n] & 1;                  // CData per bit
-    if (col.kind == "mw") return int16_t(reinterpret_cast<const uint16_t*>(b)[n]);
-    if (b) return int((b[n / 8] >> (n % 8)) & 1);         // packed vectors
+    if (col.kind == "q") return int(get_field(top.out_pins_o, kOutPins * c + n, 1));
+    if (col.kind == "pi") return int(get_field(top.in_pins_i, kInPins * c + n, 1));
+    if (col.kind == "qw") return int16_t(get_field(top.out_words_o, kWordBits * c + 16 * n, 16));
+    if (col.kind == "iw") return int16_t(get_field(top.in_words_i, kWordBits * c + 16 * n, 16));
+    if (col.kind == "i") return int(get_field(top.dbg_pii_o, kInPins * c + n, 1));
+    if (col.kind == "ir") return int(get_field(top.dbg_rise_o, kInPins * c + n, 1));
+    if (col.kind == "if") return int(get_field(top.dbg_fall_o, kInPins * c + n, 1));
+    if (col.kind == "t") return int(get_field(top.dbg_timer_status_o, BB_HW_STATUS_BITS * c + n, 1));
+    if (col.kind == "c") return int(get_field(top.dbg_counter_status_o, BB_HW_STATUS_BITS * c + n, 1));
+    if (col.kind == "m") {
+      look(top.dbg_m_addr_i, kMAddrBits, c, n);
+      return int(get_field(top.dbg_m_o, c, 1));
+    }
+    if (col.kind == "mw") {
+      look(top.dbg_mw_addr_i, kMwAddrBits, c, n);
+      return int16_t(get_field(top.dbg_mw_o, 16 * c, 16));
+    }
     return 0;
   };
 
@@ -399,7 +420,6 @@ int main(int argc, char** argv) {
   }
   const uint64_t until = uint64_t(pf.until_clock);
   bool fault = false;
-  direct = !wave;  // the model is initialised by now
   for (g_n = 0;; ++g_n) {
     for (Core& k : g_cores) {                         // inputs of clock g_n
       if (k.by_clock) apply_stim(k, g_n);
@@ -410,7 +430,7 @@ int main(int argc, char** argv) {
       k.re = k.we = false;
       if (run) swapcontext(&g_sched, &k.ctx);
       const bool access = k.want == Core::kBus;
-      set_field(top.bus_addr_i, 9 * k.idx, 9, k.addr);
+      set_field(top.bus_addr_i, kBusAddrBits * k.idx, kBusAddrBits, k.addr);
       set_field(top.bus_wdata_i, 32 * k.idx, 32, k.wdata);
       set_field(top.bus_re_i, k.idx, 1, access && k.re);
       set_field(top.bus_we_i, k.idx, 1, access && k.we);

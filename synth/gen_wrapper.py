@@ -16,6 +16,7 @@ blocks in synth/synth_*.v.
 | any other 1-bit input / output | a pin (two-flop synchroniser / output flip-flop) |
 | any other vector input | host registers, SPI command 0x02 (`synth_host_regs`) |
 | any other vector output | read back over SPI, command 0x03 (`synth_readback`) |
+| observation ports `dbg_*` (simulation hosts only) | inputs tied to 0, outputs open |
 
 The wrapper has the core's parameters (same names, same defaults) and passes them
 down, so Yosys' `chparam` on `synth_top` sweeps the core.
@@ -180,6 +181,8 @@ def generate(core: Module, core_file: str) -> tuple[str, dict]:
         take("74HC165 input chain", [sin.name])
     if sout:
         take("74HC595 output chain", [sout.name])
+    dbg = [p for p in core.ports if p.name.startswith("dbg_") and p.name not in used]
+    take("observation (sim only): 0 / open", [p.name for p in dbg])
     rest = [p for p in core.ports if p.name not in used]
     in_pins = [p for p in rest if p.direction == "input" and not p.vector][:MAX_IN_PINS]
     out_pins = [p for p in rest if p.direction == "output" and not p.vector][:MAX_OUT_PINS]
@@ -343,6 +346,17 @@ def generate(core: Module, core_file: str) -> tuple[str, dict]:
             w(f"      {_pin_name(p)} <= c_{p.name};")
         w("    end")
         w("  end")
+        w("")
+    dbg_in = [p for p in dbg if p.direction == "input"]
+    dbg_out = [p for p in dbg if p.direction == "output"]
+    if dbg:
+        w("  // observation ports of the simulation hosts: nothing to observe them here")
+        for p in dbg_in:
+            w(f"  assign c_{p.name} = {{{p.width}{{1'b0}}}};")
+        if dbg_out:
+            w("  // verilator lint_off UNUSEDSIGNAL")
+            w(f"  wire unused_dbg = ^{{{', '.join('c_' + p.name for p in dbg_out)}}};")
+            w("  // verilator lint_on UNUSEDSIGNAL")
         w("")
     w("  // ---------------------------------------------------------------- the core")
     w(f"  {core.name} #(")

@@ -118,6 +118,8 @@ def c_bus_map(d: Definition) -> str:
             b.append(_cdef(name, _h(r.addr), r.access))
     b += ["", _cdef("BB_BUS_ID_VALUE", f"0x{d.bus_id_value:08X}u"),
           _cdef("BB_BUS_TICK_DIV_RESET", f"{d.register('TICK_DIV').reset}u"),
+          _cdef("BB_BUS_ADDR_BITS", str(d.bus_addr_bits), "bitbyte_cpu bus_addr_i"),
+          _cdef("BB_BUS_PLANT_ADDR_BITS", str(d.plant_bus_addr_bits), "a plant core's, per core"),
           "", "/* Field layout. */"]
     for r in d.registers:
         for fname, v in r.fields:
@@ -147,6 +149,16 @@ def c_isa(d: Definition) -> str:
          _cdef("BB_MAX_STEPS_DEFAULT", f"{fw['max_steps_default']}u",
                "bb_state.max_steps after bb_init()"),
          _cdef("BB_COUNTER_MAX", str(fw["counter_max"])),
+         "", "/* The FPGA part's default build (the rtl/ parameter defaults): the sizes the",
+         " * simulation hosts (sim/) check their model's ports against and load up to. */",
+         *(_cdef(f"BB_HW_{name}", f"{d.rtl_defaults['bitbyte_cpu'][param]}u", param)
+           for name, param in (("PROG_WORDS", "ProgWords"), ("IN_BYTES", "InBytes"),
+                               ("OUT_BYTES", "OutBytes"), ("MARKER_BYTES", "MarkerBytes"),
+                               ("STATUS_BITS", "StatusBits"), ("IN_WORDS", "InWords"),
+                               ("OUT_WORDS", "OutWords"))),
+         _cdef("BB_HW_MW_WORDS", f"{s['data_words']}u", "MwWords (plant core)"),
+         _cdef("BB_HW_PLAN_WORDS", f"{d.rtl_defaults['plc_system']['PlanWords']}u",
+               "PlanWords (plant core)"),
          "", "/* Instruction word fields (docs/isa.md). */",
          _cdef("BB_OPCODE_SHIFT", str(f["opcode"].lo)),
          _cdef("BB_AREA_SHIFT", str(f["area"].lo)),

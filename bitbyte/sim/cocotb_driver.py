@@ -12,10 +12,16 @@ coroutine that drives the bus and awaits clock edges, so the C code blocks exact
 as long as its bus accesses and its `hal_spend` take in simulated clocks. The HAL
 reaches this job's callbacks through the state's HAL context (a bb_hal_callbacks
 table, firmware_byte/hal_callbacks.h), not through globals of the library.
+
+The design is observed through its ports only: the trace columns I, IR, IF, T, C read
+the observation ports dbg_*; a marker M n is looked up through dbg_m_addr_i / dbg_m_o
+(a new address settles in one simulator step, at the falling edge where a row is
+read, half a clock before the next edge).
 """
 from __future__ import annotations
 
 import ctypes
+import inspect
 import json
 import os
 from pathlib import Path
@@ -24,7 +30,7 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.task import bridge, resume
 from cocotb.triggers import Event, FallingEdge, First, RisingEdge, Timer
-from cocotb.utils import get_sim_time
+from cocotb.utils import get_sim_steps, get_sim_time
 
 from bitbyte.lang.definition import DEF
 from bitbyte.run.runjob import RunJob
@@ -46,8 +52,23 @@ def _signed16(v: int) -> int:
     return v - 0x10000 if v & 0x8000 else v
 
 
-def _reader(dut, kind: str, index: int, firmware=None):
-    """A function returning the current value of one traced column."""
+class _MarkerLook:
+    """M n through the look-up port: dbg_m_o shows M[dbg_m_addr_i]."""
+
+    def __init__(self, dut):
+        self.dut = dut
+        self.addr = 0                        # what dbg_m_addr_i holds (run_job sets 0)
+
+    async def __call__(self, n: int) -> int:
+        if n != self.addr:
+            self.dut.dbg_m_addr_i.value = self.addr = n
+            await Timer(1, unit="step")      # combinational: settled one step later
+        return int(self.dut.dbg_m_o.value) & 1
+
+
+def _reader(dut, kind: str, index: int, firmware=None, look=None):
+    """A function returning the current value of one traced column (for M n: a
+    coroutine function)."""
     if kind == "mw":
         return lambda: firmware.mw(index)
     if kind == "qw":
@@ -58,19 +79,13 @@ def _reader(dut, kind: str, index: int, firmware=None):
         return lambda: (int(dut.out_pins_o.value) >> index) & 1
     if kind == "pi":
         return lambda: (int(dut.in_pins_i.value) >> index) & 1
-    images = {"i": "pii_o", "ir": "rise_o", "if": "fall_o"}
-    if kind in images:
-        sig = getattr(dut.u_input_unit, images[kind])
+    ports = {"i": dut.dbg_pii_o, "ir": dut.dbg_rise_o, "if": dut.dbg_fall_o,
+             "t": dut.dbg_timer_status_o, "c": dut.dbg_counter_status_o}
+    if kind in ports:
+        sig = ports[kind]
         return lambda: (int(sig.value) >> index) & 1
     if kind == "m":
-        cell = dut.u_bit_proc.u_marker_ram.mem[index]
-        return lambda: int(cell.value) & 1
-    if kind == "t":
-        sig = dut.u_tc_status.timer_status_o
-        return lambda: (int(sig.value) >> index) & 1
-    if kind == "c":
-        sig = dut.u_tc_status.counter_status_o
-        return lambda: (int(sig.value) >> index) & 1
+        return lambda: look(index)
     return lambda: 0
 
 
@@ -175,9 +190,9 @@ class Firmware:
 
     async def _wait(self) -> None:
         dut = self.dut
-        if int(dut.next.value) or self.stopped.is_set():
+        if int(dut.byte_next_o.value) or self.stopped.is_set():
             return
-        await First(RisingEdge(dut.next), self.stopped.wait())
+        await First(RisingEdge(dut.byte_next_o), self.stopped.wait())
         if not self.stopped.is_set():
             await FallingEdge(dut.clk_i)               # into the dispatch clock
 
@@ -204,6 +219,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.mcopy_we_i.value = 0
     dut.mcopy_addr_i.value = 0
     dut.mcopy_wdata_i.value = 0
+    dut.dbg_m_addr_i.value = 0             # the marker look-up port (_MarkerLook)
     dut.watchdog_limit_i.value = job.watchdog
     for addr, word in enumerate(job.prog):
         await FallingEdge(dut.clk_i)
@@ -244,16 +260,25 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
     """From clock 0 on: inputs, finished scans, the stop condition. The coroutine
     wakes only at the clocks where something happens (a scan ends, the watchdog
     fires, a time-keyed input changes), always at that clock's falling edge."""
-    readers = [_reader(dut, kind, index, firmware) for _, kind, index in job.cols]
+    look = _MarkerLook(dut)
+    readers = [_reader(dut, kind, index, firmware, look) for _, kind, index in job.cols]
     stim = list(job.stim)
     next_stim = 0
     rows, fault = [], False
     scan = 0
     pins = 0
-    clock0 = firmware.clock0_ns
+    step0 = get_sim_steps(firmware.clock0_ns, "ns", round_mode="round")   # clock 0
+    period = get_sim_steps(PERIOD_NS, "ns")
 
     def clock_now() -> int:
-        return int((get_sim_time("ns") - clock0) // PERIOD_NS)
+        return (get_sim_time("step") - step0) // period
+
+    async def values() -> list[int]:
+        out = []
+        for r in readers:
+            v = r()
+            out.append(await v if inspect.isawaitable(v) else v)
+        return out
 
     def apply_due(key: int) -> None:
         nonlocal next_stim, pins
@@ -269,8 +294,8 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
         # sleep until a scan ends, the watchdog fires or the next time-keyed input
         wake = [RisingEdge(dut.scan_done_o), RisingEdge(dut.fault_o)]
         if job.stim_kind == "clock" and next_stim < len(stim):
-            at = clock0 + stim[next_stim][0] * PERIOD_NS - get_sim_time("ns")
-            wake.append(Timer(at, unit="ns"))     # at > 0: due inputs are applied
+            at = step0 + stim[next_stim][0] * period - get_sim_time("step")
+            wake.append(Timer(at, unit="step"))   # at > 0: due inputs are applied
         fired = await First(*wake)
         if isinstance(fired, RisingEdge):
             await FallingEdge(dut.clk_i)       # into the clock after the edge
@@ -279,7 +304,7 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
             fault = True
             break
         if isinstance(fired, RisingEdge) and int(dut.scan_done_o.value):
-            rows.append((scan, clock, int(dut.scan_cycles_o.value), [r() for r in readers]))
+            rows.append((scan, clock, int(dut.scan_cycles_o.value), await values()))
             scan += 1
             if job.scans is not None and scan >= job.scans:
                 break

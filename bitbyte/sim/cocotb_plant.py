@@ -44,10 +44,18 @@ daemon) must be driven to its end before the simulator can exit; the plain hand-
 keeps the order fixed and the firmware out of the scheduler. When the run is over,
 the threads stay blocked in their last HAL call (daemon threads) until the
 simulator process ends.
+
+The plant is observed through its ports only. The trace columns I, IR, IF, T, C read
+core c's slice of the observation ports dbg_*; M n and MW n are looked up through
+dbg_m_addr_i / dbg_m_o and dbg_mw_addr_i / dbg_mw_o: a row writes the addresses that
+change and waits one simulator step for each, in the clock-high half after the edge
+that ended the scan; the next clock-low half is shortened by as many steps, so the
+clock period stays exact.
 """
 from __future__ import annotations
 
 import ctypes
+import inspect
 import json
 import os
 import threading
@@ -272,6 +280,13 @@ class Plant:
                                f"{len(self.cores)}")
         self.ncores = ncores
         self.aw = len(dut.post_base_i) // ncores     # $clog2(PlanWords)
+        self.status_bits = len(dut.dbg_timer_status_o) // ncores   # StatusBits
+        # the look-up ports: per core the address each holds, its width, the steps the
+        # look-ups took in this clock's high half
+        self.look = {"m": (dut.dbg_m_addr_i, len(dut.dbg_m_addr_i) // ncores, [0] * ncores),
+                     "mw": (dut.dbg_mw_addr_i, len(dut.dbg_mw_addr_i) // ncores,
+                            [0] * ncores)}
+        self.look_steps = 0
         self.in_pins = 0
         self.in_words = 0
         self.next_bits = 0                          # byte_next_o after the last edge
@@ -323,23 +338,32 @@ class Plant:
             return lambda: str(_s16(self.in_words >> (WORD_BITS * c + 16 * n)))
         if kind == "zero":
             return lambda: "0"
-        inner = dut.g_core[c].u_core
         if kind == "mw":
-            cell = inner.u_mw_ram.mem[n]
-            return lambda: str(_s16(int(cell.value)))
+            sig = dut.dbg_mw_o
+            return lambda: self.look_up("mw", c, n, lambda: str(_s16(_slice(sig.value,
+                                                                            16 * c, 16))))
         if kind == "m":
-            cell = inner.u_cpu.u_bit_proc.u_marker_ram.mem[n]
-            return lambda: str(int(cell.value) & 1)
-        vectors = {"i": (inner.u_cpu.u_input_unit, "pii_o"),
-                   "ir": (inner.u_cpu.u_input_unit, "rise_o"),
-                   "if": (inner.u_cpu.u_input_unit, "fall_o"),
-                   "t": (inner.u_cpu.u_tc_status, "timer_status_o"),
-                   "c": (inner.u_cpu.u_tc_status, "counter_status_o")}
+            sig = dut.dbg_m_o
+            return lambda: self.look_up("m", c, n, lambda: str(_slice(sig.value, c, 1)))
+        vectors = {"i": (dut.dbg_pii_o, IN_BITS), "ir": (dut.dbg_rise_o, IN_BITS),
+                   "if": (dut.dbg_fall_o, IN_BITS), "t": (dut.dbg_timer_status_o,
+                                                          self.status_bits),
+                   "c": (dut.dbg_counter_status_o, self.status_bits)}
         if kind in vectors:
-            scope, name = vectors[kind]
-            sig = getattr(scope, name)
-            return lambda: str((int(sig.value) >> n) & 1)
+            sig, bits = vectors[kind]
+            return lambda: str(_slice(sig.value, bits * c + n, 1))
         raise RuntimeError(f"unknown column kind {kind!r}")
+
+    async def look_up(self, kind: str, c: int, n: int, read) -> str:
+        """M n / MW n of core c: set its look-up address if it changes (one simulator
+        step to settle, counted in look_steps), then read."""
+        port, width, addrs = self.look[kind]
+        if addrs[c] != n:
+            addrs[c] = n
+            port.value = sum(a << (width * i) for i, a in enumerate(addrs))
+            await Timer(1, unit="step")
+            self.look_steps += 1
+        return read()
 
     # ---------------------------------------------------------------- the run
     async def reset_and_load(self) -> None:
@@ -348,7 +372,8 @@ class Plant:
                     dut.plan_waddr_i, dut.plan_wdata_i, dut.parallel_i, dut.exchange_i,
                     dut.period_i, dut.pre_len_i, dut.post_base_i, dut.post_len_i,
                     dut.protect_i, dut.watchdog_limit_i, dut.in_pins_i, dut.in_words_i,
-                    dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i):
+                    dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i,
+                    dut.dbg_m_addr_i, dut.dbg_mw_addr_i):
             sig.value = 0
         dut.rst_ni.value = 0
         dut.run_i.value = 0
@@ -501,9 +526,14 @@ class Plant:
             if idle:
                 n = await self.fast_forward(n, due - n)
             else:
-                # ---- the clock-low half: ready and read data
+                # ---- the clock-low half: ready and read data (shorter by the steps
+                # the last row's look-ups added to the high half before it)
                 clk.value = 0
-                await timer
+                if self.look_steps:
+                    await Timer(max(1, self.half - self.look_steps), unit="step")
+                    self.look_steps = 0
+                else:
+                    await timer
                 if any_bus:
                     ready, rdata = ready_h.value, rdata_h.value
                     for k in cores:
@@ -526,7 +556,7 @@ class Plant:
                     c = k.idx
                     if (cdone >> c) & 1:
                         if not k.finished:
-                            self.row(k, n)
+                            await self.row(k, n)
                             if n + 1 >= until:
                                 k.finished = True
                         # the next scan's scan-keyed inputs: after this row, so that
@@ -574,7 +604,7 @@ class Plant:
         await Timer(start + period * (q - n + 1) - now, unit="step")
         return q
 
-    def row(self, k: Core, n: int) -> None:
+    async def row(self, k: Core, n: int) -> None:
         dut, c = self.dut, k.idx
         cycles = _field(int(dut.scan_cycles_o.value), 32 * c, 32)
         pre = _field(int(dut.pre_clocks_o.value), 32 * c, 32)
@@ -592,7 +622,10 @@ class Plant:
         fail = k.copy_fail = _field(int(dut.copy_fail_o.value), c, 1)
         if k.trace:
             t_us = format_decimal(Fraction((n + 1) * 1_000_000, self.clock_hz))
-            values = [r() for r in k.readers]
+            values = []
+            for r in k.readers:
+                v = r()
+                values.append(await v if inspect.isawaitable(v) else v)
             k.trace.write(",".join([str(k.scans), t_us, str(cycles), str(pre), str(post),
                                     str(wait), str(fail), str(over)] + values) + "\n")
         k.scans += 1
