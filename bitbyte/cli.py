@@ -23,8 +23,9 @@ from bitbyte.lang.errors import SimError, SourceError, UsageError, format_error
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import parse_clock_mhz, prepare_run
+from bitbyte.run.summary import summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
-from bitbyte.sim.verilator import run_harness
+from bitbyte.sim.verilator import GTKW, run_harness
 
 EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
 EXIT_NO_FIT = 5
@@ -163,12 +164,13 @@ def cmd_run(args) -> int:
         channels=args.channels)
 
     if args.sim == "verilator":
-        records, fault, summary = run_harness(job, columns, args.trace, args.waves)
+        records, fault, stats = run_harness(job, columns, args.trace, args.waves)
     else:
         if args.waves:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
-        records, fault, summary = run_cocotb(job, columns, args.sim, f, args.trace)
-    print(summary, end="")
+        records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
+    waves = (args.waves, str(GTKW)) if args.waves else None
+    print(summary_text(records, f, stats, args.trace, waves), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

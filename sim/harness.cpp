@@ -399,32 +399,20 @@ int main(int argc, char** argv) {
     std::remove(wave_file.c_str());
   }
 
-  // ---- summary
-  const std::string mhz = fmt_ratio(rf.clock_hz, 1000000, 6);
-  auto us = [&](u128 clocks_num, u128 den) { return fmt_ratio(clocks_num * 1000000u, u128(den) * rf.clock_hz, 6); };
-  std::printf("scans            %llu\n", (unsigned long long)scans);
-  if (scans) {
-    std::printf("cycles/scan      min %llu  mean %s  max %llu\n", (unsigned long long)run.cyc_min,
-                fmt_ratio(run.cyc_sum, scans, 3).c_str(), (unsigned long long)run.cyc_max);
-    std::printf("scan time [us]   min %s  mean %s  max %s  (clock %s MHz)\n", us(run.cyc_min, 1).c_str(),
-                us(run.cyc_sum, scans).c_str(), us(run.cyc_max, 1).c_str(), mhz.c_str());
-  } else {
-    std::printf("cycles/scan      -\nscan time [us]   -  (clock %s MHz)\n", mhz.c_str());
-  }
-  std::printf("stalls           bit side %u, byte side %u\n", top.stalls_bit_o, top.stalls_byte_o);
-  if (rf.free_running)
-    std::printf("byte side        %llu scans (free-running)\n", (unsigned long long)bb_byte_scans(&bb));
+  // ---- figures for the run summary: `stat NAME VALUE` lines (sim/README.md), which
+  // `bitbyte run` turns into the summary text that every simulator shares
+  // (bitbyte/run/summary.py). The trace holds the scans themselves.
+  auto stat = [](const char* name, unsigned long long v) { std::printf("stat %s %llu\n", name, v); };
+  stat("scans", scans);
+  stat("clocks", n);
+  stat("stalls_bit", top.stalls_bit_o);
+  stat("stalls_byte", top.stalls_byte_o);
+  if (rf.free_running) stat("byte_scans", bb_byte_scans(&bb));
   if (rf.exchange == 2) {
-    const uint32_t ovf = top.dbg_queue_overflows_o, unf = top.dbg_queue_underflows_o;
-    std::printf("queue losses     overflows to-byte %u to-bit %u, underflows to-byte %u to-bit %u\n",
-                ovf & 0xFFFF, ovf >> 16, unf & 0xFFFF, unf >> 16);
+    stat("queue_overflows", top.dbg_queue_overflows_o);
+    stat("queue_underflows", top.dbg_queue_underflows_o);
   }
-  if (bb_flags(&bb) & BB_FLAG_ARITH) std::printf("byte flags       arithmetic error (/I or MOD by 0)\n");
-  const double rate = wall > 0 ? double(n) / wall / 1e6 : 0;
-  std::printf("simulated        %s us, %llu clocks, %.*f M clocks/s wall\n", us(n, 1).c_str(),
-              (unsigned long long)n, rate >= 1 ? 1 : 3, rate);
-  if (!rf.trace.empty()) std::printf("trace            %s\n", rf.trace.c_str());
-  if (!rf.waves.empty())
-    std::printf("waves            %s   (gtkwave %s %s)\n", rf.waves.c_str(), rf.waves.c_str(), rf.gtkw.c_str());
+  stat("byte_flags", bb_flags(&bb));
+  std::printf("stat wall_s %.6f\n", wall);
   return fault ? 3 : 0;
 }

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -127,6 +128,41 @@ def test_icarus_and_verilator_traces_identical(tmp_path):
     lines = traces["icarus"].splitlines()
     assert lines[0] == "scan,t_us,cycles,Q0.0,Q0.1,Q0.2,Running,IF0.2,M0.1"
     assert len(lines) == 26
+
+
+# Word logic that divides by zero (MW2 = 0): the byte side's ARITH flag.
+SUMMARY_PROGRAM = """\
+      LD    I0.0
+      =     Q0.0
+      L     MW1
+      L     MW2
+      /I
+      T     MW3
+"""
+
+
+@pytest.mark.parametrize("mode,exchange,lines", [
+    ("serial", None, []),
+    ("parallel", "queue", []),
+    ("free", "marker", ["byte side"]),
+    ("free", "queue-free", ["byte side", "queue losses"])])
+def test_one_summary_for_every_simulator(tmp_path, mode, exchange, lines):
+    """The harness (its `stat` lines) and cocotb (its results) give the same figures,
+    printed by one printer: the exchange statistics of the mode, the byte flags."""
+    src = tmp_path / "p.il"
+    src.write_text(SUMMARY_PROGRAM)
+    out = {}
+    for sim in ("icarus", "verilator"):
+        args = ["run", src, "--until-us", 5, "--sim", sim, "--mode", mode]
+        proc = bitbyte(*args, *(["--exchange", exchange] if exchange else []))
+        assert proc.returncode == 0, proc.stderr
+        out[sim] = [re.sub(r", [0-9.]+ M clocks/s wall$", "", line)
+                    for line in proc.stdout.splitlines()]
+    assert out["icarus"] == out["verilator"]
+    labels = [line[:17].strip() for line in out["icarus"]]
+    assert labels == ["scans", "cycles/scan", "scan time [us]", "stalls", *lines,
+                      "byte flags", "simulated"]
+    assert "ARITH (/I or MOD by 0)" in out["icarus"][labels.index("byte flags")]
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])

@@ -85,6 +85,9 @@ class RunResult:
     fault: bool = False
     clocks: int = 0
     stalls: tuple[int, int] = (0, 0)     # (bit side, byte side) clocks spent waiting
+    byte_scans: int | None = None        # free-running: the byte side's own scans
+    queue_losses: tuple[int, int] | None = None   # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
+    byte_flags: int = 0                  # bb_flags()
 
     def to_json(self) -> str:
         return json.dumps(asdict(self))

@@ -1,26 +1,63 @@
-"""The run summary printed by `bitbyte run` (same layout as the C++ harness prints)."""
+"""The run summary `bitbyte run` prints, for every simulator: the Verilator harness
+reports its figures as `stat NAME VALUE` lines (sim/README.md), the cocotb driver in
+its results; both become a RunStats, and this one printer writes the text."""
 from __future__ import annotations
 
+from dataclasses import dataclass
 from fractions import Fraction
 
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.trace import ScanRecord, format_decimal, format_t_us
 
 
-def summary_text(records: list[ScanRecord], clock_mhz: Fraction,
-                 trace_path: str | None = None, stalls: tuple[int, int] = (0, 0)) -> str:
-    lines = [f"{'scans':<17}{len(records)}"]
+@dataclass(frozen=True)
+class RunStats:
+    """What a run reports besides its trace rows."""
+    clocks: int                                  # clocks simulated since clock 0
+    stalls: tuple[int, int] = (0, 0)             # (bit side, byte side) clocks waiting
+    byte_scans: int | None = None                # free-running: the byte side's scans
+    queue_losses: tuple[int, int] | None = None  # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
+    byte_flags: int = 0                          # BYTE_FLAGS (bb_flags())
+    wall_s: float | None = None                  # the simulator's own run time
+
+
+def _label(name: str) -> str:
+    return f"{name:<17}"
+
+
+def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats,
+                 trace_path: str | None = None, waves: tuple[str, str] | None = None) -> str:
+    """waves: (the wave file, the GTKWave layout)."""
+    mhz = format_decimal(clock_mhz)
+    lines = [_label("scans") + str(len(records))]
     if records:
         cycles = [r.cycles for r in records]
         lo, hi = min(cycles), max(cycles)
         mean = Fraction(sum(cycles), len(cycles))
-        lines.append(f"{'cycles/scan':<17}min {lo}  mean {format_decimal(mean, 3)}  max {hi}")
+        lines.append(_label("cycles/scan") + f"min {lo}  mean {format_decimal(mean, 3)}  max {hi}")
         us = [format_t_us(c, clock_mhz) for c in (lo, hi)]
-        mean_us = format_decimal(mean / clock_mhz)
-        lines.append(f"{'scan time [us]':<17}min {us[0]}  mean {mean_us}  max {us[1]}"
-                     f"  (clock {format_decimal(clock_mhz)} MHz)")
-    lines.append(f"{'stalls':<17}bit side {stalls[0]}, byte side {stalls[1]}")
-    end = records[-1].end_clock if records else 0
-    lines.append(f"{'simulated':<17}{format_t_us(end, clock_mhz)} us, {end} clocks")
+        lines.append(_label("scan time [us]") + f"min {us[0]}  mean "
+                     f"{format_decimal(mean / clock_mhz)}  max {us[1]}  (clock {mhz} MHz)")
+    else:
+        lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
+    lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")
+    if stats.byte_scans is not None:
+        lines.append(_label("byte side") + f"{stats.byte_scans} scans (free-running)")
+    if stats.queue_losses is not None:
+        ovf, unf = stats.queue_losses      # each register: to-byte low half, to-bit high half
+        lines.append(_label("queue losses") + f"overflows to-byte {ovf & 0xFFFF} to-bit "
+                     f"{ovf >> 16}, underflows to-byte {unf & 0xFFFF} to-bit {unf >> 16}")
+    flags = [f"{f['name']} ({f['doc']})" for f in DEF.byte_flag_rows
+             if stats.byte_flags >> f["bit"] & 1]
+    if flags:
+        lines.append(_label("byte flags") + ", ".join(flags))
+    simulated = f"{format_t_us(stats.clocks, clock_mhz)} us, {stats.clocks} clocks"
+    if stats.wall_s is not None:
+        rate = stats.clocks / stats.wall_s / 1e6 if stats.wall_s > 0 else 0.0
+        simulated += f", {rate:.{1 if rate >= 1 else 3}f} M clocks/s wall"
+    lines.append(_label("simulated") + simulated)
     if trace_path:
-        lines.append(f"{'trace':<17}{trace_path}")
+        lines.append(_label("trace") + str(trace_path))
+    if waves:
+        lines.append(_label("waves") + f"{waves[0]}   (gtkwave {waves[0]} {waves[1]})")
     return "\n".join(lines) + "\n"

@@ -150,11 +150,20 @@ class Firmware:
             lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
             lib.bb_mw.restype = ctypes.c_int16
+            lib.bb_flags.argtypes = [ctypes.c_void_p]
+            lib.bb_flags.restype = ctypes.c_uint32
+            lib.bb_byte_scans.argtypes = [ctypes.c_void_p]
+            lib.bb_byte_scans.restype = ctypes.c_uint64
             cls._lib = lib
         return cls._lib
 
     def mw(self, n: int) -> int:
         return int(self._lib.bb_mw(self.state, n))
+
+    def stats(self) -> dict:
+        """The firmware's part of the run summary (bitbyte.run.summary.RunStats)."""
+        return {"byte_flags": int(self._lib.bb_flags(self.state)),
+                "byte_scans": int(self._lib.bb_byte_scans(self.state)) if self.free else None}
 
     def close(self):
         self._lib.bb_set_hal_ctx(self.state, None)
@@ -248,6 +257,9 @@ async def run_job(dut, job: RunJob) -> dict:
     fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
     try:
         result = await _scans(dut, job, firmware)
+        # the firmware's figures as the run ends (its thread waits in a HAL call): once
+        # stopped, its bus reads return 0 and would set flags a real run never sees
+        result.update(firmware.stats())
     finally:
         firmware.stopped.set()
         await fw_thread
@@ -314,8 +326,11 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
                 apply_due(scan)                # this clock latches scan `scan`
         if job.stim_kind == "clock":
             apply_due(clock)
+    queue_free = job.exchange == "queue-free"
     return {"rows": rows, "fault": fault, "clocks": clock_now(),
-            "stalls": [int(dut.stalls_bit_o.value), int(dut.stalls_byte_o.value)]}
+            "stalls": [int(dut.stalls_bit_o.value), int(dut.stalls_byte_o.value)],
+            "queue_losses": [int(dut.dbg_queue_overflows_o.value),
+                             int(dut.dbg_queue_underflows_o.value)] if queue_free else None}
 
 
 @cocotb.test()

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import ScanRecord, write_trace
-from bitbyte.run.summary import summary_text
+from bitbyte.run.summary import RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
@@ -96,7 +96,10 @@ def run_jobs(jobs, sim: str = "icarus"):
                            quiet=True)
         data = json.loads(results_path.read_text())
     return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
-                      clocks=d["clocks"], stalls=tuple(d["stalls"])) for d in data]
+                      clocks=d["clocks"], stalls=tuple(d["stalls"]),
+                      byte_scans=d["byte_scans"], byte_flags=d["byte_flags"],
+                      queue_losses=tuple(d["queue_losses"]) if d["queue_losses"] else None)
+            for d in data]
 
 
 def records_from_rows(columns, rows):
@@ -107,8 +110,8 @@ def records_from_rows(columns, rows):
 
 
 def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
-    """One RunJob on cocotb: (records, watchdog fault?, the run summary text); the
-    trace CSV written to `trace` when given (the Verilator harness writes its own)."""
+    """One RunJob on cocotb: (records, watchdog fault?, RunStats); the trace CSV
+    written to `trace` when given (the Verilator harness writes its own)."""
     try:
         (result,) = run_jobs([job], sim)
     except (SystemExit, RuntimeError, OSError) as e:
@@ -116,4 +119,6 @@ def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
     records = records_from_rows(columns, result.rows)
     if trace:
         write_trace(trace, columns, records, f)
-    return records, result.fault, summary_text(records, f, trace, result.stalls)
+    stats = RunStats(clocks=result.clocks, stalls=result.stalls, byte_scans=result.byte_scans,
+                     queue_losses=result.queue_losses, byte_flags=result.byte_flags)
+    return records, result.fault, stats

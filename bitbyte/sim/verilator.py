@@ -1,6 +1,6 @@
 """Run a RunJob on the Verilator C++ harness (sim/harness.cpp), building it through the
-Makefile when it is missing or stale.  The harness writes the trace and prints the run
-summary itself.
+Makefile when it is missing or stale.  The harness writes the trace and reports its
+figures as `stat NAME VALUE` lines; the summary text is bitbyte/run/summary.py's.
 """
 from __future__ import annotations
 
@@ -11,10 +11,12 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows
+from bitbyte.run.summary import RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
 HARNESS_WATCHDOG = 3      # the harness's exit status when the scan watchdog stopped a run
+GTKW = ROOT / "sim" / "bitbyte.gtkw"   # the waveform layout beside its waves
 
 
 def ensure_harness() -> Path:
@@ -29,9 +31,19 @@ def ensure_harness() -> Path:
     return HARNESS
 
 
+def parse_stats(stdout: str) -> dict[str, float]:
+    """The harness's `stat NAME VALUE` lines."""
+    stats = {}
+    for line in stdout.splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == "stat":
+            stats[words[1]] = float(words[2]) if "." in words[2] else int(words[2])
+    return stats
+
+
 def run_harness(job, columns, trace: str | None = None, waves: str | None = None):
-    """Run `job`; returns (records, watchdog fault?, the harness's summary text).  trace:
-    where the harness writes the trace CSV (else a temporary file); waves: FST/VCD."""
+    """Run `job`; returns (records, watchdog fault?, RunStats).  trace: where the
+    harness writes the trace CSV (else a temporary file); waves: FST/VCD."""
     harness = ensure_harness()
     with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
         hex_path = Path(tmp) / "prog.hex"
@@ -47,12 +59,18 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
             byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,
                                    str(byte_path) if byte_path else None)
-        run_file.write_text(text + f"gtkw {ROOT / 'sim' / 'bitbyte.gtkw'}\n")
+        run_file.write_text(text)
         proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
-        if not trace:             # the temporary trace is gone after the run: do not show it
-            proc.stdout = "".join(l for l in proc.stdout.splitlines(keepends=True)
-                                  if not l.startswith("trace "))
         if proc.returncode not in (0, HARNESS_WATCHDOG):
             raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
         records = read_trace_rows(trace_path, columns)
-    return records, proc.returncode == HARNESS_WATCHDOG, proc.stdout
+    st = parse_stats(proc.stdout)
+    if st.get("scans") != len(records):
+        raise SimError(f"Verilator harness: {st.get('scans')} scans reported, "
+                       f"{len(records)} in its trace")
+    stats = RunStats(clocks=st["clocks"], stalls=(st["stalls_bit"], st["stalls_byte"]),
+                     byte_scans=st.get("byte_scans"),
+                     queue_losses=(st["queue_overflows"], st["queue_underflows"])
+                     if "queue_overflows" in st else None,
+                     byte_flags=st["byte_flags"], wall_s=st["wall_s"])
+    return records, proc.returncode == HARNESS_WATCHDOG, stats
