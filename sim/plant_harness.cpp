@@ -142,9 +142,8 @@ struct Core {
   uint32_t rdata = 0;
   // trace and statistics
   std::FILE* trace = nullptr;
-  uint64_t scans = 0, rows = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
-  uint64_t pre_max = 0, post_max = 0, wait_sum = 0, overruns = 0, skips = 0;
-  unsigned copy_fail = 0;          // at the last traced scan
+  uint64_t scans = 0;              // rows traced (the summary's figures come from them)
+  uint64_t skips = 0;              // skips_o at the last traced scan
   bool finished = false;           // a scan ended at or after until_clock
   bool by_clock = false, by_scan = false;  // its stimulus kind
   bool strobed = false;            // its bus strobes are high in the model
@@ -454,15 +453,7 @@ int main(int argc, char** argv) {
         const uint64_t post = get_field(top.post_clocks_o, 32 * c, 32);
         const uint64_t wait = get_field(top.sem_wait_o, 32 * c, 32);
         const unsigned over = unsigned(get_field(top.overrun_o, c, 1));
-        k.cyc_min = std::min(k.cyc_min, cycles);
-        k.cyc_max = std::max(k.cyc_max, cycles);
-        k.cyc_sum += cycles;
-        k.pre_max = std::max(k.pre_max, pre);
-        k.post_max = std::max(k.post_max, post);
-        k.wait_sum += wait;
-        k.overruns += over;
         k.skips = get_field(top.skips_o, 32 * c, 32);
-        k.copy_fail = unsigned(get_field(top.copy_fail_o, c, 1));
         if (k.trace) {
           char buf[64];
           char* e = put_t_us(buf, g_n + 1, pf.clock_hz);
@@ -495,27 +486,11 @@ int main(int argc, char** argv) {
                      (unsigned long long)k.scans, (unsigned long long)pf.watchdog);
   }
 
-  // ---- summary
-  auto us = [&](u128 clocks_num, u128 den) { return fmt_ratio(clocks_num * 1000000u, den * pf.clock_hz, 6); };
-  std::printf("plant            %zu cores, protection %s, clock %s MHz\n", g_cores.size(),
-              pf.protect == 0 ? "semaphore" : pf.protect == 1 ? "pingpong" : "none",
-              fmt_ratio(pf.clock_hz, 1000000, 6).c_str());
-  for (Core& k : g_cores) {
-    std::printf("core %-11s scans %llu", k.cf->name.c_str(), (unsigned long long)k.scans);
-    if (k.scans)
-      std::printf(", cycles min %llu mean %s max %llu, scan time [us] min %s mean %s max %s, "
-                  "pre max %llu, post max %llu, sem_wait %llu",
-                  (unsigned long long)k.cyc_min, fmt_ratio(k.cyc_sum, k.scans, 3).c_str(),
-                  (unsigned long long)k.cyc_max, us(k.cyc_min, 1).c_str(),
-                  us(k.cyc_sum, k.scans).c_str(), us(k.cyc_max, 1).c_str(),
-                  (unsigned long long)k.pre_max, (unsigned long long)k.post_max,
-                  (unsigned long long)k.wait_sum);
-    // over the traced scans (the run goes on until every core has finished)
-    std::printf(", overruns %llu, skipped precycles %llu, copy_fail %u\n",
-                (unsigned long long)k.overruns, (unsigned long long)k.skips, k.copy_fail);
-  }
-  std::printf("simulated        %s us, %llu clocks\n", us(g_n, 1).c_str(), (unsigned long long)g_n);
-  if (!pf.waves.empty())
-    std::printf("waves            %s   (gtkwave %s %s)\n", pf.waves.c_str(), pf.waves.c_str(), pf.gtkw.c_str());
+  // ---- figures for the run summary: `stat NAME VALUE` lines; `bitbyte run` prints the
+  // summary from them and the traces (bitbyte/run/summary.py, one printer for every
+  // simulator)
+  std::printf("stat clocks %llu\n", (unsigned long long)g_n);
+  for (Core& k : g_cores)
+    std::printf("stat skips.%s %llu\n", k.cf->name.c_str(), (unsigned long long)k.skips);
   return fault ? 3 : 0;
 }

@@ -26,8 +26,10 @@ from bitbyte.plant.plans import (MAX_CORES, SHARED_WORDS, PlantRunError, encode_
 from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
 from bitbyte.run.prepare import prepare_run
+from bitbyte.run.summary import parse_stats, plant_summary_text
 
 ROOT = Path(__file__).resolve().parents[2]
+PLANT_GTKW = ROOT / "sim" / "plant.gtkw"     # the waveform layout beside a plant's waves
 def plant_harness_path(cores: int) -> Path:
     return ROOT / "sim" / "build" / f"plant{cores}" / "Vplc_system"
 
@@ -102,7 +104,7 @@ def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Pat
     plant = shared_map.plant
     lines = [f"clock_hz {jobs[0].clock_hz}", f"watchdog {jobs[0].watchdog}",
              f"until_clock {until_clock}", f"protect {plant.protection}",
-             f"gtkw {ROOT / 'sim' / 'plant.gtkw'}"]
+             f"gtkw {PLANT_GTKW}"]
     if waves:
         lines.append(f"waves {waves}")
     for i, (core, job, plan) in enumerate(zip(plant.cores, jobs, plans)):
@@ -178,14 +180,20 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
             path = (f"{base}.{core.name}.csv" if base else str(tmp / f"trace.{core.name}.csv"))
             with open(path, newline="") as f:
                 rows[core.name] = list(csv.DictReader(f))
-    summary = proc.stdout
-    if proc.returncode == 3:
-        summary += proc.stderr
     if vcd:
         conv = subprocess.run(["fst2vcd", "-f", waves, "-o", vcd], capture_output=True,
                               text=True)
         if conv.returncode != 0:
             raise PlantRunError(f"fst2vcd failed (is gtkwave installed?): {conv.stderr}")
         Path(waves).unlink()
-        summary = summary.replace(waves, vcd)
+        waves = vcd
+    st = parse_stats(proc.stdout)
+    plant = shared_map.plant
+    summary = plant_summary_text(
+        plant.protection, jobs[0].clock_hz, st["clocks"],
+        [(c.name, rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
+        (waves, str(PLANT_GTKW)) if waves else None)
+    if proc.returncode == 3:
+        summary += proc.stderr
     return proc.returncode, summary, rows
+

@@ -21,6 +21,16 @@ class RunStats:
     wall_s: float | None = None                  # the simulator's own run time
 
 
+def parse_stats(stdout: str) -> dict[str, float]:
+    """A harness's `stat NAME VALUE` lines (sim/README.md)."""
+    stats = {}
+    for line in stdout.splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == "stat":
+            stats[words[1]] = float(words[2]) if "." in words[2] else int(words[2])
+    return stats
+
+
 def _label(name: str) -> str:
     return f"{name:<17}"
 
@@ -61,3 +71,34 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     if waves:
         lines.append(_label("waves") + f"{waves[0]}   (gtkwave {waves[0]} {waves[1]})")
     return "\n".join(lines) + "\n"
+
+
+def plant_summary_text(protection: str, clock_hz: int, clocks: int,
+                       cores: list[tuple[str, list[dict[str, str]], int]],
+                       waves: tuple[str, str] | None = None) -> str:
+    """A plant run (spec §7): cores = (name, its trace rows as csv.DictReader gives them,
+    skips_o at its last traced scan); the other figures are the rows' (pre, post,
+    sem_wait, overrun, copy_fail: the trace header of bitbyte.plant.run)."""
+    def us(clocks_num: int, n: int = 1) -> str:
+        return format_decimal(Fraction(clocks_num * 1_000_000, n * clock_hz))
+
+    out = [_label("plant") + f"{len(cores)} cores, protection {protection}, clock "
+           f"{format_decimal(Fraction(clock_hz, 1_000_000))} MHz"]
+    for name, rows, skips in cores:
+        line = f"core {name:<11} scans {len(rows)}"
+        if rows:
+            cyc = [int(r["cycles"]) for r in rows]
+            lo, hi, total = min(cyc), max(cyc), sum(cyc)
+            line += (f", cycles min {lo} mean {format_decimal(Fraction(total, len(cyc)), 3)}"
+                     f" max {hi}, scan time [us] min {us(lo)} mean {us(total, len(cyc))} max "
+                     f"{us(hi)}, pre max {max(int(r['pre']) for r in rows)}, post max "
+                     f"{max(int(r['post']) for r in rows)}, sem_wait "
+                     f"{sum(int(r['sem_wait']) for r in rows)}")
+        # over the traced scans (the run goes on until every core has finished)
+        line += (f", overruns {sum(int(r['overrun']) for r in rows)}, skipped precycles "
+                 f"{skips}, copy_fail {rows[-1]['copy_fail'] if rows else 0}")
+        out.append(line)
+    out.append(_label("simulated") + f"{us(clocks)} us, {clocks} clocks")
+    if waves:
+        out.append(_label("waves") + f"{waves[0]}   (gtkwave {waves[0]} {waves[1]})")
+    return "\n".join(out) + "\n"

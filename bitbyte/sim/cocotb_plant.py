@@ -261,10 +261,8 @@ class Core:
         self.fw: CoreFirmware | None = None
         self.trace = None
         self.readers = []
-        self.scans = self.rows = 0
-        self.cyc_min, self.cyc_max, self.cyc_sum = None, 0, 0
-        self.pre_max = self.post_max = self.wait_sum = self.overruns = 0
-        self.skips = self.copy_fail = 0             # at the last traced scan
+        self.scans = 0                              # rows traced
+        self.skips = 0                              # skips_o at the last traced scan
         self.finished = False
 
 
@@ -611,15 +609,8 @@ class Plant:
         post = _field(int(dut.post_clocks_o.value), 32 * c, 32)
         wait = _field(int(dut.sem_wait_o.value), 32 * c, 32)
         over = _field(int(dut.overrun_o.value), c, 1)
-        k.cyc_min = cycles if k.cyc_min is None else min(k.cyc_min, cycles)
-        k.cyc_max = max(k.cyc_max, cycles)
-        k.cyc_sum += cycles
-        k.pre_max = max(k.pre_max, pre)
-        k.post_max = max(k.post_max, post)
-        k.wait_sum += wait
-        k.overruns += over
         k.skips = _field(int(dut.skips_o.value), 32 * c, 32)
-        fail = k.copy_fail = _field(int(dut.copy_fail_o.value), c, 1)
+        fail = _field(int(dut.copy_fail_o.value), c, 1)
         if k.trace:
             t_us = format_decimal(Fraction((n + 1) * 1_000_000, self.clock_hz))
             values = []
@@ -630,38 +621,14 @@ class Plant:
                                     str(wait), str(fail), str(over)] + values) + "\n")
         k.scans += 1
 
-    def summary(self, fault: bool) -> tuple[str, str]:
-        """(stdout, stderr) as the harness prints them (without the waves line)."""
-        dut = self.dut
-        hz = self.clock_hz
-        mhz = format_decimal(Fraction(hz, 1_000_000))
-        out = [f"plant            {len(self.cores)} cores, protection "
-               f"{self.cfg['protect']}, clock {mhz} MHz"]
-        for k in self.cores:
-            line = f"core {k.name:<11} scans {k.scans}"
-            if k.scans:
-                def us(clocks, n=1):
-                    return format_decimal(Fraction(clocks * 1_000_000, n * hz))
-                line += (f", cycles min {k.cyc_min} mean "
-                         f"{format_decimal(Fraction(k.cyc_sum, k.scans), 3)} max "
-                         f"{k.cyc_max}, scan time [us] min {us(k.cyc_min)} mean "
-                         f"{us(k.cyc_sum, k.scans)} max {us(k.cyc_max)}, "
-                         f"pre max {k.pre_max}, post max {k.post_max}, "
-                         f"sem_wait {k.wait_sum}")
-            # over the traced scans (the run goes on until every core has finished)
-            line += (f", overruns {k.overruns}, skipped precycles {k.skips}, "
-                     f"copy_fail {k.copy_fail}")
-            out.append(line)
-        out.append(f"simulated        {format_decimal(Fraction(self.n * 1_000_000, hz))} "
-                   f"us, {self.n} clocks")
-        err = []
-        if fault:
-            fault_bits = int(dut.fault_o.value)
-            for k in self.cores:
-                if (fault_bits >> k.idx) & 1:
-                    err.append(f"scan watchdog: core {k.name} scan {k.scans} exceeded "
-                               f"{self.cfg['watchdog']} clocks")
-        return "\n".join(out) + "\n", "".join(e + "\n" for e in err)
+    def watchdog_text(self, fault: bool) -> str:
+        """stderr as the plant harness writes it when a core's scan watchdog fired."""
+        if not fault:
+            return ""
+        fault_bits = int(self.dut.fault_o.value)
+        return "".join(f"scan watchdog: core {k.name} scan {k.scans} exceeded "
+                       f"{self.cfg['watchdog']} clocks\n"
+                       for k in self.cores if (fault_bits >> k.idx) & 1)
 
 
 @cocotb.test()
@@ -678,7 +645,8 @@ async def run_plant(dut):
         for k in plant.cores:
             if k.trace:
                 k.trace.close()
-    out, err = plant.summary(fault)
     with open(cfg["results"], "w") as f:
-        json.dump({"status": 3 if fault else 0, "stdout": out, "stderr": err,
+        json.dump({"status": 3 if fault else 0, "clocks": plant.n,
+                   "skips": {k.name: k.skips for k in plant.cores},
+                   "stderr": plant.watchdog_text(fault),
                    "firmware_loads": LIB_LOADS, "firmware_mapped": _mapped_copies()}, f)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows
-from bitbyte.run.summary import RunStats
+from bitbyte.run.summary import RunStats, parse_stats
 
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
@@ -29,16 +29,6 @@ def ensure_harness() -> Path:
     if proc.returncode != 0 or not HARNESS.exists():
         raise SimError("building the Verilator harness failed:\n" + proc.stdout + proc.stderr)
     return HARNESS
-
-
-def parse_stats(stdout: str) -> dict[str, float]:
-    """The harness's `stat NAME VALUE` lines."""
-    stats = {}
-    for line in stdout.splitlines():
-        words = line.split()
-        if len(words) == 3 and words[0] == "stat":
-            stats[words[1]] = float(words[2]) if "." in words[2] else int(words[2])
-    return stats
 
 
 def run_harness(job, columns, trace: str | None = None, waves: str | None = None):
