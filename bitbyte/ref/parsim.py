@@ -180,9 +180,7 @@ class ParSim(RefSim):
     def run_scan(self) -> ScanRecord | None:
         if self.watchdog_fault:
             return None
-        start = self.clock
-        self._latch(start)
-        self.accu1 = self.accu2 = 0
+        start = self._start_scan()
         bit_instrs, byte_instrs = self.bit_program.instrs, self.byte_program.instrs
         byte_labels = self.byte_program.labels
         bit_pc = byte_pc = 0
@@ -243,12 +241,7 @@ class ParSim(RefSim):
         if leftover:
             raise ChannelError(f"scan {self.scan}: channels not empty at END: {leftover}")
         self.rlo = bit_rlo
-        end = max(bit_clock, byte_clock)
-        self._set_outputs(self.pio, end)
-        rec = ScanRecord(self.scan, end + 1, steps, self._values(end))
-        self.scan += 1
-        self.clock = end + 1
-        return rec
+        return self._end_scan(max(bit_clock, byte_clock), steps)
 
     def _deadlock_text(self, bit_ins, byte_ins) -> str:
         def show(ins):

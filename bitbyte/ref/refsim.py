@@ -238,10 +238,8 @@ class RefSim:
         """One scan: latch, instructions up to END, PIO -> outputs.  None on a fault."""
         if self.watchdog_fault:
             return None
-        start = self.clock
-        self._latch(start)
+        start = self._start_scan()
         self.rlo, self.stack = 0, []
-        self.accu1 = self.accu2 = 0
         pc, clock = 0, start                           # the first one in the latch clock
         while True:
             if clock - start + 1 > self.watchdog:      # even END here would be too late
@@ -252,10 +250,22 @@ class RefSim:
                 break
             pc, clocks = self._step(ins, pc, clock)
             clock += clocks
-        self._set_outputs(self.pio, clock)             # END, in clock `clock`
-        rec = ScanRecord(self.scan, clock + 1, clock - start + 1, self._values(clock))
+        return self._end_scan(clock, clock - start + 1)
+
+    def _start_scan(self) -> int:
+        """The scan's first clock: the inputs latched in it, ACCU1 / ACCU2 cleared."""
+        start = self.clock
+        self._latch(start)
+        self.accu1 = self.accu2 = 0
+        return start
+
+    def _end_scan(self, end: int, cycles: int) -> ScanRecord:
+        """END in clock `end`: PIO -> outputs, the scan's record; the next scan starts
+        in the clock after."""
+        self._set_outputs(self.pio, end)
+        rec = ScanRecord(self.scan, end + 1, cycles, self._values(end))
         self.scan += 1
-        self.clock = clock + 1
+        self.clock = end + 1
         return rec
 
     def _instr(self, pc: int) -> Instr:
