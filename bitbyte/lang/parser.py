@@ -323,6 +323,10 @@ class _Name:
     col: int
 
 
+# how each kind of name comes to be: "first declared at", "is defined at"
+_DEFINED = {"symbol": "declared", "label": "defined"}
+
+
 class Parser:
     """Parses one source; use `parse()` rather than this class directly."""
 
@@ -577,19 +581,23 @@ class Parser:
         if reason:
             raise self.error(tok, f"symbol `{tok.text}` {reason}: a symbol may not be "
                                   "a mnemonic or an address")
-        self.check_new_symbol(tok.text, tok)
+        self.check_new_name("symbol", tok.text, tok)
         return tok.text
 
-    def check_new_symbol(self, name: str, tok: Token) -> None:
+    def check_new_name(self, kind: str, name: str, tok: Token) -> None:
+        """A new symbol or label (kind) `name`: neither a symbol nor a label may have
+        it already (names are case-insensitive)."""
         key = name.upper()
-        if key in self.symbol_defs:
-            first = self.symbol_defs[key]
-            raise self.error(tok, f"duplicate symbol `{name}` "
-                                  f"(first declared at {first.line}:{first.col})")
-        if key in self.label_defs:
-            first = self.label_defs[key]
-            raise self.error(tok, f"duplicate symbol `{name}`: a label of that name "
-                                  f"is defined at {first.line}:{first.col}")
+        defs = {"symbol": self.symbol_defs, "label": self.label_defs}
+        other = "label" if kind == "symbol" else "symbol"
+        if key in defs[kind]:
+            first = defs[kind][key]
+            raise self.error(tok, f"duplicate {kind} `{name}` "
+                                  f"(first {_DEFINED[kind]} at {first.line}:{first.col})")
+        if key in defs[other]:
+            first = defs[other][key]
+            raise self.error(tok, f"duplicate {kind} `{name}`: a {other} of that name "
+                                  f"is {_DEFINED[other]} at {first.line}:{first.col}")
 
     def define_symbol(self, name: str, tok: Token, operand: Operand) -> None:
         key = name.upper()
@@ -628,16 +636,8 @@ class Parser:
         if reason:
             raise self.error(tok, f"label `{tok.text}` {reason}: a label may not be "
                                   "a mnemonic or an address")
-        key = tok.text.upper()
-        if key in self.label_defs:
-            first = self.label_defs[key]
-            raise self.error(tok, f"duplicate label `{tok.text}` "
-                                  f"(first defined at {first.line}:{first.col})")
-        if key in self.symbol_defs:
-            first = self.symbol_defs[key]
-            raise self.error(tok, f"duplicate label `{tok.text}`: a symbol of that name "
-                                  f"is declared at {first.line}:{first.col}")
-        self.label_defs[key] = _Name(tok.line, tok.col)
+        self.check_new_name("label", tok.text, tok)
+        self.label_defs[tok.text.upper()] = _Name(tok.line, tok.col)
         self.pending_labels.append(tok.text)
 
     def end_statement(self, instr: Instr) -> None:
