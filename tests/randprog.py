@@ -30,6 +30,16 @@ def _bit(rng: random.Random, area: str) -> str:
     return f"{area}{sep}{byte}.{rng.randrange(8)}"
 
 
+def emit_blocks(gen, lo: int, hi: int, block) -> None:
+    """A generator's body: n = lo..hi-1 random blocks, block(i, n) each, then the
+    labels of forward jumps still pending (gen.pending: (index, label)), in order."""
+    n = gen.rng.randrange(lo, hi)
+    for i in range(n):
+        block(i, n)
+    for _, label in sorted(gen.pending):
+        gen.lines.append(f"{label}:")
+
+
 class Gen:
     def __init__(self, rng: random.Random):
         self.rng = rng
@@ -101,11 +111,7 @@ class Gen:
             self.lines.append(f"  = {_bit(rng, 'PQ')}")
 
     def program(self) -> str:
-        nblocks = self.rng.randrange(3, 25)
-        for i in range(nblocks):
-            self.block(i, nblocks)
-        for _, label in sorted(self.pending):
-            self.lines.append(f"{label}:")
+        emit_blocks(self, 3, 25, self.block)
         body = self.lines
         if self.rng.random() < 0.7:
             body = body + ["  END"]

@@ -39,7 +39,7 @@ from bitbyte.ref.parsim import POLICIES, Deadlock, ParSim, serial_states
 from bitbyte.ref.refsim import RefSimError, refsim_trace
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import matches_serial
+from randprog import emit_blocks, matches_serial
 
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -75,16 +75,9 @@ class Adv:
         r = self.rng
         k = r.random()
         n = r.randrange(self.nbits)
-        if k < 0.25:
-            return f"M0.{n}"
-        if k < 0.45:
-            return f"Q0.{n}"
-        if k < 0.6:
-            return f"I0.{n}"
-        if k < 0.65:
-            return f"IR0.{n}"
-        if k < 0.68:
-            return f"IF0.{n}"
+        for limit, area in ((0.25, "M"), (0.45, "Q"), (0.6, "I"), (0.65, "IR"), (0.68, "IF")):
+            if k < limit:
+                return f"{area}0.{n}"
         if k < 0.72:
             if r.random() < self.pio * 10:
                 return f"{r.choice(['PI', 'PQ'])}0.{n}"
@@ -105,12 +98,9 @@ class Adv:
         k = r.random()
         if k < 0.4:
             return f"L {r.choice([0, 1, 2, 3, -1, 5])}"
-        if k < 0.7:
-            return f"L MW{r.randrange(3)}"
-        if k < 0.8:
-            return f"L IW{r.randrange(2)}"
-        if k < 0.9:
-            return f"L C{r.randrange(3)}"
+        for limit, area, count in ((0.7, "MW", 3), (0.8, "IW", 2), (0.9, "C", 3)):
+            if k < limit:
+                return f"L {area}{r.randrange(count)}"
         return f"L T{r.randrange(3)}" if self.timers else f"L QW{r.randrange(2)}"
 
     def cmp(self, head: str = "") -> list[str]:
@@ -262,11 +252,7 @@ class Adv:
             self.assigns()
 
     def program(self) -> str:
-        n = self.rng.randrange(4, 30)
-        for i in range(n):
-            self.stmt(i, n)
-        for _, label in sorted(self.pending):
-            self.lines.append(f"{label}:")
+        emit_blocks(self, 4, 30, self.stmt)
         return _text(self.lines)
 
 
