@@ -62,6 +62,12 @@ class Gen:
         self._q = 0
 
     # ---- operands ----------------------------------------------------------------
+    def _next(self, counter: str, wrap: int) -> int:
+        """The next of `wrap` numbers handed out in turn (counter: the attribute)."""
+        n = getattr(self, counter)
+        setattr(self, counter, n + 1)
+        return n % wrap
+
     def inp(self) -> str:
         return f"I{self.rng.randrange(IN_BYTES)}.{self.rng.randrange(8)}"
 
@@ -71,16 +77,13 @@ class Gen:
         return f"M{self.rng.randrange(hi)}.{self.rng.randrange(8)}"
 
     def new_marker(self) -> str:
-        b = self._m % 200
-        self._m += 1
-        return f"M{b}.{self.rng.randrange(8)}"
+        return f"M{self._next('_m', 200)}.{self.rng.randrange(8)}"
 
     def edge_mem(self) -> str:
         return f"M{200 + self.rng.randrange(56)}.{self.rng.randrange(8)}"
 
     def out(self) -> str:
-        q = self._q % (OUT_BYTES * 8)
-        self._q += 1
+        q = self._next("_q", OUT_BYTES * 8)
         return f"Q{q // 8}.{q % 8}"
 
     def contact(self) -> str:
@@ -100,19 +103,13 @@ class Gen:
         return self.marker()
 
     def timer(self) -> str:
-        t = self._t % 48
-        self._t += 1
-        return f"T{t}"
+        return f"T{self._next('_t', 48)}"
 
     def counter(self) -> str:
-        c = self._c % 48
-        self._c += 1
-        return f"C{c}"
+        return f"C{self._next('_c', 48)}"
 
     def mw(self) -> str:
-        w = self._mw % 100
-        self._mw += 1
-        return f"MW{w}"
+        return f"MW{self._next('_mw', 100)}"
 
     def old_mw(self) -> str:
         return f"MW{self.rng.randrange(max(1, min(self._mw, 100)))}"
