@@ -17,6 +17,16 @@ static void load(const uint32_t *words, unsigned n) {
   CHECK_EQ(S.prog_len, n);
 }
 
+/* A fresh state with the array p loaded (load()), one scan: its cost, the steps it
+ * counts and the pc it ends on. */
+#define CHECK_SCAN(p, cost, steps, end_pc) do { \
+    setup(); \
+    load(p, NWORDS(p)); \
+    CHECK_EQ(bb_run_scan(&S), cost); \
+    CHECK_EQ(S.scan_steps, steps); \
+    CHECK_EQ(S.pc, end_pc); \
+  } while (0)
+
 /* The byte part of the paper's Fig. 13: L Time; READ FBY 0; SD T1; L SP_cur;
  * L SP_nom; >=I; WRITE FBI 0; END_B — with Time = MW1, SP_cur = IW0, SP_nom = MW0. */
 static const uint32_t fig13[] = {
@@ -49,17 +59,12 @@ static void test_fig13_straight(void) {
   CHECK_EQ(S.last_class, BB_CL_END);
   /* bus: READ FBY0 @10, TIME_MS @11, TC_BIT @12, IW0 @21, FBI0 @51 (5 accesses) */
   CHECK_EQ(FH.nlog, 5);
-  CHECK_EQ(FH.log[0].addr, BB_BUS_FBY(0));
-  CHECK_EQ(FH.log[0].clock, 2010);
-  CHECK_EQ(FH.log[1].addr, BB_BUS_TIME_MS);
-  CHECK_EQ(FH.log[1].clock, 2011);
+  CHECK_ACCESS(0, BB_BUS_FBY(0), 2010);
+  CHECK_ACCESS(1, BB_BUS_TIME_MS, 2011);
   CHECK_EQ(FH.log[1].data, 2);
-  CHECK_EQ(FH.log[2].addr, BB_BUS_TC_BIT);
-  CHECK_EQ(FH.log[2].clock, 2012);
-  CHECK_EQ(FH.log[3].addr, BB_BUS_IW(0));
-  CHECK_EQ(FH.log[3].clock, 2021);
-  CHECK_EQ(FH.log[4].addr, BB_BUS_FBI(0));
-  CHECK_EQ(FH.log[4].clock, 2051);
+  CHECK_ACCESS(2, BB_BUS_TC_BIT, 2012);
+  CHECK_ACCESS(3, BB_BUS_IW(0), 2021);
+  CHECK_ACCESS(4, BB_BUS_FBI(0), 2051);
   CHECK_EQ(FH.log[4].data, 1);
   CHECK_EQ(FH.spent, 52 - 5);
   /* semantics: T1 started with preset 5, not expired; 100 >= 50 -> F_B = 1 */
@@ -214,8 +219,7 @@ static void test_runaway(void) {
   CHECK_EQ(FH.byte_flags, BB_FLAG_RUNAWAY);
   CHECK_EQ(S.scan_steps, 1000000u);
   CHECK_EQ(FH.nlog, 1);
-  CHECK_EQ(FH.log[0].addr, BB_BUS_BYTE_FLAGS);
-  CHECK_EQ(FH.log[0].clock, 1000000);
+  CHECK_ACCESS(0, BB_BUS_BYTE_FLAGS, 1000000);
   CHECK_EQ(S.overruns, 0);
   /* a smaller limit; JCN_B 0 spins too, because F_B is 0 at scan start */
   setup();
@@ -273,11 +277,7 @@ static void test_end_by_jump(void) {
     i_imm(5), i_j(BB_OP_JU_B, 4), i_imm(6), i_T(BB_AREA_MW, 0), END_B, i_imm(7),
     i_T(BB_AREA_MW, 1),
   };
-  setup();
-  load(p, NWORDS(p));
-  CHECK_EQ(bb_run_scan(&S), 11);
-  CHECK_EQ(S.scan_steps, 3);
-  CHECK_EQ(S.pc, 5);
+  CHECK_SCAN(p, 11, 3, 5);
   CHECK_EQ(bb_executed(&S), 3);
   CHECK_EQ(bb_mw(&S, 0), 0);
   CHECK_EQ(bb_mw(&S, 1), 0);          /* nothing after END_B runs */
@@ -294,20 +294,12 @@ static void test_end_by_jump(void) {
 static void test_off_the_end(void) {
   /* no END_B: L 9 (10), T MW3 (10) = 20 */
   const uint32_t a[] = { i_imm(9), i_T(BB_AREA_MW, 3) };
-  setup();
-  load(a, NWORDS(a));
-  CHECK_EQ(bb_run_scan(&S), 20);
-  CHECK_EQ(S.scan_steps, 2);
-  CHECK_EQ(S.pc, 2);
+  CHECK_SCAN(a, 20, 2, 2);
   CHECK_EQ(bb_mw(&S, 3), 9);
   CHECK_EQ(bb_flags(&S), 0);
   /* a jump to the program length (4) ends the scan: L 1 (10) + JU_B (1) = 11 */
   const uint32_t b[] = { i_imm(1), i_j(BB_OP_JU_B, 4), i_imm(2), i_T(BB_AREA_MW, 0) };
-  setup();
-  load(b, NWORDS(b));
-  CHECK_EQ(bb_run_scan(&S), 11);
-  CHECK_EQ(S.scan_steps, 2);
-  CHECK_EQ(S.pc, 4);
+  CHECK_SCAN(b, 11, 2, 4);
   CHECK_EQ(bb_mw(&S, 0), 0);
   CHECK_EQ(bb_flags(&S), 0);
   /* a jump past it (5 > 4) is illegal: flag, no jump, illegal cost (1, its flag write
@@ -330,11 +322,7 @@ static void test_off_the_end(void) {
    * end) = 4096 clocks */
   static uint32_t full[BB_PROG_WORDS];
   for (unsigned i = 0; i < BB_PROG_WORDS; i++) full[i] = i_j(BB_OP_JCN_B, i + 1);
-  setup();
-  load(full, BB_PROG_WORDS);
-  CHECK_EQ(bb_run_scan(&S), 4096);
-  CHECK_EQ(S.scan_steps, 4096);
-  CHECK_EQ(S.pc, 4096);
+  CHECK_SCAN(full, 4096, 4096, 4096);
   CHECK_EQ(bb_flags(&S), 0);
 }
 

@@ -38,8 +38,7 @@ static void test_exact_cost(void) {
   CHECK_EQ(S.overruns, 0);
   /* back to back: the next dispatch in the clock right after */
   CHECK_EQ(dispatch(i_imm(6), 0, 0, 0), 10);
-  CHECK_EQ(FH.log[3].addr, BB_BUS_DISPATCH_INSTR);
-  CHECK_EQ(FH.log[3].clock, 110);
+  CHECK_ACCESS(3, BB_BUS_DISPATCH_INSTR, 110);
   CHECK_EQ(FH.done_clock, 119);
   CHECK_EQ(FH.clock, 120);
   CHECK_EQ(FH.spent, 14);
@@ -56,23 +55,18 @@ static void test_exact_cost_with_inputs(void) {
   fh_clear_log();
   CHECK_EQ(dispatch(i_L(BB_AREA_IW, 2), 0, 0, 300), 10);
   CHECK_EQ(FH.nlog, 4);
-  CHECK_EQ(FH.log[2].addr, BB_BUS_DISPATCH_IW);
-  CHECK_EQ(FH.log[2].clock, 302);
+  CHECK_ACCESS(2, BB_BUS_DISPATCH_IW, 302);
   CHECK_EQ(FH.log[2].data, 77);
-  CHECK_EQ(FH.log[3].addr, BB_BUS_DONE);
-  CHECK_EQ(FH.log[3].clock, 309);
+  CHECK_ACCESS(3, BB_BUS_DONE, 309);
   CHECK_EQ(FH.spent, 6);                /* 10 - 3 reads - 1 DONE */
   CHECK_EQ(S.accu1, 77);
   fh_clear_log();
   S.accu1 = 5;                          /* preset */
   CHECK_EQ(dispatch(i_tmr(BB_OP_SD, 0), 1, 0, 400), 10);
   CHECK_EQ(FH.nlog, 5);
-  CHECK_EQ(FH.log[2].addr, BB_BUS_DISPATCH_MS);
-  CHECK_EQ(FH.log[2].clock, 402);
-  CHECK_EQ(FH.log[3].addr, BB_BUS_TC_BIT);
-  CHECK_EQ(FH.log[3].clock, 403);
-  CHECK_EQ(FH.log[4].addr, BB_BUS_DONE);
-  CHECK_EQ(FH.log[4].clock, 409);
+  CHECK_ACCESS(2, BB_BUS_DISPATCH_MS, 402);
+  CHECK_ACCESS(3, BB_BUS_TC_BIT, 403);
+  CHECK_ACCESS(4, BB_BUS_DONE, 409);
   CHECK_EQ(FH.spent, 6 + 5);            /* 10 - 3 accesses - 1 DONE */
   CHECK_EQ(S.overruns, 0);
 }
@@ -205,28 +199,22 @@ static void test_timer_now_first_clock(void) {
   /* INSTR at 398, CTX at 399, DISPATCH_MS at 400: TIME_MS is 4 by then, but the
    * snapshot is the dispatch clock's 398 / 100 = 3 */
   CHECK_EQ(FH.disp_clock, 398);
-  CHECK_EQ(FH.log[0].addr, BB_BUS_DISPATCH_INSTR);
-  CHECK_EQ(FH.log[0].clock, 398);
-  CHECK_EQ(FH.log[1].addr, BB_BUS_DISPATCH_CTX);
-  CHECK_EQ(FH.log[1].clock, 399);
-  CHECK_EQ(FH.log[2].addr, BB_BUS_DISPATCH_MS);
-  CHECK_EQ(FH.log[2].clock, 400);
+  CHECK_ACCESS(0, BB_BUS_DISPATCH_INSTR, 398);
+  CHECK_ACCESS(1, BB_BUS_DISPATCH_CTX, 399);
+  CHECK_ACCESS(2, BB_BUS_DISPATCH_MS, 400);
   CHECK_EQ(FH.log[2].data, 3);
   CHECK_EQ(bb_timer_status(&S, 1), 0);                    /* d = 3 - 0 = 3 < 4 */
   CHECK_EQ(bb_timer_elapsed(&S, 1), 3);
   CHECK_EQ(FH.t_status & 2u, 0);
   /* TC_BIT comes before DONE, inside the cost */
-  CHECK_EQ(FH.log[3].addr, BB_BUS_TC_BIT);
-  CHECK_EQ(FH.log[3].clock, 401);
+  CHECK_ACCESS(3, BB_BUS_TC_BIT, 401);
   CHECK_EQ(FH.log[3].data, 1);                            /* status 0, T1 */
-  CHECK_EQ(FH.log[4].addr, BB_BUS_DONE);
-  CHECK_EQ(FH.log[4].clock, 407);
+  CHECK_ACCESS(4, BB_BUS_DONE, 407);
   CHECK_EQ(FH.nlog, 5);
   /* (the live TIME_MS in clock 400 would have given 4, d = 4 and status 1) */
   /* the next dispatch takes a new snapshot: at 500 now = 5, d = 5 >= 4 */
   dispatch(i_tmr(BB_OP_SD, 1), 1, 0, 500);
-  CHECK_EQ(FH.log[7].addr, BB_BUS_DISPATCH_MS);
-  CHECK_EQ(FH.log[7].clock, 502);
+  CHECK_ACCESS(7, BB_BUS_DISPATCH_MS, 502);
   CHECK_EQ(FH.log[7].data, 5);
   CHECK_EQ(bb_timer_status(&S, 1), 1);
   CHECK_EQ(bb_timer_elapsed(&S, 1), 4);                   /* min(d, preset) */
@@ -255,8 +243,7 @@ static void test_iw_first_clock(void) {
   fh_iw_at(3, 200, 202);
   fh_clear_log();
   CHECK_EQ(dispatch(i_L(BB_AREA_IW, 3), 0, 0, 200), 10);
-  CHECK_EQ(FH.log[2].addr, BB_BUS_DISPATCH_IW);
-  CHECK_EQ(FH.log[2].clock, 202);
+  CHECK_ACCESS(2, BB_BUS_DISPATCH_IW, 202);
   CHECK_EQ(FH.log[2].data, 100);
   CHECK_EQ(FH.iw[3], 200);                                /* the input did change */
   CHECK_EQ(S.accu1, 100);

@@ -32,6 +32,13 @@ extern const char *tt_current;
               tt_current, #actual, tt_a_, #expected, tt_e_); } \
   } while (0)
 
+/* Access k of the fake HAL's log (FH.log[k]): its register and the clock it completed
+ * in, two checks. */
+#define CHECK_ACCESS(k, reg, clk) do { \
+    CHECK_EQ(FH.log[k].addr, reg); \
+    CHECK_EQ(FH.log[k].clock, clk); \
+  } while (0)
+
 #define RUN(fn) do { \
     int tt_f0_ = tt_fails; tt_current = #fn; tt_tests++; fn(); \
     if (tt_fails != tt_f0_) fprintf(stderr, "FAIL %s\n", #fn); \
