@@ -229,24 +229,22 @@ def test_paren_stack_overflow_within_a_scan_is_an_error():
 # --- jumps and cycles -----------------------------------------------------------------
 
 
-def test_forward_jc_taken_and_not_taken():
-    src = "LD I0.0\nJC skip\nSET\n= Q0.0\nskip: LD I0.1\n= Q0.1"
-    recs = run(src, stim("scan,I0.0,I0.1\n0,1,1\n1,0,0\n"), scans=2)
-    assert column(recs, "Q0.0") == [0, 1]
-    assert column(recs, "Q0.1") == [1, 0]
-    # taken: LD + JC(2) + LD + = + END = 6 (LD in the latch clock 0, END in 5);
-    # not taken: 6 instructions + END = 7, latch 6, END 12
-    assert [r.cycles for r in recs] == [6, 7]
-    assert [r.end_clock for r in recs] == [6, 13]
-
-
-def test_jcn_and_ju():
-    src = "LD I0.0\nJCN skip\nSET\n= Q0.0\nskip: JU over\nSET\n= Q0.1\nover: NOP"
-    recs = run(src, stim("scan,I0.0\n0,0\n1,1\n"), scans=2)
-    assert column(recs, "Q0.0") == [0, 1]
-    assert column(recs, "Q0.1") == [0, 0]
-    # scan 0: LD, JCN(2), JU(2), NOP = 6 + END; scan 1: LD, JCN, SET, =, JU(2), NOP = 7 + END
-    assert [r.cycles for r in recs] == [7, 8]
+@pytest.mark.parametrize("src, stimulus, q00, q01, cycles, end_clocks", [
+    # forward JC taken and not taken -- taken: LD + JC(2) + LD + = + END = 6 (LD in
+    # the latch clock 0, END in 5); not taken: 6 instructions + END = 7, latch 6, END 12
+    ("LD I0.0\nJC skip\nSET\n= Q0.0\nskip: LD I0.1\n= Q0.1",
+     "scan,I0.0,I0.1\n0,1,1\n1,0,0\n", [0, 1], [1, 0], [6, 7], [6, 13]),
+    # JCN and JU -- scan 0: LD, JCN(2), JU(2), NOP = 6 + END; scan 1: LD, JCN, SET, =,
+    # JU(2), NOP = 7 + END
+    ("LD I0.0\nJCN skip\nSET\n= Q0.0\nskip: JU over\nSET\n= Q0.1\nover: NOP",
+     "scan,I0.0\n0,0\n1,1\n", [0, 1], [0, 0], [7, 8], [7, 15]),
+], ids=["forward_jc_taken_and_not_taken", "jcn_and_ju"])
+def test_conditional_jumps(src, stimulus, q00, q01, cycles, end_clocks):
+    recs = run(src, stim(stimulus), scans=2)
+    assert column(recs, "Q0.0") == q00
+    assert column(recs, "Q0.1") == q01
+    assert [r.cycles for r in recs] == cycles
+    assert [r.end_clock for r in recs] == end_clocks
 
 
 def test_backward_loop():
