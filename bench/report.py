@@ -108,6 +108,24 @@ def _plt():
     return plt
 
 
+def _save(plt, fig, path):
+    """Lay the figure out, write it to path, free it."""
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def _bar_rows(ax, labels, xlim, xlabel, title, **label_kw):
+    """A horizontal bar chart's frame: a row a label, top to bottom, a log x axis."""
+    ax.set_yticks(range(len(labels)))
+    ax.set_yticklabels(labels, **label_kw)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlim(*xlim)
+    ax.set_xlabel(xlabel)
+    ax.set_title(title, fontsize=9)
+
+
 def plot_scan(res, path):
     plt = _plt()
     f = res["clock_mhz"]
@@ -129,21 +147,15 @@ def plot_scan(res, path):
                         capsize=3, lw=1)
             ax.text(hi * 1.08, y, f"{fmt(r['median'])} clocks = {med:.2f} µs",
                     va="center", fontsize=8)
-    ax.set_yticks(range(len(keys)))
-    ax.set_yticklabels([f"{res['scan'][k]['name']}\n{res['scan'][k]['n_bit']} bit + "
-                        f"{res['scan'][k]['n_word']} word" for k in keys])
-    ax.invert_yaxis()
-    ax.set_xscale("log")
-    ax.set_xlim(0.5, 400)
-    ax.set_xlabel(f"scan time [µs] at {f:g} MHz (bar: median, whiskers: min–max)")
+    _bar_rows(ax, [f"{res['scan'][k]['name']}\n{res['scan'][k]['n_bit']} bit + "
+                   f"{res['scan'][k]['n_word']} word" for k in keys], (0.5, 400),
+              f"scan time [µs] at {f:g} MHz (bar: median, whiskers: min–max)",
+              "Scan time per program (byte processor: paper weights, 10 clocks per "
+              "word instruction)")
     sec = ax.secondary_xaxis("top", functions=(lambda x: x * f, lambda c: c / f))
     sec.set_xlabel("scan time [clocks]")
-    ax.set_title("Scan time per program (byte processor: paper weights, 10 clocks per "
-                 "word instruction)", fontsize=9)
     ax.legend(loc="upper right")
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_table1(res, d, path):
@@ -171,16 +183,10 @@ def plot_table1(res, d, path):
         ax.barh(i, ms, color=col)
         ax.text(ms * 1.08, i, f"{ms * 1000:.0f} µs" if ms < 1 else f"{ms:.2f} ms",
                 va="center", fontsize=8)
-    ax.set_yticks(range(len(rows)))
-    ax.set_yticklabels([f"{n}\n{s}" for n, s, _, _ in rows], fontsize=7)
-    ax.invert_yaxis()
-    ax.set_xscale("log")
-    ax.set_xlim(0.01, 30)
-    ax.set_xlabel("program execution time per scan [ms] (log scale)")
-    ax.set_title("Table-1-sized program against the paper's Table 1", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _bar_rows(ax, [f"{n}\n{s}" for n, s, _, _ in rows], (0.01, 30),
+              "program execution time per scan [ms] (log scale)",
+              "Table-1-sized program against the paper's Table 1", fontsize=7)
+    _save(plt, fig, path)
 
 
 def plot_word_share(res, d, path):
@@ -220,9 +226,7 @@ def plot_word_share(res, d, path):
     sec2.set_ylabel("scan time [µs] at 0.1 µs per clock")
     a2.set_title("80C320 byte processor (c320): ratio single MCU / this CPU", fontsize=9)
     a2.legend(fontsize=8, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_baseline(res, d, path):
@@ -251,9 +255,7 @@ def plot_baseline(res, d, path):
                  "straight line", fontsize=9)
     ax.set_ylim(0, 32)
     ax.legend(fontsize=8, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_response(res, path):
@@ -297,9 +299,7 @@ def plot_response(res, path):
         ac.legend(fontsize=7, loc="upper left")
     fig.suptitle("Response time: random input edge → dependent output changes "
                  f"(response.il, {res['response']['n_edges']} edges per mode)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 # ---------------------------------------------------------------------- markdown
