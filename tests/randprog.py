@@ -40,6 +40,16 @@ def emit_blocks(gen, lo: int, hi: int, block) -> None:
         gen.lines.append(f"{label}:")
 
 
+def counter_update(rng, k: float, c: int, load, indent: str = "") -> list[str]:
+    """The lines that update counter C{c}, picked by the random number k: CU / CD
+    (60 %), a load (load()) and S (20 %), or R (20 %)."""
+    if k < 0.6:
+        return [f"{indent}{rng.choice(['CU', 'CD'])} C{c}"]
+    if k < 0.8:
+        return [load(), f"{indent}S C{c}"]
+    return [f"{indent}R C{c}"]
+
+
 class Gen:
     def __init__(self, rng: random.Random):
         self.rng = rng
@@ -198,13 +208,7 @@ class MixedGen(Gen):
         else:                            # a counter
             c = rng.randrange(8)
             self.chain(0)
-            kind = rng.random()
-            if kind < 0.6:
-                self.lines.append(f"  {rng.choice(['CU', 'CD'])} C{c}")
-            elif kind < 0.8:
-                self.lines += [self.load(), f"  S C{c}"]
-            else:
-                self.lines.append(f"  R C{c}")
+            self.lines += counter_update(rng, rng.random(), c, self.load, "  ")
             self.lines += [f"  A C{c}", f"  = {self.operand(WRITE_AREAS)}"]
             if rng.random() < 0.3:
                 self.lines += [f"  L C{c}", f"  T MW{rng.randrange(8)}"]

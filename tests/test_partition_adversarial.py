@@ -39,7 +39,7 @@ from bitbyte.ref.parsim import POLICIES, Deadlock, ParSim, serial_states
 from bitbyte.ref.refsim import RefSimError, refsim_trace
 from bitbyte.lang.stimulus import load_stimulus, parse_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import emit_blocks, matches_serial
+from randprog import counter_update, emit_blocks, matches_serial
 
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -155,12 +155,8 @@ class Adv:
                 self.lines.append(f"R T{t}")
             else:
                 self.lines += [f"L {r.randrange(0, 4)}", f"{r.choice(TIMERS)} T{t}"]
-        elif k < 0.6:
-            self.lines.append(f"{r.choice(['CU', 'CD'])} C{c}")
-        elif k < 0.8:
-            self.lines += [self.load(), f"S C{c}"]
         else:
-            self.lines.append(f"R C{c}")
+            self.lines += counter_update(r, k, c, self.load)
 
     def stmt(self, index: int, n: int) -> None:
         r = self.rng
