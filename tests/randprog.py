@@ -7,6 +7,7 @@ a jump never enters or leaves a parenthesis. A few backward jumps loop for a whi
 """
 from __future__ import annotations
 
+import os
 import random
 import re
 
@@ -420,3 +421,11 @@ def matches_serial(sim, expected, scans: int, where, view: str) -> None:
             break
         assert rec is not None, f"{where(scan)}: parallel hit its step limit"
         assert (rec.values, state_snapshot(sim)) == expected[scan], f"{where(scan)}\n{view}"
+
+
+def make_cases(tmp_path_factory, tag: str, count: int, make, *args) -> list:
+    """A module fixture's cases: make(tmp, i, *args) for i < count, in a fresh tmp
+    directory `tag`; the run's seed printed with them."""
+    tmp = tmp_path_factory.mktemp(tag)
+    print(f"{tag} programs: BITBYTE_SEED={os.environ['BITBYTE_SEED']}, {count} programs")
+    return [make(tmp, i, *args) for i in range(count)]

@@ -18,8 +18,9 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.sim.cocotb_runner import run_jobs
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import (plant_stimulus, random_mixed_program, random_mixed_watch,
-                      random_parallel_program, random_scan_stimulus, strip_timers)
+from randprog import (make_cases, plant_stimulus, random_mixed_program,
+                      random_mixed_watch, random_parallel_program, random_scan_stimulus,
+                      strip_timers)
 
 PROGRAMS = int(os.environ.get("BITBYTE_PARALLEL_PROGRAMS", "100"))
 COCOTB = int(os.environ.get("BITBYTE_PARALLEL_COCOTB", "30"))
@@ -59,9 +60,7 @@ class Case:
 
 @pytest.fixture(scope="module")
 def cases(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("parallel")
-    print(f"parallel programs: BITBYTE_SEED={BASE_SEED}, {PROGRAMS} programs")
-    return [Case(tmp, i) for i in range(PROGRAMS)]
+    return make_cases(tmp_path_factory, "parallel", PROGRAMS, Case)
 
 
 def test_cases_exercise_the_exchange(cases):

@@ -21,8 +21,8 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.sim.cocotb_runner import run_jobs
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows, trace_text
-from randprog import (random_mixed_program, random_mixed_stimulus, random_mixed_watch,
-                      random_program, random_stimulus, random_watch)
+from randprog import (make_cases, random_mixed_program, random_mixed_stimulus,
+                      random_mixed_watch, random_program, random_stimulus, random_watch)
 
 PROGRAMS = int(os.environ.get("BITBYTE_RANDOM_PROGRAMS", "200"))
 MIXED_PROGRAMS = int(os.environ.get("BITBYTE_MIXED_PROGRAMS", "200"))
@@ -82,16 +82,12 @@ class Case:
 
 @pytest.fixture(scope="module")
 def cases(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("random")
-    print(f"random programs: BITBYTE_SEED={BASE_SEED}, {PROGRAMS} programs")
-    return [Case(tmp, i) for i in range(PROGRAMS)]
+    return make_cases(tmp_path_factory, "random", PROGRAMS, Case)
 
 
 @pytest.fixture(scope="module")
 def mixed_cases(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("mixed")
-    print(f"mixed programs: BITBYTE_SEED={BASE_SEED}, {MIXED_PROGRAMS} programs")
-    return [Case(tmp, i, MIXED) for i in range(MIXED_PROGRAMS)]
+    return make_cases(tmp_path_factory, "mixed", MIXED_PROGRAMS, Case, MIXED)
 
 
 def test_generator_covers_the_instruction_set(cases):
