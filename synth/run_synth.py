@@ -494,6 +494,13 @@ def classify(path: dict) -> str:
     return "mixed logic"
 
 
+def _with_result(results: dict):
+    """(key, target, result) of the targets that have a result, in TARGETS order."""
+    for key, t in TARGETS.items():
+        if results.get(key):
+            yield key, t, results[key]
+
+
 def write_report(results: dict, sweep: list[Job], present: list[str], params: list[tuple[str, str]],
                  wrapper: dict, args, elapsed: float, vs: dict, png: Path | None) -> str:
     L: list[str] = []
@@ -536,10 +543,7 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("")
     w("| target | configuration | core LUTs | core FFs | LUTs | FFs | block RAM | placed | Fmax clk | constraint | critical path |")
     w("|---|---|---:|---:|---:|---:|---:|---|---:|---:|---|")
-    for key, t in TARGETS.items():
-        r = results.get(key)
-        if not r:
-            continue
+    for key, t, r in _with_result(results):
         for att in r.get("attempts", []):
             w(f"| {t.title} | {att['cfg'].label()} | | | | | | does not fit: {att['why']} | – | | |")
         if "error" in r:
@@ -599,9 +603,8 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     # ---- critical paths
     w("## Critical paths")
     w("")
-    for key, t in TARGETS.items():
-        r = results.get(key)
-        p = r and r.get("pnr", {}).get(key)
+    for key, t, r in _with_result(results):
+        p = r.get("pnr", {}).get(key)
         if not p or "error" in p or not p.get("paths"):
             continue
         cp = p["paths"][0]
