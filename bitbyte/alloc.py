@@ -48,6 +48,7 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError, read_utf8
 
 ALPHA_MS = Fraction("0.001145")          # seed 002 §V: 1.145 µs per byte read
@@ -76,7 +77,7 @@ LOOP_NOPS = LOOP_ITER - 6 * COUNTER_BITS - 1   # NOPs in it, besides the countin
 LOOP_FIXED = COUNTER_BITS + 2 - 1        # presetting the counter; the last JCN: 1
 PLANT_HEADROOM = 8                       # clocks left per SCT for an empty precycle
                                          # and postcycle (3 + 2 on the plant harness)
-PROG_WORDS = 4096                        # Config.prog_words
+PROG_WORDS = DEF.sizes["prog_words"]       # the program memory (Config.prog_words)
 
 
 class UsageProblem(ValueError):

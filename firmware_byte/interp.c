@@ -357,8 +357,9 @@ int bb_run_step(bb_state *s, bb_mode mode) {
   }
   const uint64_t t0 = hal_now(s->hal_ctx);
   bb_run_scan(s);
+  ++s->byte_scans;                         /* counted as it is announced: a host that
+                                              stops in the SCAN_DONE write sees it */
   hal_bus_write(s->hal_ctx, BB_BUS_SCAN_DONE, 1);   /* the byte part of this scan is done */
-  ++s->byte_scans;
   return (int)(hal_now(s->hal_ctx) - t0);
 }
 

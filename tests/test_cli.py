@@ -130,39 +130,90 @@ def test_icarus_and_verilator_traces_identical(tmp_path):
     assert len(lines) == 26
 
 
-# Word logic that divides by zero (MW2 = 0): the byte side's ARITH flag.
+# Word logic that divides by zero (MW2 = 0): the byte side's ARITH flag; MW3 counts the
+# byte side's scans (one +1 each), an independent count for `byte side N scans`.
 SUMMARY_PROGRAM = """\
       LD    I0.0
       =     Q0.0
+      L     MW3
+      L     1
+      +I
+      T     MW3
       L     MW1
       L     MW2
       /I
+      T     MW4
+"""
+# The bit side hands a condition to the byte side every 7-clock scan (the JCN), the
+# byte side takes one per much longer scan: the free-running queue to the byte side
+# overflows; nothing goes to the bit side.
+QUEUE_PROGRAM = """\
+      LD    I0.1
+      =     Q0.1
+      LD    I0.0
+      JCN   skip
+      L     MW3
+      L     1
+      +I
       T     MW3
+skip: L     MW1
+      L     MW2
+      /I
+      T     MW4
 """
 
 
-@pytest.mark.parametrize("mode,exchange,lines", [
-    ("serial", None, []),
-    ("parallel", "queue", []),
-    ("free", "marker", ["byte side"]),
-    ("free", "queue-free", ["byte side", "queue losses"])])
-def test_one_summary_for_every_simulator(tmp_path, mode, exchange, lines):
-    """The harness (its `stat` lines) and cocotb (its results) give the same figures,
-    printed by one printer: the exchange statistics of the mode, the byte flags."""
+def _summaries(tmp_path, program, *args, stop=("--until-us", 5)):
     src = tmp_path / "p.il"
-    src.write_text(SUMMARY_PROGRAM)
+    src.write_text(program)
     out = {}
     for sim in ("icarus", "verilator"):
-        args = ["run", src, "--until-us", 5, "--sim", sim, "--mode", mode]
-        proc = bitbyte(*args, *(["--exchange", exchange] if exchange else []))
+        trace = tmp_path / f"{sim}.csv"
+        proc = bitbyte("run", src, *stop, "--sim", sim, "--trace", trace,
+                       "--watch", "MW3", *args)
         assert proc.returncode == 0, proc.stderr
-        out[sim] = [re.sub(r", [0-9.]+ M clocks/s wall$", "", line)
-                    for line in proc.stdout.splitlines()]
-    assert out["icarus"] == out["verilator"]
-    labels = [line[:17].strip() for line in out["icarus"]]
-    assert labels == ["scans", "cycles/scan", "scan time [us]", "stalls", *lines,
-                      "byte flags", "simulated"]
-    assert "ARITH (/I or MOD by 0)" in out["icarus"][labels.index("byte flags")]
+        out[sim] = ([re.sub(r", [0-9.]+ M clocks/s wall$", "", line)
+                     for line in proc.stdout.splitlines() if not line.startswith("trace ")],
+                    trace.read_text())
+    assert out["icarus"] == out["verilator"]          # the figures and the traces
+    lines, trace = out["icarus"]
+    return {line[:17].strip(): line[17:] for line in lines}, trace.splitlines()
+
+
+@pytest.mark.parametrize("mode,exchange,extra,stop", [
+    ("serial", None, [], ("--until-us", 5)),
+    ("parallel", "queue", [], ("--until-us", 5)),
+    ("free", "marker", ["byte side"], ("--until-us", 5)),
+    # stops while the byte side announces a scan (SCAN_DONE in flight)
+    ("free", "marker", ["byte side"], ("--scans", 41))])
+def test_one_summary_for_every_simulator(tmp_path, mode, exchange, extra, stop):
+    """The harness (its `stat` lines) and cocotb (its results) give the same figures,
+    printed by one printer: the exchange statistics of the mode, the byte flags."""
+    args = ["--mode", mode] + (["--exchange", exchange] if exchange else [])
+    summary, trace = _summaries(tmp_path, SUMMARY_PROGRAM, *args, stop=stop)
+    assert list(summary) == ["scans", "cycles/scan", "scan time [us]", "stalls", *extra,
+                             "byte flags", "simulated"]
+    assert summary["byte flags"] == "ARITH (/I or MOD by 0)"
+    assert summary["scans"] == str(len(trace) - 1)
+    if mode == "free":
+        # the program's own count: MW3 + 1 in each byte scan, before the scan's end
+        assert trace[0].endswith(",MW3")
+        last_mw3 = int(trace[-1].rsplit(",", 1)[1])
+        byte_scans = int(summary["byte side"].removesuffix(" scans (free-running)"))
+        assert last_mw3 > 1 and byte_scans <= last_mw3 <= byte_scans + 1
+
+
+def test_queue_losses_in_the_summary(tmp_path):
+    summary, _ = _summaries(tmp_path, QUEUE_PROGRAM, "--mode", "free", "--exchange", "queue-free")
+    m = re.fullmatch(r"overflows to-byte (\d+) to-bit (\d+), underflows to-byte (\d+) "
+                     r"to-bit (\d+)", summary["queue losses"])
+    assert m, summary["queue losses"]
+    to_byte, to_bit, under_byte, under_bit = map(int, m.groups())
+    bit_scans = int(summary["scans"])
+    byte_scans = int(summary["byte side"].split()[0])
+    # one condition written per bit scan, one read per byte scan, 8 slots: the rest lost
+    assert bit_scans - byte_scans - 8 <= to_byte <= bit_scans - byte_scans + 1
+    assert to_bit == 0 and under_bit == 0 and under_byte <= 1
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])

@@ -41,7 +41,7 @@ FIRMWARE_LIB = Path(__file__).resolve().parents[2] / "firmware_byte" / "build" /
     "libbyteproc_cb.so"
 
 PERIOD_NS = 10      # simulator time only; reported time uses the job's clock_hz
-MARKER_BITS = 2048  # the marker RAM clears one bit per clock after reset
+MARKER_BITS = DEF.sizes["marker_bytes"] * 8  # the marker RAM clears one bit per clock after reset
 
 
 def _word(vector, index: int) -> int:
@@ -66,11 +66,11 @@ class _MarkerLook:
         return int(self.dut.dbg_m_o.value) & 1
 
 
-def _reader(dut, kind: str, index: int, firmware=None, look=None):
+def _reader(dut, kind: str, index: int, mw=None, look=None):
     """A function returning the current value of one traced column (for M n: a
-    coroutine function)."""
+    coroutine function; MW n: `mw(n)`, the firmware's word)."""
     if kind == "mw":
-        return lambda: firmware.mw(index)
+        return lambda: mw(index)
     if kind == "qw":
         return lambda: _word(dut.out_words_o, index)
     if kind == "iw":
@@ -257,9 +257,6 @@ async def run_job(dut, job: RunJob) -> dict:
     fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
     try:
         result = await _scans(dut, job, firmware)
-        # the firmware's figures as the run ends (its thread waits in a HAL call): once
-        # stopped, its bus reads return 0 and would set flags a real run never sees
-        result.update(firmware.stats())
     finally:
         firmware.stopped.set()
         await fw_thread
@@ -271,9 +268,22 @@ async def run_job(dut, job: RunJob) -> dict:
 async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
     """From clock 0 on: inputs, finished scans, the stop condition. The coroutine
     wakes only at the clocks where something happens (a scan ends, the watchdog
-    fires, a time-keyed input changes), always at that clock's falling edge."""
+    fires, a time-keyed input changes), always at that clock's falling edge.
+
+    What the firmware holds (MW columns, its flags and scan count) is taken at the
+    edge itself, while the firmware thread waits inside the HAL call that spans that
+    clock, as the C++ harness takes it: at the falling edge the thread may already
+    have run on into the next clock's work."""
     look = _MarkerLook(dut)
-    readers = [_reader(dut, kind, index, firmware, look) for _, kind, index in job.cols]
+    mw_cols = sorted({index for _, kind, index in job.cols if kind == "mw"})
+    held = {"mw": {}, "stats": firmware.stats()}
+
+    def take_firmware() -> None:
+        held["mw"] = {n: firmware.mw(n) for n in mw_cols}
+        held["stats"] = firmware.stats()
+
+    readers = [_reader(dut, kind, index, lambda n: held["mw"][n], look)
+               for _, kind, index in job.cols]
     stim = list(job.stim)
     next_stim = 0
     rows, fault = [], False
@@ -310,6 +320,7 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
             wake.append(Timer(at, unit="step"))   # at > 0: due inputs are applied
         fired = await First(*wake)
         if isinstance(fired, RisingEdge):
+            take_firmware()
             await FallingEdge(dut.clk_i)       # into the clock after the edge
         clock = clock_now()
         if int(dut.fault_o.value):
@@ -327,7 +338,7 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
         if job.stim_kind == "clock":
             apply_due(clock)
     queue_free = job.exchange == "queue-free"
-    return {"rows": rows, "fault": fault, "clocks": clock_now(),
+    return {"rows": rows, "fault": fault, "clocks": clock_now(), **held["stats"],
             "stalls": [int(dut.stalls_bit_o.value), int(dut.stalls_byte_o.value)],
             "queue_losses": [int(dut.dbg_queue_overflows_o.value),
                              int(dut.dbg_queue_underflows_o.value)] if queue_free else None}
