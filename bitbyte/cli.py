@@ -19,6 +19,7 @@ from pathlib import Path
 from bitbyte import alloc as al
 from bitbyte.asm import assemble
 from bitbyte.lang.config import Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SimError, SourceError, UsageError, format_error
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
@@ -43,7 +44,7 @@ def _parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="assemble and simulate PROG.il, write a trace")
     r.add_argument("program")
     r.add_argument("--mode", choices=["serial", "parallel", "free"], default="serial")
-    r.add_argument("--exchange", choices=["handshake", "queue", "queue-free", "marker"])
+    r.add_argument("--exchange", choices=DEF.exchanges)
     r.add_argument("--stimulus")
     stop = r.add_mutually_exclusive_group()
     stop.add_argument("--scans", type=int)

@@ -94,6 +94,19 @@ typedef enum {
   BB_MODE_FREE,       /* run the byte program scan after scan, never waiting */
 } bb_mode;
 
+/* Run-time setting exchange_i of the FPGA part: code = position in BB_EXCHANGE_NAMES. */
+#define BB_EXCHANGE_HANDSHAKE   0u     /* handshake */
+#define BB_EXCHANGE_QUEUE       1u     /* queue */
+#define BB_EXCHANGE_QUEUE_FREE  2u     /* queue-free */
+#define BB_EXCHANGE_MARKER      3u     /* marker */
+#define BB_EXCHANGE_NAMES {"handshake", "queue", "queue-free", "marker"}
+
+/* Run-time setting protect_i of the FPGA part: code = position in BB_PROTECTION_NAMES. */
+#define BB_PROTECTION_SEMAPHORE 0u     /* semaphore */
+#define BB_PROTECTION_PINGPONG  1u     /* pingpong */
+#define BB_PROTECTION_NONE      2u     /* none */
+#define BB_PROTECTION_NAMES {"semaphore", "pingpong", "none"}
+
 /* Cost classes: every instruction falls in one; a cost table gives each its clocks. */
 typedef enum {
   BB_CL_LOAD = 0,     /* L constant / word / T / C */

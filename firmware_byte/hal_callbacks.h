@@ -1,7 +1,7 @@
 /*
  * hal_callbacks.h — a HAL that forwards to function pointers (hal_callbacks.c), for
- * hosts that cannot define C symbols (Python ctypes: bitbyte/cocotb_driver.py,
- * bitbyte/cocotb_plant.py). Only in build/libbyteproc_cb.so.
+ * hosts that cannot define C symbols (Python ctypes: bitbyte/sim/cocotb_driver.py,
+ * bitbyte/sim/cocotb_plant.py). Only in build/libbyteproc_cb.so.
  *
  * A host fills one bb_hal_callbacks per byte processor and makes it that state's HAL
  * context: bb_set_hal_ctx(state, &table). hal_bus_read(ctx, ...) and the others call

@@ -62,4 +62,15 @@
 `define OP_B_CU              8'hB8     // CU
 `define OP_B_RC              8'hBB     // R C
 
+// Run-time setting exchange_i (bitbyte_cpu)
+`define EXCHANGE_HANDSHAKE   2'd0      // handshake
+`define EXCHANGE_QUEUE       2'd1      // queue
+`define EXCHANGE_QUEUE_FREE  2'd2      // queue-free
+`define EXCHANGE_MARKER      2'd3      // marker
+
+// Run-time setting protect_i (plc_system)
+`define PROTECTION_SEMAPHORE 2'd0      // semaphore
+`define PROTECTION_PINGPONG  2'd1      // pingpong
+`define PROTECTION_NONE      2'd2      // none
+
 `endif

@@ -31,8 +31,8 @@ module bitbyte_cpu #(
   input  wire                         parallel_i,        // parallel mode: parts meet at END
   input  wire                         free_i,            // free-running mode: they never meet
   input  wire                         marker_write_buffer_i,  // marker area: publish at scan end
-  input  wire [1:0]                   exchange_i,        // 0 handshake, 1 queue, 2 queue-free,
-                                                         // 3 marker (cond_exchange.v)
+  input  wire [1:0]                   exchange_i,        // `EXCHANGE_* (bit_isa.vh):
+                                                         // handshake, queues, marker area
   input  wire [31:0]                  watchdog_limit_i,  // clocks per scan at most
   output wire                         ready_o,           // stopped, ready to run
   output wire                         fault_o,           // scan watchdog fired

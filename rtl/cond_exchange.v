@@ -1,7 +1,8 @@
 `default_nettype none
+`include "bit_isa.vh"
 `include "param_check.vh"
 // The condition exchange between the two processors, in the setting chosen at run
-// time (exchange_i, `--exchange`):
+// time (exchange_i, `--exchange`; the codes are `EXCHANGE_* of bit_isa.vh):
 //   0 handshake:  Channels buffered condition flip-flops per direction (Fig. 11);
 //                 channel k of the instruction (`= FBY k`, `READ FBY k`, ...) is used
 //   1 queue:      one strict pointer-based queue per direction (Fig. 16); k ignored
@@ -62,14 +63,14 @@ module cond_exchange #(
   // What exchange_i asks for, and which built circuit serves it. With all three built
   // this is exactly exchange_i; constants in a one-circuit build, so its selection
   // multiplexers vanish.
-  wire want_ff     = exchange_i == 2'd0;
-  wire want_queue  = exchange_i == 2'd1 || exchange_i == 2'd2;
-  wire want_marker = exchange_i == 2'd3;
+  wire want_ff     = exchange_i == `EXCHANGE_HANDSHAKE;
+  wire want_queue  = exchange_i == `EXCHANGE_QUEUE || exchange_i == `EXCHANGE_QUEUE_FREE;
+  wire want_marker = exchange_i == `EXCHANGE_MARKER;
   wire use_queue   = HasQueue && (want_queue || (!(HasFf && want_ff) &&
                                                  !(HasMarker && want_marker)));
   wire use_marker  = HasMarker && !use_queue && (want_marker || !(HasFf && want_ff));
   wire use_ff      = HasFf && !use_queue && !use_marker;
-  wire free        = exchange_i == 2'd2;
+  wire free        = exchange_i == `EXCHANGE_QUEUE_FREE;
 
   // ------------------------------------------------------------ handshake channels
   wire [Channels-1:0] ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full;

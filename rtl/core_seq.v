@@ -1,4 +1,5 @@
 `default_nettype none
+`include "bit_isa.vh"
 // Core sequencer of a plant core (docs/multicore.md): when a scan starts, the
 // precycle, the scan itself and the postcycle, each copy run by the copy engine
 // (copy_engine.v) that moves the shared variables (seed 000 Fig. 4: read at scan
@@ -9,14 +10,14 @@
 //   precycle   take the lock (semaphore), copy shared -> local (M bits, MW words)
 //   scan       pulse the CPU's RUN input once; the CPU latches, executes, ends
 //   postcycle  take the lock (semaphore), copy local -> shared, publish (ping-pong)
-// Protection (protect_i): 0 semaphore — every copy holds the hardware lock; a
+// Protection (protect_i, `PROTECTION_*): semaphore — every copy holds the hardware lock; a
 // precycle that would wait past the point where the scan can still end within its
 // period is skipped (the core runs on its old local copies, sticky copy_fail); a
-// postcycle always waits. 1 ping-pong — a writer writes the buffer readers do not
+// postcycle always waits. Ping-pong — a writer writes the buffer readers do not
 // read and flips it at the end of its postcycle; a reader reads, for each writer,
 // the buffer published when its precycle began; if that writer starts overwriting
 // the buffer before the reader has read all it reads from it (a very fast writer), the
-// read could be torn: copy_fail is set. 2 none — no lock (shows tearing).
+// read could be torn: copy_fail is set. None — no lock (shows tearing).
 //
 // A copy list of n entries takes n + 3 clocks: n + 2 in the engine (fill, drain) and
 // the clock that releases the lock or publishes the ping-pong buffer, with no access.
@@ -40,7 +41,7 @@ module core_seq #(
   input  wire [$clog2(PlanWords):0]    pre_len_i,    // precycle entries (from plan address 0)
   input  wire [$clog2(PlanWords)-1:0]  post_base_i,  // first postcycle entry
   input  wire [$clog2(PlanWords):0]    post_len_i,   // postcycle entries
-  input  wire [1:0]                    protect_i,    // 0 semaphore, 1 ping-pong, 2 none
+  input  wire [1:0]                    protect_i,    // `PROTECTION_* (bit_isa.vh)
   // time base and plant RUN
   input  wire                          run_i,        // the plant runs (all cores ready)
   input  wire [63:0]                   time_i,       // clocks since the plant started
@@ -88,8 +89,8 @@ module core_seq #(
   localparam integer PaW = $clog2(PlanWords);
   // (the sizes are the copy engine's; copy_engine.v checks their ranges)
 
-  localparam [1:0] ProtSem  = 2'd0;
-  localparam [1:0] ProtPing = 2'd1;
+  localparam [1:0] ProtSem  = `PROTECTION_SEMAPHORE;
+  localparam [1:0] ProtPing = `PROTECTION_PINGPONG;
 
   localparam [2:0] StWait     = 3'd0;  // until the nominal start
   localparam [2:0] StPreLock  = 3'd1;

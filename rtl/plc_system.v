@@ -24,7 +24,7 @@ module plc_system #(
   input  wire [$clog2(PlanWords)-1:0]      plan_waddr_i,
   input  wire [31:0]                       plan_wdata_i,
   // configuration
-  input  wire [1:0]                        protect_i,        // 0 semaphore, 1 ping-pong, 2 none
+  input  wire [1:0]                        protect_i,        // `PROTECTION_* (bit_isa.vh)
   input  wire [31:0]                       watchdog_limit_i,
   input  wire [Cores-1:0]                  parallel_i,
   input  wire [Cores*2-1:0]                exchange_i,

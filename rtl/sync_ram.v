@@ -8,7 +8,7 @@
 // A read of the address written in the same clock returns the old word; the bit
 // processor forwards around that itself.
 module sync_ram #(
-  parameter integer Words = 4096,  // number of words (a power of two)
+  parameter integer Words = 4096,  // number of words (any; a power of two fills a BRAM)
   parameter integer Width = 32     // bits per word
 ) (
   input  wire                     clk_i,

@@ -1,6 +1,6 @@
 // Verilator harness for bitbyte_cpu: runs one scan-by-scan simulation described by a
 // run file (written by `bitbyte run`, or by hand) and writes TRACE.csv, an optional
-// waveform and a summary.  No Python in the loop: the whole run is C++, so a
+// waveform and the run's figures (`stat` lines; bitbyte/run/summary.py prints them).  No Python in the loop: the whole run is C++, so a
 // simulation costs microseconds per scan instead of a Python call per clock.
 //
 //   Vbitbyte_cpu RUNFILE
@@ -19,7 +19,7 @@
 
 extern "C" {
 #include "byteproc.h"  // the byte processor firmware (firmware_byte/), linked in
-#include "bus_map.h"   // register addresses, generated from bitbyte/definition.toml
+#include "bus_map.h"   // register addresses, generated from bitbyte/lang/definition.toml
 #include "hal.h"
 }
 #include <csetjmp>
@@ -100,7 +100,7 @@ struct Run {
   bb_state* bb;
   std::vector<ColSrc> srcs;
   TraceOut* out;
-  uint64_t n = 0, scans = 0, cyc_min = UINT64_MAX, cyc_max = 0, cyc_sum = 0;
+  uint64_t n = 0, scans = 0;
   uint64_t want_scans = UINT64_MAX, until = UINT64_MAX;
   bool fault = false, by_scan = false, by_clock = false;
   size_t next_stim = 0;
@@ -148,9 +148,6 @@ struct Run {
   }
   void record() {  // a scan ended with clock n-1: its row, values after its END
     const uint64_t cycles = top->scan_cycles_o;
-    cyc_min = std::min(cyc_min, cycles);
-    cyc_max = std::max(cyc_max, cycles);
-    cyc_sum += cycles;
     if (!out->f) return;
     char* p = out->row();
     p = std::to_chars(p, p + 24, scans).ptr;
@@ -408,7 +405,7 @@ int main(int argc, char** argv) {
   stat("stalls_bit", top.stalls_bit_o);
   stat("stalls_byte", top.stalls_byte_o);
   if (rf.free_running) stat("byte_scans", bb_byte_scans(&bb));
-  if (rf.exchange == 2) {
+  if (rf.exchange == BB_EXCHANGE_QUEUE_FREE) {
     stat("queue_overflows", top.dbg_queue_overflows_o);
     stat("queue_underflows", top.dbg_queue_underflows_o);
   }

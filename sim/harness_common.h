@@ -84,6 +84,19 @@ static char* put_t_us(char* p, uint64_t end_clock, uint64_t clock_hz) {
   return p;
 }
 
+// ------------------------------------------------------------------ settings
+// A run-time setting's code: its name's position in the generated list (bb_isa.h
+// BB_EXCHANGE_NAMES, BB_PROTECTION_NAMES, from the one definition).
+template <size_t N>
+static unsigned setting_code(const char* what, const char* const (&names)[N], const std::string& v) {
+  std::string all;
+  for (size_t i = 0; i < N; ++i) {
+    if (v == names[i]) return unsigned(i);
+    all += (i ? ", " : "") + std::string(names[i]);
+  }
+  die("%s must be one of %s, not '%s'", what, all.c_str(), v.c_str());
+}
+
 // ------------------------------------------------------------------ run file
 // One CPU's (one plant core's) process inputs: the generated build sizes (bb_isa.h);
 // each harness checks its model's ports against them.
@@ -186,11 +199,8 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
     rf.free_running = w[1] == "free";
   } else if (k == "exchange") {
     want(1);
-    if (w[1] == "handshake") rf.exchange = 0;
-    else if (w[1] == "queue") rf.exchange = 1;
-    else if (w[1] == "queue-free") rf.exchange = 2;
-    else if (w[1] == "marker") rf.exchange = 3;
-    else die("exchange must be handshake, queue or queue-free");
+    static const char* const kExchanges[] = BB_EXCHANGE_NAMES;
+    rf.exchange = setting_code("exchange", kExchanges, w[1]);
   } else if (k == "byte_prog") {
     want(1);
     rf.byte_prog = w[1];

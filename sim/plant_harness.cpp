@@ -21,7 +21,7 @@
 
 extern "C" {
 #include "byteproc.h"
-#include "bus_map.h"   // register addresses, generated from bitbyte/definition.toml
+#include "bus_map.h"   // register addresses, generated from bitbyte/lang/definition.toml
 #include "hal.h"
 }
 #if VM_TRACE_FST
@@ -75,7 +75,7 @@ struct CoreFile {
 struct PlantFile {
   uint64_t clock_hz = 100000000, watchdog = 100000;
   int64_t until_clock = -1;
-  unsigned protect = 0;            // 0 semaphore, 1 pingpong, 2 none
+  unsigned protect = BB_PROTECTION_SEMAPHORE;  // a BB_PROTECTION_* code
   std::string waves, gtkw = "sim/plant.gtkw";
   std::vector<CoreFile> cores;
 };
@@ -98,11 +98,8 @@ static PlantFile read_plant_file(const char* path) {
       else if (k == "waves") pf.waves = one();
       else if (k == "gtkw") pf.gtkw = one();
       else if (k == "protect") {
-        const std::string v = one();
-        if (v == "semaphore") pf.protect = 0;
-        else if (v == "pingpong") pf.protect = 1;
-        else if (v == "none") pf.protect = 2;
-        else die("protect must be semaphore, pingpong or none");
+        static const char* const kProtections[] = BB_PROTECTION_NAMES;
+        pf.protect = setting_code("protect", kProtections, one());
       } else die("unknown plant key '%s' (before the first 'core')", k.c_str());
     } else if (k == "name") cur->name = one();
     else if (k == "plan") cur->plan = one();

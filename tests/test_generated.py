@@ -106,6 +106,9 @@ def _set_register(name, **values):
     (_set_register("QW", addr=0x58), "multiple of 16"),
     (_set_register("IW", count=8), "window IW holds 8"),
     (_set_register("TIME_MS", addr=0x09), "overlap"),
+    (lambda raw: raw["settings"]["exchange"].append(["extra", "EXTRA", "a fifth code"]),
+     "do not fit 2 bits"),
+    (lambda raw: raw["settings"]["protection"][2].__setitem__(0, "pingpong"), "given twice"),
 ])
 def test_definition_rejects_contradictions(mutate, message):
     with pytest.raises(DefinitionError, match=message):

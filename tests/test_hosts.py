@@ -10,7 +10,7 @@ several byte processors on one copy of it.
 - No hierarchical handles in the cocotb hosts (`dut.u_...`, `dut.g_core[...]`,
   `dut.next`): they read ports too.
 - The build sizes the hosts load and check against (BB_HW_*, generated into
-  firmware_byte/bb_isa.h from bitbyte/definition.toml) are the RTL's parameter
+  firmware_byte/bb_isa.h from bitbyte/lang/definition.toml) are the RTL's parameter
   defaults.
 - The firmware objects define no writable data (.data / .bss / common): the HAL
   context in bb_state is the only link to a host.

@@ -148,6 +148,11 @@ class Definition:
             top: {param: {**self.sizes, **self.plant}[key] for param, key in params.items()}
             for top, params in raw["rtl"].items()}
         self.firmware: dict = dict(raw["firmware"])
+        # run-time settings: names in code order (code = index), their RTL/C names
+        self.settings: dict[str, tuple[tuple[str, str, str], ...]] = {
+            k: tuple(tuple(row) for row in rows) for k, rows in raw["settings"].items()}
+        self.exchanges: tuple[str, ...] = tuple(r[0] for r in self.settings["exchange"])
+        self.protections: tuple[str, ...] = tuple(r[0] for r in self.settings["protection"])
         # bb_run's modes: name -> the enum value of firmware_byte/bb_isa.h
         self.modes: dict[str, int] = {m.lower(): i for i, (m, _) in
                                       enumerate(self.firmware["modes"])}
@@ -184,6 +189,11 @@ class Definition:
             if not ok:
                 raise DefinitionError(f"{PATH.name}: {message}")
 
+        for key, rows in self.settings.items():       # 2-bit inputs, distinct names
+            need(len(rows) <= 4, f"settings.{key}: {len(rows)} codes do not fit 2 bits")
+            for col in (0, 1):
+                need(len({r[col] for r in rows}) == len(rows),
+                     f"settings.{key}: a name is given twice")
         values = list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) \
             + list(self.byte_program_opcodes.values())
         need(len(values) == len(set(values)), "an opcode is defined twice")

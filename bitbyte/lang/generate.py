@@ -74,6 +74,10 @@ def rtl_bit_isa(d: Definition) -> str:
     for op in d.byte_opcode_rows:
         if op.rtl:
             b.append(_define(op.rtl, f"8'h{op.value:02X}", op.mnemonic))
+    for key, port in (("exchange", "exchange_i (bitbyte_cpu)"), ("protection", "protect_i (plc_system)")):
+        b += ["", f"// Run-time setting {port}"]
+        for code, (name, macro, _) in enumerate(d.settings[key]):
+            b.append(_define(f"{key.upper()}_{macro}", f"2'd{code}", name))
     return _vh("bit_isa.vh", b, "the bit processor's opcodes, areas and fields")
 
 
@@ -188,6 +192,13 @@ def c_isa(d: Definition) -> str:
     for i, (m, doc) in enumerate(fw["modes"]):
         b.append(f"  {'BB_MODE_' + m + (' = 0' if i == 0 else '') + ',':<20}/* {doc} */")
     b += ["} bb_mode;"]
+    for key, port in (("exchange", "exchange_i"), ("protection", "protect_i")):
+        b += ["", f"/* Run-time setting {port} of the FPGA part: code = position in "
+              f"BB_{key.upper()}_NAMES. */"]
+        for code, (name, macro, _) in enumerate(d.settings[key]):
+            b.append(_cdef(f"BB_{key.upper()}_{macro}", f"{code}u", name))
+        names = ", ".join(f'"{name}"' for name, _, _ in d.settings[key])
+        b.append(f"#define BB_{key.upper()}_NAMES {{{names}}}")
     b += ["", "/* Cost classes: every instruction falls in one; a cost table gives each "
           "its clocks. */", "typedef enum {"]
     for i, c in enumerate(d.cost_class_rows):

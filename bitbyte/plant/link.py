@@ -43,6 +43,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from bitbyte.lang.config import Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError, read_utf8
 from bitbyte.lang.program import GlobalVar, Program
 
@@ -57,7 +58,7 @@ except ModuleNotFoundError:                  # Python 3.10: the same parser as t
 PLANT_KEYS = ("clock_mhz", "layout", "protection", "core")
 CORE_KEYS = ("name", "program", "period_us", "stimulus")
 LAYOUTS = ("compact", "random")
-PROTECTIONS = ("semaphore", "pingpong", "none")
+PROTECTIONS = DEF.protections
 DEFAULT_CLOCK_MHZ = 100
 MAX_CLOCK_MHZ = 10_000        # sanity bounds (docs/multicore.md)
 MAX_PERIOD_US = 2 ** 31 - 1

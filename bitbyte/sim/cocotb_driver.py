@@ -108,6 +108,25 @@ def hal_callbacks(read, write, spend, wait, now) -> HalCallbacks:
                         types["now"](now))
 
 
+def load_firmware(path):
+    """firmware_byte's shared library through ctypes, with the signatures (byteproc.h)
+    of what the cocotb hosts call: one load serves every byte processor of a process."""
+    vp, uint = ctypes.c_void_p, ctypes.c_uint
+    signatures = {                                  # name: (argument types, result type)
+        "bb_new": ([], vp), "bb_free": ([vp], None),
+        "bb_cost_table": ([ctypes.c_char_p], vp), "bb_init": ([vp, vp], None),
+        "bb_set_hal_ctx": ([vp, vp], None), "bb_set_mw_bus": ([vp, ctypes.c_int], None),
+        "bb_load_pool": ([vp, vp, uint], None), "bb_load_program": ([vp, vp, uint], ctypes.c_int),
+        "bb_run_step": ([vp, ctypes.c_int], ctypes.c_int), "bb_run": ([vp, ctypes.c_int], None),
+        "bb_mw": ([vp, uint], ctypes.c_int16), "bb_flags": ([vp], ctypes.c_uint32),
+        "bb_byte_scans": ([vp], ctypes.c_uint64)}
+    lib = ctypes.CDLL(str(path))
+    for name, (args, result) in signatures.items():
+        fn = getattr(lib, name)
+        fn.argtypes, fn.restype = args, result
+    return lib
+
+
 class Firmware:
     """The byte processor: firmware_byte's C code with a HAL onto this simulation."""
 
@@ -136,25 +155,7 @@ class Firmware:
     @classmethod
     def _load(cls):
         if cls._lib is None:
-            lib = ctypes.CDLL(str(FIRMWARE_LIB))
-            lib.bb_new.restype = ctypes.c_void_p
-            lib.bb_free.argtypes = [ctypes.c_void_p]
-            lib.bb_cost_table.restype = ctypes.c_void_p
-            lib.bb_cost_table.argtypes = [ctypes.c_char_p]
-            lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
-            lib.bb_set_hal_ctx.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
-            lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
-            lib.bb_serial_step.argtypes = [ctypes.c_void_p]
-            lib.bb_run_scan.argtypes = [ctypes.c_void_p]
-            lib.bb_run_step.argtypes = [ctypes.c_void_p, ctypes.c_int]
-            lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
-            lib.bb_mw.argtypes = [ctypes.c_void_p, ctypes.c_uint]
-            lib.bb_mw.restype = ctypes.c_int16
-            lib.bb_flags.argtypes = [ctypes.c_void_p]
-            lib.bb_flags.restype = ctypes.c_uint32
-            lib.bb_byte_scans.argtypes = [ctypes.c_void_p]
-            lib.bb_byte_scans.restype = ctypes.c_uint64
-            cls._lib = lib
+            cls._lib = load_firmware(FIRMWARE_LIB)
         return cls._lib
 
     def mw(self, n: int) -> int:
@@ -249,7 +250,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.parallel_i.value = int(job.mode == "parallel")
     dut.free_i.value = int(job.mode == "free")
     dut.marker_write_buffer_i.value = 0
-    dut.exchange_i.value = ("handshake", "queue", "queue-free", "marker").index(job.exchange)
+    dut.exchange_i.value = DEF.exchanges.index(job.exchange)
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 

@@ -67,7 +67,7 @@ from cocotb.triggers import First, Timer
 from cocotb.utils import get_sim_steps, get_sim_time
 
 from bitbyte.lang.definition import DEF
-from bitbyte.sim.cocotb_driver import hal_callbacks
+from bitbyte.sim.cocotb_driver import hal_callbacks, load_firmware
 from bitbyte.run.runjob import RunJob
 from bitbyte.lang.trace import format_decimal
 
@@ -76,8 +76,6 @@ BUS_ADDR = DEF.bus   # byte-bus register addresses
 IN_BITS = DEF.sizes["in_bytes"] * 8      # plc_system InBytes * 8
 OUT_BITS = DEF.sizes["out_bytes"] * 8    # plc_system OutBytes * 8
 WORD_BITS = DEF.sizes["in_words"] * 16   # plc_system InWords / OutWords * 16
-PROTECT = {"semaphore": 0, "pingpong": 1, "none": 2}
-EXCHANGE = ("handshake", "queue", "queue-free", "marker")
 BB_PROG_WORDS = DEF.firmware["byte_prog_words"]
 FF_MIN = 3           # idle stretches shorter than this are clocked one by one
 FF_CAP = 1 << 24     # clocks one fast-forward may cover without a known end
@@ -116,20 +114,7 @@ LIB_LOADS = 0        # ctypes loads of the firmware library in this process (one
 def _load_lib(path: str):
     global LIB_LOADS
     LIB_LOADS += 1
-    lib = ctypes.CDLL(path)
-    lib.bb_new.restype = ctypes.c_void_p
-    lib.bb_free.argtypes = [ctypes.c_void_p]
-    lib.bb_cost_table.restype = ctypes.c_void_p
-    lib.bb_cost_table.argtypes = [ctypes.c_char_p]
-    lib.bb_init.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
-    lib.bb_set_hal_ctx.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
-    lib.bb_set_mw_bus.argtypes = [ctypes.c_void_p, ctypes.c_int]
-    lib.bb_load_pool.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
-    lib.bb_load_program.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint]
-    lib.bb_serial_step.argtypes = [ctypes.c_void_p]
-    lib.bb_run_scan.argtypes = [ctypes.c_void_p]
-    lib.bb_run.argtypes = [ctypes.c_void_p, ctypes.c_int]
-    return lib
+    return load_firmware(path)
 
 
 def _mapped_copies(name: str = "libbyteproc") -> list[str]:
@@ -402,14 +387,14 @@ class Plant:
             post_base = _set_field(post_base, aw * c, aw, cc["post_base"])
             post_len = _set_field(post_len, (aw + 1) * c, aw + 1, cc["post_len"])
             parallel = _set_field(parallel, c, 1, int(job.mode == "parallel"))
-            exchange = _set_field(exchange, 2 * c, 2, EXCHANGE.index(job.exchange))
+            exchange = _set_field(exchange, 2 * c, 2, DEF.exchanges.index(job.exchange))
         dut.period_i.value = period
         dut.pre_len_i.value = pre_len
         dut.post_base_i.value = post_base
         dut.post_len_i.value = post_len
         dut.parallel_i.value = parallel
         dut.exchange_i.value = exchange
-        dut.protect_i.value = PROTECT[cfg["protect"]]
+        dut.protect_i.value = DEF.protections.index(cfg["protect"])
         dut.watchdog_limit_i.value = int(cfg["watchdog"])
         await self.tick()
         dut.rst_ni.value = 1
