@@ -52,6 +52,8 @@
 #define BB_TC_VALUE             0x100u /* TC_BIT */
 #define BB_TC_COUNTER           0x40u  /* TC_BIT */
 #define BB_TC_INDEX_MASK        0x3Fu  /* TC_BIT */
+#define BB_QUEUE_TO_BYTE_MASK   0xFFFFu /* QUEUE_OVERFLOWS */
+#define BB_QUEUE_TO_BIT_SHIFT   16     /* QUEUE_OVERFLOWS */
 
 /* Window sizes: the elements the bus can address. */
 #define BB_BUS_CHANNELS         8u     /* FBY 0..7 */

@@ -160,7 +160,7 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       if (op == BB_OP_L_IMM) {
         v = bb_imm24(instr);
       } else if (op == BB_OP_L_POOL) {
-        uint32_t i = instr & 0xFFFFFFu;
+        uint32_t i = instr & BB_IMM_MASK;
         if (i >= s->pool_len) {            /* a pool the program did not bring */
           cls = BB_CL_ILLEGAL;
           bb_raise_flag(s, BB_FLAG_ILLEGAL);
@@ -197,7 +197,7 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       break;
     case BB_CL_BINARY:
       if (is_jump(op)) {
-        const uint32_t target = instr & 0xFFFFu;   /* bits 23..16 reserved, ignored */
+        const uint32_t target = instr & BB_TARGET_MASK;   /* bits 23..16 reserved, ignored */
         if (target > s->prog_len) {                /* past the loaded program */
           cls = BB_CL_ILLEGAL;
           bb_raise_flag(s, BB_FLAG_ILLEGAL);

@@ -14,7 +14,8 @@ module plc_core #(
   parameter integer MarkerBytes = 256,   // M 0.0 .. MarkerBytes-1.7
   parameter integer MwWords     = 256,   // MW 0 .. MwWords-1
   parameter integer InWords     = 16,    // IW n
-  parameter integer OutWords    = 16     // QW n
+  parameter integer OutWords    = 16,    // QW n
+  parameter integer StatusBits  = 64     // T n, C n
 ) (
   input  wire                          clk_i,
   input  wire                          rst_ni,
@@ -82,8 +83,8 @@ module plc_core #(
   output wire [InBytes*8-1:0]          dbg_pii_o,     // I, IR, IF of the last latch
   output wire [InBytes*8-1:0]          dbg_rise_o,
   output wire [InBytes*8-1:0]          dbg_fall_o,
-  output wire [63:0]                   dbg_timer_status_o,   // T n (bitbyte_cpu StatusBits)
-  output wire [63:0]                   dbg_counter_status_o, // C n
+  output wire [StatusBits-1:0]         dbg_timer_status_o,   // T n
+  output wire [StatusBits-1:0]         dbg_counter_status_o, // C n
   input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,   // M bit to look at ...
   output wire                          dbg_m_o,       // ... its value now, without a clock
   input  wire [$clog2(MwWords)-1:0]    dbg_mw_addr_i, // MW word to look at ...
@@ -150,6 +151,7 @@ module plc_core #(
     .InBytes    (InBytes),
     .OutBytes   (OutBytes),
     .MarkerBytes(MarkerBytes),
+    .StatusBits (StatusBits),
     .InWords    (InWords),
     .OutWords   (OutWords)
   ) u_cpu (

@@ -12,7 +12,10 @@ module plc_system #(
   parameter integer InBytes     = 16,    // binary inputs per core
   parameter integer OutBytes    = 16,    // binary outputs per core
   parameter integer InWords     = 16,    // input words per core
-  parameter integer OutWords    = 16     // output words per core
+  parameter integer OutWords    = 16,    // output words per core
+  parameter integer MarkerBytes = 256,   // marker bytes per core (M)
+  parameter integer MwWords     = 256,   // data words per core (MW)
+  parameter integer StatusBits  = 64     // timers and counters per core (T, C)
 ) (
   input  wire                              clk_i,
   input  wire                              rst_ni,
@@ -66,20 +69,21 @@ module plc_system #(
   output wire [$clog2(Cores)-1:0]          lock_owner_o,
   // observation per core (plc_core's dbg_*: what the simulation hosts trace besides
   // the ports above; no logic uses them). Core c's marker and word addresses select
-  // what its dbg_m_o / dbg_mw_o show, without a clock (plc_core has 2048 M bits and
-  // 256 MW words).
+  // what its dbg_m_o / dbg_mw_o show, without a clock.
   output wire [Cores*InBytes*8-1:0]        dbg_pii_o,        // I
   output wire [Cores*InBytes*8-1:0]        dbg_rise_o,       // IR
   output wire [Cores*InBytes*8-1:0]        dbg_fall_o,       // IF
-  output wire [Cores*64-1:0]               dbg_timer_status_o,   // T n
-  output wire [Cores*64-1:0]               dbg_counter_status_o, // C n
-  input  wire [Cores*11-1:0]               dbg_m_addr_i,
+  output wire [Cores*StatusBits-1:0]       dbg_timer_status_o,   // T n
+  output wire [Cores*StatusBits-1:0]       dbg_counter_status_o, // C n
+  input  wire [Cores*$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,
   output wire [Cores-1:0]                  dbg_m_o,
-  input  wire [Cores*8-1:0]                dbg_mw_addr_i,
+  input  wire [Cores*$clog2(MwWords)-1:0]  dbg_mw_addr_i,
   output wire [Cores*16-1:0]               dbg_mw_o
 );
   localparam integer PaW = $clog2(PlanWords);
   localparam integer AW  = $clog2(SharedWords) + 1;
+  localparam integer MaW = $clog2(MarkerBytes * 8);   // a core's marker bit address
+  localparam integer WaW = $clog2(MwWords);           // ... and data word address
 
   // The toolchain builds, links and runs plants of 2..8 cores (bitbyte/plant/run.py
   // MAX_CORES); the leaves check the rest.
@@ -145,7 +149,10 @@ module plc_system #(
         .InBytes    (InBytes),
         .OutBytes   (OutBytes),
         .InWords    (InWords),
-        .OutWords   (OutWords)
+        .OutWords   (OutWords),
+        .MarkerBytes(MarkerBytes),
+        .MwWords    (MwWords),
+        .StatusBits (StatusBits)
       ) u_core (
         .clk_i           (clk_i),
         .rst_ni          (rst_ni),
@@ -205,11 +212,11 @@ module plc_system #(
         .dbg_pii_o           (dbg_pii_o[c*InBytes*8 +: InBytes*8]),
         .dbg_rise_o          (dbg_rise_o[c*InBytes*8 +: InBytes*8]),
         .dbg_fall_o          (dbg_fall_o[c*InBytes*8 +: InBytes*8]),
-        .dbg_timer_status_o  (dbg_timer_status_o[c*64 +: 64]),
-        .dbg_counter_status_o(dbg_counter_status_o[c*64 +: 64]),
-        .dbg_m_addr_i        (dbg_m_addr_i[c*11 +: 11]),
+        .dbg_timer_status_o  (dbg_timer_status_o[c*StatusBits +: StatusBits]),
+        .dbg_counter_status_o(dbg_counter_status_o[c*StatusBits +: StatusBits]),
+        .dbg_m_addr_i        (dbg_m_addr_i[c*MaW +: MaW]),
         .dbg_m_o             (dbg_m_o[c]),
-        .dbg_mw_addr_i       (dbg_mw_addr_i[c*8 +: 8]),
+        .dbg_mw_addr_i       (dbg_mw_addr_i[c*WaW +: WaW]),
         .dbg_mw_o            (dbg_mw_o[c*16 +: 16])
       );
     end

@@ -250,7 +250,11 @@ int main(int argc, char** argv) {
       sizeof(top.out_pins_o) * 8 != hw_cores * kOutPins ||
       sizeof(top.in_words_i) * 8 != hw_cores * kWordBits ||
       sizeof(top.out_words_o) * 8 != hw_cores * kWordBits ||
-      sizeof(top.dbg_timer_status_o) * 8 != hw_cores * BB_HW_STATUS_BITS)
+      sizeof(top.dbg_timer_status_o) * 8 != hw_cores * BB_HW_STATUS_BITS ||
+      // packed fields: the model's word holds them (Verilator rounds the width up)
+      sizeof(top.dbg_m_addr_i) * 8 < hw_cores * kMAddrBits ||
+      sizeof(top.dbg_mw_addr_i) * 8 < hw_cores * kMwAddrBits ||
+      sizeof(top.bus_addr_i) * 8 < hw_cores * kBusAddrBits)
     die("the model's port widths differ from the build sizes of bb_isa.h (regenerate?)");
 
   std::unique_ptr<WaveWriter> wave;

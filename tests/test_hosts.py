@@ -30,7 +30,8 @@ HOSTS = sorted([*ROOT.glob("sim/*.cpp"), *ROOT.glob("sim/*.h"), *ROOT.glob("sim/
                 *ROOT.glob("bitbyte/**/*.py")])                 # sub-packages too
 INTERNALS = re.compile(r"rootp->|__DOT__|___024root|public_flat")
 # cocotb: a handle below the toplevel, or the toplevel's internal `next` net
-HIERARCHY = re.compile(r"\bdut\s*\.\s*(?:u_\w+|g_\w+\s*\[|next\b)")
+HIERARCHY = re.compile(r"\bdut\s*\.\s*(?:u_\w+|g_\w+\s*\[|next\b|_id\s*\()"
+                       r"|getattr\(\s*dut\s*,\s*[\"'](?:u_|g_|next\b)")
 
 
 def _hits(pattern: re.Pattern, paths) -> list[str]:
@@ -68,7 +69,9 @@ PATTERN_CASES = {
                    "        await First(RisingEdge(dut.next), self.stopped.wait())",
                    "        sig = getattr(dut.u_input_unit, images[kind])",
                    "        cell = dut.u_bit_proc.u_marker_ram.mem[index]",
-                   "        inner = dut.g_core[c].u_core"),
+                   "        inner = dut.g_core[c].u_core",
+                   '        sub = getattr(dut, "u_bit_proc")',
+                   '        sig = dut._id("u_tc_status", extended=False)'),
                   ("        if int(dut.byte_next_o.value):",
                    "        sig = dut.dbg_timer_status_o",
                    "        self.dut.dbg_m_addr_i.value = n")),
@@ -122,12 +125,10 @@ def test_generated_build_sizes_are_the_rtl_defaults():
     assert isa["BB_HW_PLAN_WORDS"] == core["PlanWords"] == system["PlanWords"]
     assert bus["BB_BUS_ADDR_BITS"] == int(_port_msb("bitbyte_cpu", "bus_addr_i")) + 1
     assert bus["BB_BUS_PLANT_ADDR_BITS"] == int(_port_msb("plc_core", "bus_addr_i")) + 1
-    # plc_system's per-core look-up addresses are written as numbers (it has no
-    # MarkerBytes / MwWords parameter): they must fit plc_core's defaults
-    marker_bits = (isa["BB_HW_MARKER_BYTES"] * 8).bit_length() - 1
-    mw_bits = isa["BB_HW_MW_WORDS"].bit_length() - 1
-    assert _port_msb("plc_system", "dbg_m_addr_i") == f"Cores*{marker_bits}-1"
-    assert _port_msb("plc_system", "dbg_mw_addr_i") == f"Cores*{mw_bits}-1"
+    # plc_system sizes its per-core look-up addresses from its own parameters
+    assert _port_msb("plc_system", "dbg_m_addr_i") == "Cores*$clog2(MarkerBytes*8)-1"
+    assert _port_msb("plc_system", "dbg_mw_addr_i") == "Cores*$clog2(MwWords)-1"
+    assert system["MarkerBytes"] == cpu["MarkerBytes"] and system["MwWords"] == core["MwWords"]
 
 
 # ---------------------------------------------------------------- no firmware globals

@@ -54,9 +54,11 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     if stats.byte_scans is not None:
         lines.append(_label("byte side") + f"{stats.byte_scans} scans (free-running)")
     if stats.queue_losses is not None:
-        ovf, unf = stats.queue_losses      # each register: to-byte low half, to-bit high half
-        lines.append(_label("queue losses") + f"overflows to-byte {ovf & 0xFFFF} to-bit "
-                     f"{ovf >> 16}, underflows to-byte {unf & 0xFFFF} to-bit {unf >> 16}")
+        f = dict(DEF.register("QUEUE_OVERFLOWS").fields)   # UNDERFLOWS: the same layout
+        mask, shift = f["QUEUE_TO_BYTE_MASK"], f["QUEUE_TO_BIT_SHIFT"]
+        ovf, unf = stats.queue_losses
+        lines.append(_label("queue losses") + f"overflows to-byte {ovf & mask} to-bit "
+                     f"{ovf >> shift}, underflows to-byte {unf & mask} to-bit {unf >> shift}")
     flags = [f"{f['name']} ({f['doc']})" for f in DEF.byte_flag_rows
              if stats.byte_flags >> f["bit"] & 1]
     if flags:

@@ -301,7 +301,7 @@ class Plant:
         self.in_pins = _set_field(self.in_pins, IN_BITS * c, IN_BITS, pins)
         self.dut.in_pins_i.value = self.in_pins
         if words is not None:
-            for i, w in enumerate(words[:16]):
+            for i, w in enumerate(words[:DEF.sizes["in_words"]]):
                 self.in_words = _set_field(self.in_words, WORD_BITS * c + 16 * i, 16,
                                            w & 0xFFFF)
             self.dut.in_words_i.value = self.in_words

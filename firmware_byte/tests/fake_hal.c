@@ -54,6 +54,11 @@ static void sync_inputs(fake_hal *h) {
 
 static uint32_t time_ms(const fake_hal *h) { return (uint32_t)(h->clock / h->tick_div); }
 
+/* addr in the bus window of n registers starting at first (bus_map.h) */
+static int in_window(uint16_t addr, unsigned first, unsigned n) {
+  return addr >= first && addr < first + n;
+}
+
 static uint32_t sext16(uint32_t v) {
   return (v & 0x8000u) ? (0xFFFF0000u | (v & 0xFFFFu)) : (v & 0xFFFFu);
 }
@@ -79,18 +84,18 @@ static void stall(fake_hal *h, uint32_t *n) {  /* not-ready clocks before an acc
 uint32_t hal_bus_read(void *ctx, uint16_t addr) {
   fake_hal *h = fh_of(ctx);
   uint32_t v = 0;
-  if (addr >= 0x20 && addr < 0x28) stall(h, &h->fby_stall[addr - 0x20u]);
+  if (in_window(addr, BB_BUS_FBY(0), BB_BUS_CHANNELS)) stall(h, &h->fby_stall[addr - BB_BUS_FBY(0)]);
   sync_inputs(h);                     /* the value of the clock the access completes in */
-  if (addr >= 0x20 && addr < 0x28) {
-    unsigned k = addr - 0x20u;
+  if (in_window(addr, BB_BUS_FBY(0), BB_BUS_CHANNELS)) {
+    unsigned k = addr - BB_BUS_FBY(0);
     v = h->fby_val[k];
     h->fby_reads[k]++;
-  } else if (addr >= 0x40 && addr < 0x50) {
-    v = h->iw[addr - 0x40];
-  } else if (addr >= 0x50 && addr < 0x60) {
-    v = sext16(h->qw[addr - 0x50]);
-  } else if (addr >= 0x100 && addr < 0x200) {
-    v = h->mw[addr - 0x100];       /* raw 16 bits: the firmware sign-extends */
+  } else if (in_window(addr, BB_BUS_IW(0), BB_BUS_IW_WORDS)) {
+    v = h->iw[addr - BB_BUS_IW(0)];
+  } else if (in_window(addr, BB_BUS_QW(0), BB_BUS_QW_WORDS)) {
+    v = sext16(h->qw[addr - BB_BUS_QW(0)]);
+  } else if (in_window(addr, BB_BUS_MW(0), BB_BUS_MW_WORDS)) {
+    v = h->mw[addr - BB_BUS_MW(0)];       /* raw 16 bits: the firmware sign-extends */
   } else {
     switch (addr) {
       case BB_BUS_ID:             v = BB_BUS_ID_VALUE; break;
@@ -118,15 +123,15 @@ uint32_t hal_bus_read(void *ctx, uint16_t addr) {
 
 void hal_bus_write(void *ctx, uint16_t addr, uint32_t data) {
   fake_hal *h = fh_of(ctx);
-  if (addr >= 0x28 && addr < 0x30) {
-    unsigned k = addr - 0x28u;
+  if (in_window(addr, BB_BUS_FBI(0), BB_BUS_CHANNELS)) {
+    unsigned k = addr - BB_BUS_FBI(0);
     stall(h, &h->fbi_stall[k]);
     h->fbi_val[k] = data & 1u;
     h->fbi_writes[k]++;
-  } else if (addr >= 0x50 && addr < 0x60) {
-    h->qw[addr - 0x50] = (uint16_t)(data & 0xFFFFu);
-  } else if (addr >= 0x100 && addr < 0x200) {
-    h->mw[addr - 0x100] = (uint16_t)(data & 0xFFFFu);
+  } else if (in_window(addr, BB_BUS_QW(0), BB_BUS_QW_WORDS)) {
+    h->qw[addr - BB_BUS_QW(0)] = (uint16_t)(data & 0xFFFFu);
+  } else if (in_window(addr, BB_BUS_MW(0), BB_BUS_MW_WORDS)) {
+    h->mw[addr - BB_BUS_MW(0)] = (uint16_t)(data & 0xFFFFu);
   } else {
     switch (addr) {
       case BB_BUS_DONE:              /* ends the dispatch: the next one snapshots anew */

@@ -3,6 +3,7 @@
  * ACCU / F_B reset at scan start, running off the end and the runaway guard.
  * Every expected clock count is worked out by hand in the comment next to it
  * ("paper": 10 per word instruction, 1 per READ / WRITE / jump, END_B 0). */
+#include <setjmp.h>
 #include <string.h>
 
 #include "tt.h"
@@ -456,6 +457,67 @@ static void test_run_step_modes(void) {
   bb_run(&S, (bb_mode)7);                            /* ... and bb_run returns */
 }
 
+/* bb_run(): the loop that never returns on its own, in each mode. The fake HAL stops
+ * it (longjmp out of a bus access) once it has written `stop_after` times to
+ * `stop_reg` (DONE in serial mode, SCAN_DONE otherwise). */
+static jmp_buf run_stop;
+static uint16_t stop_reg;
+static unsigned stop_after, stop_seen;
+
+static void stop_run(void *arg) {
+  (void)arg;
+  const fh_access *a = &FH.log[FH.nlog - 1];
+  if (a->write && a->addr == stop_reg && ++stop_seen == stop_after) longjmp(run_stop, 1);
+}
+
+static void run_until(bb_mode mode, uint16_t reg, unsigned writes) {
+  stop_reg = reg;
+  stop_after = writes;
+  stop_seen = 0;
+  FH.after_access = stop_run;
+  if (setjmp(run_stop) == 0) {
+    bb_run(&S, mode);
+    CHECK(0);                                        /* bb_run returned: it must not */
+  }
+  FH.after_access = NULL;
+}
+
+/* Fig. 13's byte part (FBY 0 = 1) until its `scans`-th SCAN_DONE; a latch would come
+ * at clock `latch_at` */
+static void run_fig13(bb_mode mode, uint64_t latch_at, unsigned scans) {
+  setup();
+  load(fig13, NWORDS(fig13));
+  FH.fby_val[0] = 1;
+  FH.dispatch_at = latch_at;
+  run_until(mode, BB_BUS_SCAN_DONE, scans);
+}
+
+static void test_run_modes(void) {
+  /* serial: three dispatched L 7, each 10 clocks after its dispatch at clock 40 */
+  setup();
+  FH.dispatch_instr = BB_INSTR_IMM(BB_OP_L_IMM, 7);
+  FH.dispatch_at = 40;
+  run_until(BB_MODE_SERIAL, BB_BUS_DONE, 3);
+  CHECK_EQ(FH.done_count, 3);
+  CHECK_EQ(FH.waits, 3);
+  CHECK_EQ(S.accu1, 7);
+  CHECK_EQ(S.accu2, 7);
+  CHECK_EQ(bb_byte_scans(&S), 0);
+
+  /* parallel: each scan waits for its latch (dispatch_at 100, then at once), runs the
+   * 52-clock part and writes SCAN_DONE: 100 + 53, + 53 */
+  run_fig13(BB_MODE_PARALLEL, 100, 2);
+  CHECK_EQ(FH.waits, 2);
+  CHECK_EQ(FH.clock, 206);
+  CHECK_EQ(bb_byte_scans(&S), 2);                    /* counted as announced */
+
+  /* free-running: never waits, three scans back to back from clock 0 */
+  run_fig13(BB_MODE_FREE, 1000, 3);
+  CHECK_EQ(FH.waits, 0);
+  CHECK_EQ(FH.clock, 159);
+  CHECK_EQ(bb_byte_scans(&S), 3);
+}
+
 void suite_program(void) {
   RUN(test_fig13_straight);
   RUN(test_jump_on_compare);
@@ -469,4 +531,5 @@ void suite_program(void) {
   RUN(test_classify_and_step);
   RUN(test_serial_rejects);
   RUN(test_run_step_modes);
+  RUN(test_run_modes);
 }
