@@ -16,6 +16,7 @@ blocks in synth/synth_*.v.
 | any other 1-bit input / output | a pin (two-flop synchroniser / output flip-flop) |
 | any other vector input | host registers, SPI command 0x02 (`synth_host_regs`) |
 | any other vector output | read back over SPI, command 0x03 (`synth_readback`) |
+| a plant's per-core program ports and buses (`plc_system`: a strobe per core) | host registers / read-back, as any other vector |
 | observation ports `dbg_*` (simulation hosts only) | inputs tied to 0, outputs open |
 
 The wrapper has the core's parameters (same names, same defaults) and passes them
@@ -169,10 +170,13 @@ def generate(core: Module, core_file: str) -> tuple[str, dict]:
     take("clock pin", [clk.name])
     if rst:
         take("reset pin (synchronised release)", [rst.name])
-    has_prog = all(n in ports for n in PROG_PORTS) and ports["prog_waddr_i"].vector
+    # one program port and one byte-side bus (bitbyte_cpu); a plant (plc_system) has a
+    # strobe per core, and its per-core ports become host registers / read-back
+    has_prog = (all(n in ports for n in PROG_PORTS) and ports["prog_waddr_i"].vector
+                and not ports["prog_we_i"].vector)
     if has_prog:
         take("SPI 0x01 program load", PROG_PORTS)
-    has_bus = all(n in ports for n in BUS_PORTS)
+    has_bus = all(n in ports for n in BUS_PORTS) and not ports["bus_we_i"].vector
     if has_bus:
         take("SPI 0x04/0x05 byte-side bus", BUS_PORTS)
     sin = ports.get("in_pins_i") if ports.get("in_pins_i", Port("", "")).vector else None

