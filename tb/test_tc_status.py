@@ -1,5 +1,7 @@
 """Timer/counter status buffer (paper Fig. 2): byte side writes status bits one at a
-time, bit side writes enable/pulse bits; each set is independent."""
+time, bit side writes enable/pulse bits; each set is independent. The `updated` bits
+(parallel mode's "after the update" wait): a status write sets its bit, a scan's latch
+clears them all, and a write in the latch clock itself belongs to the new scan."""
 from __future__ import annotations
 
 import random
@@ -17,17 +19,26 @@ N = 64
 @cocotb.test()
 async def random_writes_against_model(dut):
     await start_in_reset(dut, dut.status_we_i, dut.ctl_we_i, dut.latch_i)
-    model = {"ts": 0, "cs": 0, "te": 0, "cp": 0}
+    model = {"ts": 0, "cs": 0, "te": 0, "cp": 0, "tu": 0, "cu": 0}
     rng = random.Random(3)
-    for _ in range(500):
+    latches = latch_writes = 0
+    for _ in range(2000):
         sw, cw = rng.random() < 0.5, rng.random() < 0.5
+        latch = rng.random() < 0.1
         s_cnt, s_idx, s_val = rng.randrange(2), rng.randrange(N), rng.randrange(2)
         c_cnt, c_idx, c_val = rng.randrange(2), rng.randrange(N), rng.randrange(2)
         dut.status_we_i.value, dut.status_is_counter_i.value = int(sw), s_cnt
         dut.status_idx_i.value, dut.status_val_i.value = s_idx, s_val
         dut.ctl_we_i.value, dut.ctl_is_counter_i.value = int(cw), c_cnt
         dut.ctl_idx_i.value, dut.ctl_val_i.value = c_idx, c_val
+        dut.latch_i.value = int(latch)
+        if latch:
+            model["tu"] = model["cu"] = 0
+            latches += 1
+            latch_writes += sw
         if sw:
+            upd = "cu" if s_cnt else "tu"
+            model[upd] |= 1 << s_idx
             key = "cs" if s_cnt else "ts"
             model[key] = (model[key] & ~(1 << s_idx)) | (s_val << s_idx)
         if cw:
@@ -36,8 +47,10 @@ async def random_writes_against_model(dut):
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
         got = {"ts": int(dut.timer_status_o.value), "cs": int(dut.counter_status_o.value),
-               "te": int(dut.timer_enable_o.value), "cp": int(dut.counter_pulse_o.value)}
+               "te": int(dut.timer_enable_o.value), "cp": int(dut.counter_pulse_o.value),
+               "tu": int(dut.timer_updated_o.value), "cu": int(dut.counter_updated_o.value)}
         assert got == model
+    assert latches > 100 and latch_writes > 50        # the cases the model separates
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)
