@@ -87,8 +87,42 @@ module hsem #(
     // a released lock goes to a waiting core in the very next clock
     if ($past(locked_o) && $past(release_i[owner_o]) && lock_req_i != {Cores{1'b0}})
       assert (grant_o != {Cores{1'b0}});
-    // bounded waiting: a core asking is granted unless the lock is held or another
-    // core is ahead of it in the round-robin order after the last owner
+  end
+
+  // Bounded waiting, for any one core f_core that keeps asking whenever the lock is
+  // free (a spinning core): from its first request on, at most Cores - 1 grants go to
+  // other cores before it gets the lock. Each such grant goes to a core ahead of it in
+  // the round-robin order after last_q, so the distance from last_q to f_core shrinks
+  // with every grant: f_others + distance <= Cores is the inductive invariant.
+  (* anyconst *) reg [IdW-1:0] f_core;
+  reg         f_waiting;                  // f_core asked (not owning it) and waits
+  reg [IdW:0] f_others;                   // grants to other cores while it waits
+  wire [31:0] f_dist = ({{(32-IdW){1'b0}}, f_core} + Cores - {{(32-IdW){1'b0}}, last_q} - 1)
+                       % Cores + 1;       // 1 .. Cores: how far f_core is after last_q
+  always @(*) begin
+    assume (f_core < Cores);
+    if (rst_ni && f_waiting && !locked_o) assume (lock_req_i[f_core]);
+  end
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_waiting <= 1'b0;
+      f_others  <= {(IdW+1){1'b0}};
+    end else if (grant_o[f_core]) begin
+      f_waiting <= 1'b0;
+      f_others  <= {(IdW+1){1'b0}};
+    end else if (f_waiting || (lock_req_i[f_core] && !(locked_o && owner_o == f_core))) begin
+      f_waiting <= 1'b1;
+      if (grant_o != {Cores{1'b0}}) f_others <= f_others + 1'b1;
+    end
+  always @(*) if (rst_ni) begin
+    assert (last_q < Cores);
+    if (locked_o) assert (last_q == owner_o);        // the last grant went to the owner
+    if (f_waiting && locked_o) assert (owner_o != f_core);
+  end
+  always @(*) if (rst_ni && !f_waiting) assert (f_others == 0);
+  always @(*) if (rst_ni && f_waiting) begin
+    assert ({{(31-IdW){1'b0}}, f_others} + f_dist <= Cores);
+    assert (f_others <= Cores - 1);
   end
   // no grant is ever withheld from a request while the lock is free
   always @(*) if (rst_ni && !locked_o && lock_req_i != {Cores{1'b0}})

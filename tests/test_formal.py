@@ -47,6 +47,8 @@ MUTATIONS = [
      "wire grant_any = any_req;"),                          # grant while held
     ("hsem", "hsem.v", "end else if (locked_o && release_i[owner_o]) begin",
      "end else if (locked_o && |release_i) begin"),         # anybody frees it
+    ("hsem", "hsem.v", "      last_q   <= pick;",
+     "      last_q   <= last_q;"),                          # fixed priority: starvation
     ("byte_port", "byte_port.v",
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
      "wire byte_refused = bus_re_i && !bus_ready_o;"),     # misses refused writes
