@@ -321,7 +321,8 @@ def pnr(tgt: Target, netlist: Path, out: Path, label: str, seed: int) -> dict:
         err = re.findall(r"ERROR: (.*)", text)
         res["error"] = (("over capacity: " + ", ".join(over) + "; ") if over else "") + \
             (err[0] if err else f"nextpnr exit code {rc}")
-        res["overfull"] = bool(over)
+        # full even below 100 % of each kind: packing failed (Gowin's LUT + MUX2 slices)
+        res["overfull"] = bool(over) or "utilisation limit" in text
         res["bram_over"] = any(("RAM" in k or "DP16KD" in k) for k in over if k)
         return res
     r = json.loads(rep.read_text())
