@@ -72,9 +72,10 @@ BECKER_CORES = 16
 # the emitted load program (docs/allocation.md "The emitted plant")
 COUNTER_BITS = 20                        # the loop counter: marker bits M0.0 .. M2.3
 LOOP_MAX = 2 ** COUNTER_BITS             # iterations of one counted loop
-LOOP_ITER = 1000                         # clocks of one iteration (a taken JCN: 2)
-LOOP_NOPS = LOOP_ITER - 6 * COUNTER_BITS - 1   # NOPs in it, besides the counting
-LOOP_FIXED = COUNTER_BITS + 2 - 1        # presetting the counter; the last JCN: 1
+LOOP_ITER = 1000                         # clocks of one iteration (a taken JCN:
+JUMP_EXTRA = DEF.jump_taken_clocks - DEF.bit_clocks   # ... this more than not taken)
+LOOP_NOPS = LOOP_ITER - 6 * COUNTER_BITS - JUMP_EXTRA   # NOPs in it, besides the counting
+LOOP_FIXED = COUNTER_BITS + 2 - JUMP_EXTRA   # presetting the counter; the last JCN: 1
 PLANT_HEADROOM = 8                       # clocks left per SCT for an empty precycle
                                          # and postcycle (3 + 2 on the plant harness)
 PROG_WORDS = DEF.sizes["prog_words"]       # the program memory (Config.prog_words)
@@ -870,7 +871,7 @@ def load_program(clocks: int, header: list[str] = ()) -> str:
               new bits: m0 = NOT m0, m(i) = m(i) XOR c(i)
               LD c(b); JCN loop
 
-    n iterations take (b + 2) + 1000 n - 1 clocks (the last JCN is not taken)."""
+    n iterations take (b + 2) + 1000 n - JUMP_EXTRA clocks (the last JCN is not taken)."""
     if clocks < 1:
         raise ValueError("a scan takes at least 1 clock (END)")
     b = COUNTER_BITS

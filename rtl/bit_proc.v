@@ -3,17 +3,31 @@
 `include "param_check.vh"
 // Bit processor: one bit instruction per clock, sustained.
 //
-// Three stages:
+// Four stages, each with its valid bit:
 //   fetch   the program RAM is addressed with fetch_addr
 //   decode  the word comes out of the RAM (d_instr); an M operand's address goes to
-//           the marker RAM, whose read data arrives with the instruction in execute
-//   execute the operand is selected, the RLO, the parenthesis stack and the targets
-//           are updated, jumps are taken
-// A taken jump squashes the one instruction in decode (2 clocks). END is recognised
-// in decode, so address 0 is fetched while END executes and moves to execute at the
-// end of END's clock: the next scan's first instruction executes in its latch clock,
-// with the RLO and the parenthesis stack already reset for it. The processor idles
-// (fetch held at address 0) whenever the scan controller is not running.
+//           the marker RAM
+//   operand the instruction register (o_*) selects the operand from the registered
+//           images a clock early, from their next-state value (what the register
+//           holds in the execute clock), with the execute stage's own write to Q/PQ
+//           forwarded; the marker RAM's word is captured in m_hold_q (no logic
+//           between the RAM and that register) and every marker write since the
+//           read is tracked (o_mfwd_*)
+//   execute the RLO, the parenthesis stack and the targets are updated, jumps are
+//           taken. The RLO logic sees registers only, except the live pins (PI, and
+//           I/IR/IF in the latch clock: a one-hot select registered in operand and
+//           an AND-OR over the pins) and the FBI channel data (one bit per channel)
+// A taken jump squashes the instructions in decode and operand (3 clocks). END is
+// recognised in decode, so address 0 is fetched while END is in decode, reaches
+// operand while END executes and moves to execute at the end of END's clock: the next
+// scan's first instruction executes in its latch clock. END leaves RLO = 0 and an
+// empty stack for it. Between scans the pipeline holds (address 0 in operand,
+// address 1 in decode) until the scan controller starts the next scan; it fills
+// itself after reset and after a program write.
+// An instruction held in execute (a channel not ready, a T/C read waiting for the
+// update, a dispatched byte instruction, END waiting for the byte side) sees the
+// operand of the clock it completes in: T/C status and its updated bit are resampled
+// from their next-state value every clock while it waits, FBI data is read live.
 module bit_proc #(
   parameter integer ProgWords   = 4096,  // program memory, instructions (power of two)
   parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
@@ -37,15 +51,20 @@ module bit_proc #(
   output wire                         end_o,       // END executes in this clock
   output wire                         refresh_o,   // REFRESH executes in this clock
   // operand sources
-  input  wire [InBits-1:0]            pii_i,
-  input  wire [InBits-1:0]            pins_i,
-  input  wire [InBits-1:0]            rise_i,
-  input  wire [InBits-1:0]            fall_i,
-  input  wire [OutBits-1:0]           pio_i,
-  input  wire [StatusBits-1:0]        timer_status_i,
-  input  wire [StatusBits-1:0]        counter_status_i,
-  input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel)
-  input  wire [StatusBits-1:0]        counter_updated_i,
+  // operand sources. Next-state values: what the registers will hold in the next
+  // clock (the operand stage selects a clock before execute).
+  input  wire [InBits-1:0]            pii_i,       // I (next state)
+  input  wire [InBits-1:0]            pins_i,      // PI: the pins now
+  input  wire [InBits-1:0]            rise_i,      // IR (next state)
+  input  wire [InBits-1:0]            fall_i,      // IF (next state)
+  input  wire [InBits-1:0]            rise_acc_i,  // edges since the last latch (next state)
+  input  wire [InBits-1:0]            fall_acc_i,
+  input  wire [OutBits-1:0]           pio_i,       // Q/PQ: the PIO register (its only writer
+                                                   // is this processor: forwarded here)
+  input  wire [StatusBits-1:0]        timer_status_i,    // (next state)
+  input  wire [StatusBits-1:0]        counter_status_i,  // (next state)
+  input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel; next state)
+  input  wire [StatusBits-1:0]        counter_updated_i, // (next state)
   // exchange channels: F_Bb k read by bit instructions, F_bB k written by `= FBY k`
   output wire [Channels-1:0]          fbi_rd_req_o,
   input  wire [Channels-1:0]          fbi_rd_data_i,
@@ -79,15 +98,14 @@ module bit_proc #(
   output wire                         m_peek_o,
   // observation (waveforms, test benches)
   output reg                          rlo_o,
-  output wire                         rlo_now_o,      // the RLO execute works with
+  output wire                         rlo_now_o,      // the RLO execute works with (= rlo_o)
   output wire [$clog2(ProgWords)-1:0] exec_pc_o,
   output wire                         exec_valid_o
 );
   localparam integer PcW   = $clog2(ProgWords);
   localparam integer MW    = $clog2(MarkerBits);
   localparam integer SpW   = $clog2(NestDepth + 1);  // 0..NestDepth levels
-  // a level's index and a channel number: one bit at least, also for a single one
-  localparam integer IdxW  = (NestDepth > 1) ? $clog2(NestDepth) : 1;
+  // a channel number: one bit at least, also for a single one
   localparam integer ChW   = (Channels > 1) ? $clog2(Channels) : 1;
 
   // ---------------------------------------------------------------- parameter checks
@@ -111,11 +129,9 @@ module bit_proc #(
 
   // ---------------------------------------------------------------- fetch / decode
   reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM
+  reg            d_valid_q;     // ... which is that word (not after reset / a load)
   wire [31:0]    d_instr;       // that word (decode stage)
   reg  [PcW-1:0] fetch_addr;
-  reg  [31:0]    e_instr_q;     // execute stage
-  reg  [PcW-1:0] e_pc_q;
-  reg            e_valid_q;
 
   // verilator lint_off UNUSEDSIGNAL
   wire [31:0]    unused_prog_peek;  // no host looks at the program
@@ -130,71 +146,82 @@ module bit_proc #(
     .peek_addr_i({PcW{1'b0}}),
     .peek_data_o(unused_prog_peek)
   );
+  wire d_is_end = d_valid_q && (d_instr[`ISA_OPCODE] == `OP_END);
 
-  // ---------------------------------------------------------------- execute decode
-  wire [7:0]  e_op     = e_instr_q[`ISA_OPCODE];
-  wire [3:0]  e_area   = e_instr_q[`ISA_AREA];
-  wire [11:0] e_index  = e_instr_q[`ISA_INDEX];
+  // ---------------------------------------------------------------- operand stage
+  reg  [31:0]    o_instr_q;
+  reg  [PcW-1:0] o_pc_q;
+  reg            o_valid_q;
+  reg            o_first_q;     // the instruction entered operand at the last edge
+  wire [7:0]  o_op    = o_instr_q[`ISA_OPCODE];
+  wire [3:0]  o_area  = o_instr_q[`ISA_AREA];
+  wire [11:0] o_index = o_instr_q[`ISA_INDEX];
+  wire [$clog2(InBits)-1:0]     o_in  = o_index[$clog2(InBits)-1:0];
+  wire [$clog2(OutBits)-1:0]    o_out = o_index[$clog2(OutBits)-1:0];
+  wire [MW-1:0]                 o_mi  = o_index[MW-1:0];
+  wire [$clog2(StatusBits)-1:0] o_tc  = o_index[$clog2(StatusBits)-1:0];
+  wire o_logic = (o_op & `OP_LOGIC_MASK) == `OP_LOGIC;
+  wire o_on_io = (o_area == `AREA_I) || (o_area == `AREA_IR) || (o_area == `AREA_IF);
+
+  // ---------------------------------------------------------------- execute stage
+  reg  [31:0]    e_instr_q;
+  reg  [PcW-1:0] e_pc_q;
+  reg            e_valid_q;
+  // decoded in operand
+  reg e_logic_q, e_open_q, e_close_q, e_fp_q, e_fn_q, e_not_q, e_set_q, e_clr_q;
+  reg e_assign_q, e_setbit_q, e_rstbit_q, e_edge_q, e_byte_q, e_end_q, e_refresh_q;
+  reg e_ju_q, e_jc_q, e_jcn_q;
+  reg e_on_m_q, e_on_q_q, e_on_pq_q, e_on_fb_q, e_on_tc_q, e_tcw_q;
+  reg [Channels-1:0] e_chan_q;          // the channel, one-hot (none if out of range)
+  // operand sources
+  reg              e_opnd_q;            // the registered images' bit, as of execute
+  reg              e_src_m_q, e_src_live_q, e_src_fb_q;
+  reg [InBits-1:0] e_pinsel_q;          // live pins: the pin, one-hot
+  reg              e_lv_ir_q, e_lv_if_q;  // latch clock: IR / IF from the live pins
+  reg              e_lacc_q;            // ... the edge accumulator's bit then
+  reg              e_prev_q;            // ... the pin one clock before
+  reg              e_mfwd_q, e_mfwd_val_q;  // a marker write the RAM read missed
+  reg              m_hold_q;            // the marker RAM's word for this instruction
+  reg              e_upd_q;             // T/C updated this scan, as of execute
+  reg              e_held_q;            // the instruction was held in execute
+  reg              e_re_q, e_upd_re_q;  // T/C status / updated, resampled while held
+
   wire [PcW-1:0] e_target = e_instr_q[PcW-1:0];
-  wire        e_go     = e_valid_q && exec_i;
-  // A scan starts with RLO = 0 and an empty stack, also for the instruction that
-  // executes in the latch clock itself.
-  wire        rlo_cur  = latch_i ? 1'b0 : rlo_o;
-  assign rlo_now_o = rlo_cur;
-
-  wire is_logic  = (e_op & `OP_LOGIC_MASK) == `OP_LOGIC;
-  wire is_open   = (e_op & `OP_LOGIC_MASK) == `OP_OPEN;
-  wire is_close  = e_op == `OP_CLOSE;
-  wire is_assign = e_op == `OP_ASSIGN;
-  wire is_setbit = e_op == `OP_SETBIT;
-  wire is_rstbit = e_op == `OP_RESETBIT;
-  wire is_fp     = e_op == `OP_FP;
-  wire is_fn     = e_op == `OP_FN;
-  wire is_edge   = is_fp || is_fn;
-  wire is_byte   = e_op[`OP_BYTE_BIT];
+  wire [2:0]     e_fn3    = e_instr_q[26:24];   // opcode bits 2:0: {f, n}
+  wire           e_go     = e_valid_q && exec_i;
 
   // ---------------------------------------------------------------- waiting
   // Execute holds its instruction while a channel is empty/full (the buffered
   // condition flip-flops' handshake) or the byte processor works on a dispatched
   // instruction; nothing of the instruction takes effect until the clock it completes.
-  // (the index fits when its bits above a channel number are 0: no wide compare; a
-  // number past the last channel shifts the one out of the vector)
-  wire [Channels-1:0] chan_sel = (e_index[11:ChW] == 0)
-      ? ({{(Channels-1){1'b0}}, 1'b1} << e_index[ChW-1:0]) : {Channels{1'b0}};
-  wire on_channel = e_area == `AREA_FB;
-  wire fbi_read   = e_go && on_channel && is_logic;
-  wire fby_write  = e_go && on_channel && (is_assign || ((is_setbit || is_rstbit) && rlo_cur));
-  wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & chan_sel))) ||
-                    (fby_write && !(|(fby_wr_ready_i & chan_sel)));
-  wire end_wait   = e_go && (e_op == `OP_END) && end_hold_i;
   // A read of `T n` / `C n` marked "after the update" (bit 16, set by the partitioning
   // compiler when a byte-side instruction on that timer/counter precedes it in the
-  // scan) waits until the byte side has written the status this scan.
-  // The updated bits are cleared at the end of the latch clock: a read executing in
-  // that clock must not see the previous scan's bits.
-  wire [$clog2(StatusBits)-1:0] tc_idx = e_index[$clog2(StatusBits)-1:0];
-  wire t_updated  = !latch_i && timer_updated_i[tc_idx];
-  wire c_updated  = !latch_i && counter_updated_i[tc_idx];
-  wire tc_wait    = e_go && is_logic && e_instr_q[`ISA_WAIT_UPDATE] &&
-                    ((e_area == `AREA_T && !t_updated) || (e_area == `AREA_C && !c_updated));
-  wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && is_byte && !byte_done_i);
+  // scan) waits until the byte side has written the status this scan (the updated
+  // bits are cleared at the end of the latch clock: a read executing in that clock
+  // does not see the previous scan's bits).
+  wire upd_now    = e_held_q ? e_upd_re_q : e_upd_q;
+  wire fbi_read   = e_go && e_on_fb_q && e_logic_q;
+  wire fby_write  = e_go && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & e_chan_q))) ||
+                    (fby_write && !(|(fby_wr_ready_i & e_chan_q)));
+  wire end_wait   = e_go && e_end_q && end_hold_i;
+  wire tc_wait    = e_go && e_tcw_q && !upd_now;
+  wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && e_byte_q && !byte_done_i);
   wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
   // A stall is a wait on the other processor's condition; a dispatched instruction's
   // own clocks (serial mode) are its execution time, not a stall.
   assign stall_o  = chan_wait || end_wait || tc_wait;
 
-  assign fbi_rd_req_o  = fbi_read  ? chan_sel : {Channels{1'b0}};
-  assign fby_wr_req_o  = fby_write ? chan_sel : {Channels{1'b0}};
-  assign fby_wr_data_o = !is_rstbit && rlo_cur;        // =: RLO; S: 1; R: 0
-  assign byte_req_o    = e_go && is_byte;
+  assign fbi_rd_req_o  = fbi_read  ? e_chan_q : {Channels{1'b0}};
+  assign fby_wr_req_o  = fby_write ? e_chan_q : {Channels{1'b0}};
+  assign fby_wr_data_o = !e_rstbit_q && rlo_o;          // =: RLO; S: 1; R: 0
+  assign byte_req_o    = e_go && e_byte_q;
   assign byte_instr_o  = e_instr_q;
 
-  wire jump_taken = e_go && ((e_op == `OP_JU) ||
-                             (e_op == `OP_JC  &&  rlo_cur) ||
-                             (e_op == `OP_JCN && !rlo_cur));
-  assign end_o     = e_go && (e_op == `OP_END) && !end_hold_i;
-  assign refresh_o = e_go && (e_op == `OP_REFRESH);
-  wire   d_is_end  = d_instr[`ISA_OPCODE] == `OP_END;
+  wire jump_taken = e_go && (e_ju_q || (e_jc_q && rlo_o) || (e_jcn_q && !rlo_o));
+  assign end_o     = e_go && e_end_q && !end_hold_i;
+  assign refresh_o = e_go && e_refresh_q;
+  assign rlo_now_o = rlo_o;     // END leaves 0 for the next scan's first instruction
 
   // ---------------------------------------------------------------- marker memory
   // Cleared after reset (one bit per clock) so that every marker starts at 0.
@@ -203,14 +230,12 @@ module bit_proc #(
   assign mem_ready_o = !clearing;
 
   wire          m_rdata;
-  reg           m_bypass_q;             // last clock wrote the address decode read
-  reg           m_bypass_val_q;
   wire          m_target_we;            // execute writes an M bit
   // Between scans the copy engine takes the RAM's ports (nothing executes then).
   wire          copy_we = copy_en_i && copy_we_i;
   wire          m_we    = clearing || m_target_we || copy_we;
   wire [MW-1:0] m_waddr = clearing ? clear_addr_q[MW-1:0] :
-                          copy_en_i ? copy_addr_i : e_index[MW-1:0];
+                          copy_en_i ? copy_addr_i : e_instr_q[MW-1:0];
   wire          target_val;
   wire          m_wdata = clearing ? 1'b0 : copy_en_i ? copy_wdata_i : target_val;
   wire [MW-1:0] m_raddr = copy_en_i ? copy_addr_i : d_instr[MW-1:0];
@@ -227,36 +252,90 @@ module bit_proc #(
     .peek_data_o(m_peek_o)
   );
 
+  // The RAM read for the instruction in operand happened at the edge it entered
+  // operand; the write at that same edge is kept in lw_* (the RAM may return either
+  // value then), every later write to its address until it executes is caught here.
+  reg           lw_we_q, lw_val_q;
+  reg  [MW-1:0] lw_addr_q;
+  reg           o_mfwd_q, o_mfwd_val_q;
+  wire          m_hit_now  = m_we && (m_waddr == o_mi);
+  wire          m_hit_base = o_first_q ? (lw_we_q && (lw_addr_q == o_mi)) : o_mfwd_q;
+  wire          m_val_base = o_first_q ? lw_val_q : o_mfwd_val_q;
+  wire          m_fwd_next = m_hit_now || m_hit_base;
+  wire          m_fwd_val  = m_hit_now ? m_wdata : m_val_base;
+
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      clear_addr_q   <= {(MW+1){1'b0}};
-      m_bypass_q     <= 1'b0;
-      m_bypass_val_q <= 1'b0;
+      clear_addr_q <= {(MW+1){1'b0}};
+      lw_we_q      <= 1'b0;
+      lw_val_q     <= 1'b0;
+      lw_addr_q    <= {MW{1'b0}};
+      o_mfwd_q     <= 1'b0;
+      o_mfwd_val_q <= 1'b0;
+      m_hold_q     <= 1'b0;
     end else begin
       if (clearing) clear_addr_q <= clear_addr_q + 1'b1;
-      // The RAM returns the old bit when decode reads what execute writes.
-      m_bypass_q     <= m_we && (m_waddr == m_raddr);
-      m_bypass_val_q <= m_wdata;
+      lw_we_q      <= m_we;
+      lw_val_q     <= m_wdata;
+      lw_addr_q    <= m_waddr;
+      o_mfwd_q     <= m_fwd_next;
+      o_mfwd_val_q <= m_fwd_val;
+      if (o_first_q) m_hold_q <= m_rdata;   // straight from the RAM, no logic between
     end
   end
 
+  // ---------------------------------------------------------------- targets
+  // =, S, R write a target; FP/FN write their edge memory with the old RLO. None of
+  // them waits (a write to FBY goes through the channel, fby_write above).
+  wire target_we = e_go && (e_assign_q || e_edge_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  assign target_val  = e_setbit_q ? 1'b1 : e_rstbit_q ? 1'b0 : rlo_o;
+  assign m_target_we = target_we && e_on_m_q;
+
+  assign out_wr_en_o     = target_we && e_on_q_q;
+  assign out_wr_idx_o    = e_instr_q[$clog2(OutBits)-1:0];
+  assign out_wr_val_o    = target_val;
+  assign out_wr_direct_o = e_on_pq_q;
+
   // ---------------------------------------------------------------- operand select
-  reg operand;
+  // From the registered images, as they will be in the clock the instruction executes
+  // in: I/IR/IF and T/C status/updated come in as next-state values, the PIO is the
+  // register with this clock's write forwarded.
+  wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);
+  reg  o_opnd;
   always @(*) begin
-    case (e_area)
-      `AREA_I:  operand = pii_i[e_index[$clog2(InBits)-1:0]];   // as of this clock
-      `AREA_PI: operand = pins_i[e_index[$clog2(InBits)-1:0]];
-      `AREA_IR: operand = rise_i[e_index[$clog2(InBits)-1:0]];
-      `AREA_IF: operand = fall_i[e_index[$clog2(InBits)-1:0]];
+    case (o_area)
+      `AREA_I:  o_opnd = pii_i[o_in];
+      `AREA_IR: o_opnd = rise_i[o_in];
+      `AREA_IF: o_opnd = fall_i[o_in];
       `AREA_Q,
-      `AREA_PQ: operand = pio_i[e_index[$clog2(OutBits)-1:0]];
-      `AREA_M:  operand = m_bypass_q ? m_bypass_val_q : m_rdata;
-      `AREA_T:  operand = timer_status_i[tc_idx];
-      `AREA_C:  operand = counter_status_i[tc_idx];
-      `AREA_FB: operand = |(fbi_rd_data_i & chan_sel);
-      default:  operand = 1'b0;
+      `AREA_PQ: o_opnd = q_fwd ? out_wr_val_o : pio_i[o_out];
+      `AREA_T:  o_opnd = timer_status_i[o_tc];
+      `AREA_C:  o_opnd = counter_status_i[o_tc];
+      default:  o_opnd = 1'b0;
     endcase
   end
+  wire o_upd = (o_area == `AREA_T) ? timer_updated_i[o_tc] : counter_updated_i[o_tc];
+  // the same for the instruction held in execute (T/C only)
+  wire [$clog2(StatusBits)-1:0] e_tc = e_instr_q[$clog2(StatusBits)-1:0];
+  wire e_is_t = e_instr_q[`ISA_AREA] == `AREA_T;
+  wire e_re   = e_is_t ? timer_status_i[e_tc]  : counter_status_i[e_tc];
+  wire e_upd_re = e_is_t ? timer_updated_i[e_tc] : counter_updated_i[e_tc];
+
+  wire [ChW-1:0] o_ch = o_index[ChW-1:0];
+  // (the index fits when its bits above a channel number are 0: no wide compare; a
+  // number past the last channel shifts the one out of the vector)
+  wire [Channels-1:0] o_chan = (o_index[11:ChW] == 0)
+      ? ({{(Channels-1){1'b0}}, 1'b1} << o_ch) : {Channels{1'b0}};
+
+  // ---------------------------------------------------------------- operand in execute
+  wire pin_live = |(pins_i & e_pinsel_q);
+  wire live_opnd = e_lv_ir_q ? (e_lacc_q | (pin_live & ~e_prev_q)) :
+                   e_lv_if_q ? (e_lacc_q | (~pin_live & e_prev_q)) : pin_live;
+  wire reg_opnd  = (e_held_q && e_on_tc_q) ? e_re_q : e_opnd_q;
+  wire m_opnd    = e_mfwd_q ? e_mfwd_val_q : m_hold_q;
+  wire fb_opnd   = |(fbi_rd_data_i & e_chan_q);
+  wire operand   = e_src_m_q ? m_opnd : e_src_live_q ? live_opnd :
+                   e_src_fb_q ? fb_opnd : reg_opnd;
 
   // ---------------------------------------------------------------- RLO and stack
   // RLO := RLO f (x xor n), the one combiner shared by the eight loads/combines and
@@ -270,28 +349,27 @@ module bit_proc #(
     endcase
   endfunction
 
-  reg [NestDepth-1:0] stack_rlo_q;        // saved RLO per level
+  // A shift register: the top level is always entry 0 (no multiplexer on the RLO path).
+  reg [NestDepth-1:0]   stack_rlo_q;      // saved RLO per level, top first
   reg [NestDepth*3-1:0] stack_op_q;       // saved {f, n} per level
-  reg [SpW-1:0] sp_q;                     // levels in use
-  wire [SpW-1:0] sp_cur = latch_i ? {SpW{1'b0}} : sp_q;
-  wire [SpW-1:0] sp_top = sp_cur - 1'b1;
-  wire [IdxW-1:0] top_idx  = sp_top[IdxW-1:0];
-  wire [IdxW-1:0] push_idx = sp_cur[IdxW-1:0];
-  wire          top_rlo = stack_rlo_q[top_idx];
-  wire [2:0]    top_op  = stack_op_q[top_idx*3 +: 3];
+  reg [SpW-1:0]         sp_q;             // levels in use
+  wire       top_rlo = stack_rlo_q[0];
+  wire [2:0] top_op  = stack_op_q[2:0];
 
   reg rlo_d;
   always @(*) begin
-    rlo_d = rlo_cur;
-    if (is_logic)        rlo_d = combine(e_op[2:1], rlo_cur, operand ^ e_op[0]);
-    else if (is_close)   rlo_d = combine(top_op[2:1], top_rlo, rlo_cur ^ top_op[0]);
-    else if (is_fp)      rlo_d = rlo_cur & ~operand;
-    else if (is_fn)      rlo_d = ~rlo_cur & operand;
-    else if (e_op == `OP_NOT) rlo_d = ~rlo_cur;
-    else if (e_op == `OP_SET) rlo_d = 1'b1;
-    else if (e_op == `OP_CLR) rlo_d = 1'b0;
+    rlo_d = rlo_o;
+    if (e_logic_q)      rlo_d = combine(e_fn3[2:1], rlo_o, operand ^ e_fn3[0]);
+    else if (e_close_q) rlo_d = combine(top_op[2:1], top_rlo, rlo_o ^ top_op[0]);
+    else if (e_fp_q)    rlo_d = rlo_o & ~operand;
+    else if (e_fn_q)    rlo_d = ~rlo_o & operand;
+    else if (e_not_q)   rlo_d = ~rlo_o;
+    else if (e_set_q)   rlo_d = 1'b1;
+    else if (e_clr_q)   rlo_d = 1'b0;
+    else if (e_end_q)   rlo_d = 1'b0;     // every scan starts with RLO = 0
   end
 
+  integer lvl;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       rlo_o       <= 1'b0;
@@ -299,41 +377,40 @@ module bit_proc #(
       stack_rlo_q <= {NestDepth{1'b0}};
       stack_op_q  <= {(NestDepth*3){1'b0}};
     end else if (e_done) begin
-      rlo_o <= (is_byte && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
-      sp_q  <= sp_cur;
+      rlo_o <= (e_byte_q && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
       // The assembler bounds the nesting; the stack saturates rather than wraps.
-      if (is_open && sp_cur != NestDepth[SpW-1:0]) begin
-        stack_rlo_q[push_idx]       <= rlo_cur;
-        stack_op_q[push_idx*3 +: 3] <= e_op[2:0];
-        sp_q                        <= sp_cur + 1'b1;
-      end else if (is_close && sp_cur != {SpW{1'b0}}) begin
-        sp_q <= sp_top;
+      if (e_end_q) begin
+        sp_q <= {SpW{1'b0}};              // ... and with an empty stack
+      end else if (e_open_q && sp_q != NestDepth[SpW-1:0]) begin
+        for (lvl = NestDepth - 1; lvl > 0; lvl = lvl - 1) begin
+          stack_rlo_q[lvl]       <= stack_rlo_q[lvl-1];
+          stack_op_q[lvl*3 +: 3] <= stack_op_q[(lvl-1)*3 +: 3];
+        end
+        stack_rlo_q[0]  <= rlo_o;
+        stack_op_q[2:0] <= e_fn3;
+        sp_q            <= sp_q + 1'b1;
+      end else if (e_close_q && sp_q != {SpW{1'b0}}) begin
+        for (lvl = 0; lvl < NestDepth - 1; lvl = lvl + 1) begin
+          stack_rlo_q[lvl]       <= stack_rlo_q[lvl+1];
+          stack_op_q[lvl*3 +: 3] <= stack_op_q[(lvl+1)*3 +: 3];
+        end
+        sp_q <= sp_q - 1'b1;
       end
-    end else if (latch_i) begin
-      rlo_o <= 1'b0;                      // every scan starts with RLO = 0
-      sp_q  <= {SpW{1'b0}};
     end
   end
 
-  // ---------------------------------------------------------------- targets
-  // =, S, R write a target; FP/FN write their edge memory with the old RLO.
-  wire target_we = e_done && (is_assign || is_edge || ((is_setbit || is_rstbit) && rlo_cur));
-  assign target_val = is_setbit ? 1'b1 : is_rstbit ? 1'b0 : rlo_cur;
-  assign m_target_we = target_we && (e_area == `AREA_M);
-
-  assign out_wr_en_o     = target_we && (e_area == `AREA_Q || e_area == `AREA_PQ);
-  assign out_wr_idx_o    = e_index[$clog2(OutBits)-1:0];
-  assign out_wr_val_o    = target_val;
-  assign out_wr_direct_o = (e_area == `AREA_PQ);
-
   // ---------------------------------------------------------------- pipeline flow
-  // Taken jump: squash decode, fetch the target. END in decode: fetch address 0.
-  // END in execute: address 0 (in decode) moves on only if a scan follows; the
-  // first clock of a scan finds it in execute.
-  wire advance = start_i || (exec_i && !end_o && !e_stall);
+  // Execute takes the next instruction when its own completes (or a scan starts);
+  // operand and decode move up when the stage above takes theirs or is empty.
+  // Taken jump: squash operand and decode, fetch the target. END in decode: fetch
+  // address 0. END in execute: address 0 (in operand) moves on only if a scan follows.
+  wire e_load = start_i || (exec_i && !e_stall && !end_o);
+  wire o_move = e_load || !o_valid_q;
+  wire d_move = o_move || !d_valid_q;
   always @(*) begin
-    if (!advance)        fetch_addr = d_pc_q;
+    if (!d_move)         fetch_addr = d_pc_q;
     else if (jump_taken) fetch_addr = e_target;
+    else if (!d_valid_q) fetch_addr = d_pc_q;
     else if (d_is_end)   fetch_addr = {PcW{1'b0}};
     else                 fetch_addr = d_pc_q + 1'b1;
   end
@@ -341,15 +418,95 @@ module bit_proc #(
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       d_pc_q    <= {PcW{1'b0}};
+      d_valid_q <= 1'b0;
+      o_instr_q <= 32'd0;
+      o_pc_q    <= {PcW{1'b0}};
+      o_valid_q <= 1'b0;
+      o_first_q <= 1'b0;
+    end else if (prog_we_i) begin       // a program write: refill from address 0
+      d_pc_q    <= {PcW{1'b0}};
+      d_valid_q <= 1'b0;
+      o_valid_q <= 1'b0;
+      o_first_q <= 1'b0;
+    end else begin
+      d_pc_q    <= fetch_addr;
+      d_valid_q <= 1'b1;
+      o_first_q <= o_move;
+      if (o_move) begin
+        o_instr_q <= d_instr;
+        o_pc_q    <= d_pc_q;
+        o_valid_q <= d_valid_q && !jump_taken;
+      end
+    end
+  end
+
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
       e_instr_q <= 32'd0;
       e_pc_q    <= {PcW{1'b0}};
       e_valid_q <= 1'b0;
+      {e_logic_q, e_open_q, e_close_q, e_fp_q, e_fn_q, e_not_q, e_set_q, e_clr_q} <= 8'd0;
+      {e_assign_q, e_setbit_q, e_rstbit_q, e_edge_q, e_byte_q, e_end_q, e_refresh_q} <= 7'd0;
+      {e_ju_q, e_jc_q, e_jcn_q} <= 3'd0;
+      {e_on_m_q, e_on_q_q, e_on_pq_q, e_on_fb_q, e_on_tc_q, e_tcw_q} <= 6'd0;
+      e_chan_q     <= {Channels{1'b0}};
+      e_opnd_q     <= 1'b0;
+      {e_src_m_q, e_src_live_q, e_src_fb_q} <= 3'd0;
+      e_pinsel_q   <= {InBits{1'b0}};
+      {e_lv_ir_q, e_lv_if_q, e_lacc_q, e_prev_q} <= 4'd0;
+      e_mfwd_q     <= 1'b0;
+      e_mfwd_val_q <= 1'b0;
+      e_upd_q      <= 1'b0;
+      e_held_q     <= 1'b0;
+      e_re_q       <= 1'b0;
+      e_upd_re_q   <= 1'b0;
     end else begin
-      d_pc_q <= fetch_addr;
-      if (advance) begin
-        e_instr_q <= d_instr;
-        e_pc_q    <= d_pc_q;
-        e_valid_q <= !jump_taken;
+      e_held_q   <= e_stall;
+      e_re_q     <= e_re;
+      e_upd_re_q <= e_upd_re;
+      if (e_load) begin
+        e_instr_q   <= o_instr_q;
+        e_pc_q      <= o_pc_q;
+        e_valid_q   <= o_valid_q && !jump_taken;
+        e_logic_q   <= o_logic;
+        e_open_q    <= (o_op & `OP_LOGIC_MASK) == `OP_OPEN;
+        e_close_q   <= o_op == `OP_CLOSE;
+        e_fp_q      <= o_op == `OP_FP;
+        e_fn_q      <= o_op == `OP_FN;
+        e_not_q     <= o_op == `OP_NOT;
+        e_set_q     <= o_op == `OP_SET;
+        e_clr_q     <= o_op == `OP_CLR;
+        e_assign_q  <= o_op == `OP_ASSIGN;
+        e_setbit_q  <= o_op == `OP_SETBIT;
+        e_rstbit_q  <= o_op == `OP_RESETBIT;
+        e_edge_q    <= (o_op == `OP_FP) || (o_op == `OP_FN);
+        e_byte_q    <= o_op[`OP_BYTE_BIT];
+        e_end_q     <= o_op == `OP_END;
+        e_refresh_q <= o_op == `OP_REFRESH;
+        e_ju_q      <= o_op == `OP_JU;
+        e_jc_q      <= o_op == `OP_JC;
+        e_jcn_q     <= o_op == `OP_JCN;
+        e_on_m_q    <= o_area == `AREA_M;
+        e_on_q_q    <= (o_area == `AREA_Q) || (o_area == `AREA_PQ);
+        e_on_pq_q   <= o_area == `AREA_PQ;
+        e_on_fb_q   <= o_area == `AREA_FB;
+        e_on_tc_q   <= (o_area == `AREA_T) || (o_area == `AREA_C);
+        e_tcw_q     <= o_logic && o_instr_q[`ISA_WAIT_UPDATE] &&
+                       ((o_area == `AREA_T) || (o_area == `AREA_C));
+        e_chan_q    <= o_chan;
+        e_opnd_q    <= o_opnd;
+        e_src_m_q   <= o_area == `AREA_M;
+        e_src_fb_q  <= o_area == `AREA_FB;
+        // the first instruction of a scan reads I/IR/IF as they are being latched
+        e_src_live_q <= (o_area == `AREA_PI) || (start_i && o_on_io);
+        e_pinsel_q  <= {{(InBits-1){1'b0}}, 1'b1} << o_in;
+        e_lv_ir_q   <= start_i && (o_area == `AREA_IR);
+        e_lv_if_q   <= start_i && (o_area == `AREA_IF);
+        e_lacc_q    <= (o_area == `AREA_IR) ? rise_acc_i[o_in] : fall_acc_i[o_in];
+        e_prev_q    <= pins_i[o_in];
+        e_mfwd_q     <= m_fwd_next;
+        e_mfwd_val_q <= m_fwd_val;
+        e_upd_q     <= !start_i && o_upd;
       end else if (!e_stall) begin
         e_valid_q <= 1'b0;               // END executed, or stopped: a bubble
       end
@@ -359,9 +516,10 @@ module bit_proc #(
   assign exec_pc_o    = e_pc_q;
   assign exec_valid_o = e_go;
 
-  // Reserved instruction bits and the upper index bits of narrow areas are unused.
+  // Reserved instruction bits and the upper index bits of narrow areas are unused;
+  // latch_i: END leaves the RLO and the stack reset, the latch clock needs nothing.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_bits = ^{e_instr_q[23:17], e_index, sp_top};
+  wire unused_bits = ^{e_instr_q, o_instr_q[23:17], latch_i};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

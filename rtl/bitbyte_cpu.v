@@ -89,7 +89,7 @@ module bitbyte_cpu #(
                "bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)")
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
-  wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now;
+  wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now, rise_acc_next, fall_acc_next;
   wire [OutBits-1:0] pio;
   wire                       out_wr_en, out_wr_val, out_wr_direct;
   wire [$clog2(OutBits)-1:0] out_wr_idx;
@@ -100,6 +100,8 @@ module bitbyte_cpu #(
   // exchange
   wire [StatusBits-1:0] timer_status, counter_status, timer_enable, counter_pulse;
   wire [StatusBits-1:0] timer_updated, counter_updated;
+  wire [StatusBits-1:0] timer_status_next, counter_status_next;
+  wire [StatusBits-1:0] timer_updated_next, counter_updated_next;
   wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
   wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
   wire        fby_wr_data, fbi_wr_data, bit_stall;
@@ -150,7 +152,9 @@ module bitbyte_cpu #(
     .fall_o    (fall),
     .pii_now_o (pii_now),
     .rise_now_o(rise_now),
-    .fall_now_o(fall_now)
+    .fall_now_o(fall_now),
+    .rise_acc_next_o(rise_acc_next),
+    .fall_acc_next_o(fall_acc_next)
   );
 
   output_unit #(.OutBits(OutBits)) u_output_unit (
@@ -190,11 +194,14 @@ module bitbyte_cpu #(
     .pins_i          (in_pins_i),
     .rise_i          (rise_now),
     .fall_i          (fall_now),
+    .rise_acc_i      (rise_acc_next),
+    .fall_acc_i      (fall_acc_next),
     .pio_i           (pio),
-    .timer_status_i  (timer_status),
-    .counter_status_i(counter_status),
-    .timer_updated_i (timer_updated),
-    .counter_updated_i(counter_updated),
+    // the bit processor selects its operand a clock early: next-state values
+    .timer_status_i  (timer_status_next),
+    .counter_status_i(counter_status_next),
+    .timer_updated_i (timer_updated_next),
+    .counter_updated_i(counter_updated_next),
     .fbi_rd_req_o    (fbi_rd_req),
     .fbi_rd_data_i   (fbi_rd_data),
     .fbi_rd_ready_i  (fbi_rd_ready),
@@ -302,7 +309,11 @@ module bitbyte_cpu #(
     .timer_enable_o     (timer_enable),
     .counter_pulse_o    (counter_pulse),
     .timer_updated_o    (timer_updated),
-    .counter_updated_o  (counter_updated)
+    .counter_updated_o  (counter_updated),
+    .timer_status_next_o   (timer_status_next),
+    .counter_status_next_o (counter_status_next),
+    .timer_updated_next_o  (timer_updated_next),
+    .counter_updated_next_o(counter_updated_next)
   );
 
   byte_port #(
@@ -358,7 +369,8 @@ module bitbyte_cpu #(
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
+  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags, timer_updated,
+                     counter_updated};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

@@ -22,7 +22,11 @@ module input_unit #(
   // the values being latched (the scan's first instruction runs in its latch clock).
   output wire [InBits-1:0] pii_now_o,
   output wire [InBits-1:0] rise_now_o,
-  output wire [InBits-1:0] fall_now_o
+  output wire [InBits-1:0] fall_now_o,
+  // The edge accumulators as they will be in the next clock (the bit processor's
+  // operand stage: its first instruction of a scan reads IR/IF in the latch clock).
+  output wire [InBits-1:0] rise_acc_next_o,
+  output wire [InBits-1:0] fall_acc_next_o
 );
   `PARAM_CHECK(g_bad_in_bits, InBits < 1, "input_unit: InBits must be at least 1")
 
@@ -36,6 +40,8 @@ module input_unit #(
   assign pii_now_o  = latch_i ? pins_i : pii_o;
   assign rise_now_o = latch_i ? (rise_acc_q | rise_now) : rise_o;
   assign fall_now_o = latch_i ? (fall_acc_q | fall_now) : fall_o;
+  assign rise_acc_next_o = latch_i ? {InBits{1'b0}} : (rise_acc_q | rise_now);
+  assign fall_acc_next_o = latch_i ? {InBits{1'b0}} : (fall_acc_q | fall_now);
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

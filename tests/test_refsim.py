@@ -10,6 +10,7 @@ import re
 import pytest
 
 from bitbyte.lang.config import Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.program import Instr, Operand, Program
 from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
 from bitbyte.lang.stimulus import parse_stimulus
@@ -228,16 +229,19 @@ def test_paren_stack_overflow_within_a_scan_is_an_error():
 
 # --- jumps and cycles -----------------------------------------------------------------
 
+J = DEF.jump_taken_clocks      # a taken jump's clocks (definition.toml [timing]: 3)
+
 
 @pytest.mark.parametrize("src, stimulus, q00, q01, cycles, end_clocks", [
-    # forward JC taken and not taken -- taken: LD + JC(2) + LD + = + END = 6 (LD in
-    # the latch clock 0, END in 5); not taken: 6 instructions + END = 7, latch 6, END 12
+    # forward JC taken and not taken -- taken: LD + JC(J) + LD + = + END = 4 + J (LD in
+    # the latch clock 0); not taken: 6 instructions + END = 7
     ("LD I0.0\nJC skip\nSET\n= Q0.0\nskip: LD I0.1\n= Q0.1",
-     "scan,I0.0,I0.1\n0,1,1\n1,0,0\n", [0, 1], [1, 0], [6, 7], [6, 13]),
-    # JCN and JU -- scan 0: LD, JCN(2), JU(2), NOP = 6 + END; scan 1: LD, JCN, SET, =,
-    # JU(2), NOP = 7 + END
+     "scan,I0.0,I0.1\n0,1,1\n1,0,0\n", [0, 1], [1, 0], [4 + J, 7], [4 + J, 4 + J + 7]),
+    # JCN and JU -- scan 0: LD, JCN(J), JU(J), NOP = 2 + 2J + END; scan 1: LD, JCN, SET,
+    # =, JU(J), NOP = 5 + J + END
     ("LD I0.0\nJCN skip\nSET\n= Q0.0\nskip: JU over\nSET\n= Q0.1\nover: NOP",
-     "scan,I0.0\n0,0\n1,1\n", [0, 1], [0, 0], [7, 8], [7, 15]),
+     "scan,I0.0\n0,0\n1,1\n", [0, 1], [0, 0], [3 + 2 * J, 6 + J],
+     [3 + 2 * J, 3 + 2 * J + 6 + J]),
 ], ids=["forward_jc_taken_and_not_taken", "jcn_and_ju"])
 def test_conditional_jumps(src, stimulus, q00, q01, cycles, end_clocks):
     recs = run(src, stim(stimulus), scans=2)
@@ -261,9 +265,9 @@ def test_backward_loop():
     recs = run(src, scans=2, watch=["M0.0"])
     assert column(recs, "Q0.0") == [1, 1]
     assert column(recs, "M0.0") == [0, 0]
-    # CLR, =, (LD NOT = JC:2), (LD NOT = JC:1), SET, = -> 13 (CLR in the latch
+    # CLR, =, (LD NOT = JC:J), (LD NOT = JC:1), SET, = -> 11 + J (CLR in the latch
     # clock), + END
-    assert [r.cycles for r in recs] == [14, 14]
+    assert [r.cycles for r in recs] == [12 + J, 12 + J]
 
 
 @pytest.mark.parametrize("n", [0, 1, 5, 100])
@@ -293,7 +297,7 @@ def test_label_on_final_end_and_end_mid_program():
     recs = run(src, scans=1)
     assert column(recs, "Q0.0") == [0]
     assert column(recs, "Q0.1") == [0]
-    assert recs[0].cycles == 1 + 2 + 1      # SET (latch clock), JC taken, END
+    assert recs[0].cycles == 1 + J + 1      # SET (latch clock), JC taken, END
 
 
 # --- inputs, edges and REFRESH ----------------------------------------------------------

@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from bitbyte.lang.config import Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.parser import parse
 from bitbyte.lang.costs import resolve_costs, serial_cost
 from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
@@ -408,15 +409,16 @@ def test_status_and_elapsed_change_only_when_the_timer_executes():
     # At 0.01 MHz.  I0.1 = 1 jumps over SD (scans 1-3).
     #   SD scan: LD, JC (not taken), LD, L 10, SD 10, LD, =, L 10, T 10, END = 46,
     #            LD in the latch clock, SD in clock latch + 13
-    #   skip:    LD, JC (taken, 2), LD, =, L 10, T 10, END = 26
-    # scan 0: latch 0, SD in clock 13: now 1, start.  Scans 1-3 (latches 46, 72, 98)
-    # pass 2 ms but show status 0 and elapsed 0.  Scan 4: latch 124, SD in clock 137:
-    # now 13, d 12 -> 1, elapsed min(12, 2) = 2.
+    #   skip:    LD, JC (taken, J = 3), LD, =, L 10, T 10, END = 24 + J = 27
+    # scan 0: latch 0, SD in clock 13: now 1, start.  Scans 1-3 (latches 46, 73, 100)
+    # pass 2 ms but show status 0 and elapsed 0.  Scan 4: latch 127, SD in clock 140:
+    # now 14, d 13 -> 1, elapsed min(13, 2) = 2.
     src = "LD I0.1\nJC skip\nLD I0.0\nL T#2ms\nSD T1\nskip: LD T1\n= Q0.0\nL T1\nT MW0"
     cfg = Config(clock_mhz=0.01)
     s = stim("scan,I0.0,I0.1\n0,1,0\n1,1,1\n4,1,0\n")
     recs = run(src, s, scans=5, watch=["MW0", "T1"], config=cfg)
-    assert [r.cycles for r in recs] == [46, 26, 26, 26, 46]
+    skip = 24 + DEF.jump_taken_clocks
+    assert [r.cycles for r in recs] == [46, skip, skip, skip, 46]
     assert col(recs, "Q0.0") == [0, 0, 0, 0, 1]
     assert col(recs, "T1") == [0, 0, 0, 0, 1]
     assert col(recs, "MW0") == [0, 0, 0, 0, 2]

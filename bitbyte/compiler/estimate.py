@@ -11,7 +11,8 @@ from bitbyte.lang.parts import BYTE_JUMPS, Partition
 
 @dataclass(frozen=True)
 class Estimate:
-    """Clocks per scan along the straight-line path (jumps not taken, loops once).
+    """Clocks per scan along the straight-line path (jumps not taken, loops once; a
+    taken bit jump would cost DEF.jump_taken_clocks, bitbyte/lang/definition.toml).
 
     bit_clocks: bit-part instructions, END included (1 clock each).  byte_clocks: the
     byte part's cost-table sum (word instructions, READ/WRITE/JU_B/JC_B/JCN_B binary,

@@ -67,6 +67,10 @@ class Definition:
         self.wait_update_bit: int = w["wait_update"]
         self.byte_bit: int = w["byte_bit"]
 
+        tm = raw["timing"]
+        self.bit_clocks: int = tm["bit_clocks"]
+        self.jump_taken_clocks: int = tm["jump_taken_clocks"]
+
         lg = raw["logic"]
         self.load_base: int = lg["load_base"]
         self.open_base: int = lg["open_base"]

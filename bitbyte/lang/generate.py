@@ -292,6 +292,17 @@ def doc_cost_tables(d: Definition) -> str:
     return _md_table(head, rows)
 
 
+def doc_timing(d: Definition) -> str:
+    return _md_table(["clock of the scan", "what happens"], [
+        ["1st", "PII latch (I := pins, IR/IF := edges since the previous latch), and the "
+                "first instruction executes, seeing the values being latched"],
+        ["then, per executed instruction",
+         f"{d.bit_clocks} clock; a **taken** jump {d.jump_taken_clocks} (the "
+         f"{d.jump_taken_clocks - d.bit_clocks} instructions fetched behind it, in decode "
+         "and operand, are squashed)"],
+        ["last", "`END`: PIO → output register"]])
+
+
 def doc_registers(d: Definition) -> str:
     rows = []
     for r in d.registers:
@@ -304,7 +315,8 @@ def doc_registers(d: Definition) -> str:
 
 DOC_SECTIONS: dict[str, dict[str, Callable[[Definition], str]]] = {
     "docs/isa.md": {"bit-opcodes": doc_bit_opcodes, "areas": doc_areas,
-                    "byte-opcodes": doc_byte_opcodes, "cost-tables": doc_cost_tables},
+                    "byte-opcodes": doc_byte_opcodes, "cost-tables": doc_cost_tables,
+                    "timing": doc_timing},
     "docs/byte-bus.md": {"registers": doc_registers},
 }
 FILES: dict[str, Callable[[Definition], str]] = {

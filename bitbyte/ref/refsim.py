@@ -9,7 +9,8 @@ one shared RLO, the bit processor waiting for each byte instruction.
 
   * scan k latches the PII (and IR/IF) in its first clock L, in which its first
     instruction already executes (seeing the values being latched);
-  * each executed bit instruction takes one clock, a taken jump two;
+  * each executed bit instruction takes one clock, a taken jump DEF.jump_taken_clocks
+    (bitbyte/lang/definition.toml [timing]);
   * a byte instruction takes exactly its cost-table cost (default "paper": 10 per word
     instruction, 1 per READ/WRITE), from its first clock c to c + cost - 1, and the
     next instruction executes in clock c + cost;
@@ -343,11 +344,12 @@ class RefSim:
         return True
 
     def _jump(self, m: str, op: Operand, pc: int) -> tuple[int, int]:
-        """JU / JC / JCN: a taken jump costs 2 clocks (one squashed fetch)."""
+        """JU / JC / JCN: a taken jump costs DEF.jump_taken_clocks (the instructions
+        fetched behind it are squashed), one not taken DEF.bit_clocks."""
         taken = m == "JU" or (m == "JC" and self.rlo == 1) or (m == "JCN" and self.rlo == 0)
         if not taken:
-            return pc + 1, 1
-        return self.program.labels[op.label.upper()], 2
+            return pc + 1, DEF.bit_clocks
+        return self.program.labels[op.label.upper()], DEF.jump_taken_clocks
 
     # --- byte instructions (serial mode: the bit processor waits for each) ----------
 
