@@ -26,8 +26,8 @@
 // itself after reset and after a program write.
 // An instruction held in execute (a channel not ready, a T/C read waiting for the
 // update, a dispatched byte instruction, END waiting for the byte side) sees the
-// operand of the clock it completes in: T/C status and its updated bit are resampled
-// from their next-state value every clock while it waits, FBI data is read live.
+// operand of the clock it completes in: the byte side's writes to its T/C status and
+// updated bit are caught every clock while it waits, FBI data is read live.
 module bit_proc #(
   parameter integer ProgWords   = 4096,  // program memory, instructions (power of two)
   parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
@@ -61,10 +61,16 @@ module bit_proc #(
   input  wire [InBits-1:0]            fall_acc_i,
   input  wire [OutBits-1:0]           pio_i,       // Q/PQ: the PIO register (its only writer
                                                    // is this processor: forwarded here)
-  input  wire [StatusBits-1:0]        timer_status_i,    // (next state)
-  input  wire [StatusBits-1:0]        counter_status_i,  // (next state)
-  input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel; next state)
-  input  wire [StatusBits-1:0]        counter_updated_i, // (next state)
+  input  wire [StatusBits-1:0]        timer_status_i,    // the status buffer (registers)
+  input  wire [StatusBits-1:0]        counter_status_i,
+  input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel)
+  input  wire [StatusBits-1:0]        counter_updated_i,
+  // the byte side's status write in this clock (tc_status.v takes it at the clock
+  // edge; forwarded to the instructions in operand and execute)
+  input  wire                         tc_we_i,
+  input  wire                         tc_is_counter_i,
+  input  wire [$clog2(StatusBits)-1:0] tc_idx_i,
+  input  wire                         tc_val_i,
   // exchange channels: F_Bb k read by bit instructions, F_bB k written by `= FBY k`
   output wire [Channels-1:0]          fbi_rd_req_o,
   input  wire [Channels-1:0]          fbi_rd_data_i,
@@ -183,8 +189,6 @@ module bit_proc #(
   reg              e_mfwd_q, e_mfwd_val_q;  // a marker write the RAM read missed
   reg              m_hold_q;            // the marker RAM's word for this instruction
   reg              e_upd_q;             // T/C updated this scan, as of execute
-  reg              e_held_q;            // the instruction was held in execute
-  reg              e_re_q, e_upd_re_q;  // T/C status / updated, resampled while held
 
   wire [PcW-1:0] e_target = e_instr_q[PcW-1:0];
   wire [2:0]     e_fn3    = e_instr_q[26:24];   // opcode bits 2:0: {f, n}
@@ -199,13 +203,12 @@ module bit_proc #(
   // scan) waits until the byte side has written the status this scan (the updated
   // bits are cleared at the end of the latch clock: a read executing in that clock
   // does not see the previous scan's bits).
-  wire upd_now    = e_held_q ? e_upd_re_q : e_upd_q;
   wire fbi_read   = e_go && e_on_fb_q && e_logic_q;
   wire fby_write  = e_go && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
   wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & e_chan_q))) ||
                     (fby_write && !(|(fby_wr_ready_i & e_chan_q)));
   wire end_wait   = e_go && e_end_q && end_hold_i;
-  wire tc_wait    = e_go && e_tcw_q && !upd_now;
+  wire tc_wait    = e_go && e_tcw_q && !e_upd_q;
   wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && e_byte_q && !byte_done_i);
   wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
   // A stall is a wait on the other processor's condition; a dispatched instruction's
@@ -298,9 +301,12 @@ module bit_proc #(
 
   // ---------------------------------------------------------------- operand select
   // From the registered images, as they will be in the clock the instruction executes
-  // in: I/IR/IF and T/C status/updated come in as next-state values, the PIO is the
-  // register with this clock's write forwarded.
+  // in: I/IR/IF come in as next-state values; the PIO and the T/C status buffer are
+  // the registers with this clock's write forwarded (this processor's `= Q`, the byte
+  // side's status write).
   wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);
+  wire o_is_c = o_area == `AREA_C;
+  wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);
   reg  o_opnd;
   always @(*) begin
     case (o_area)
@@ -309,17 +315,19 @@ module bit_proc #(
       `AREA_IF: o_opnd = fall_i[o_in];
       `AREA_Q,
       `AREA_PQ: o_opnd = q_fwd ? out_wr_val_o : pio_i[o_out];
-      `AREA_T:  o_opnd = timer_status_i[o_tc];
-      `AREA_C:  o_opnd = counter_status_i[o_tc];
+      `AREA_T:  o_opnd = tc_fwd ? tc_val_i : timer_status_i[o_tc];
+      `AREA_C:  o_opnd = tc_fwd ? tc_val_i : counter_status_i[o_tc];
       default:  o_opnd = 1'b0;
     endcase
   end
-  wire o_upd = (o_area == `AREA_T) ? timer_updated_i[o_tc] : counter_updated_i[o_tc];
-  // the same for the instruction held in execute (T/C only)
+  // updated in the execute clock: the bits are cleared at the end of the latch clock,
+  // a write sets one; an instruction executing in the latch clock sees none (start_i)
+  wire o_upd = (!latch_i && (o_is_c ? counter_updated_i[o_tc] : timer_updated_i[o_tc])) ||
+               tc_fwd;
+  // the same for the instruction held in execute: the byte side's writes to its T/C
   wire [$clog2(StatusBits)-1:0] e_tc = e_instr_q[$clog2(StatusBits)-1:0];
-  wire e_is_t = e_instr_q[`ISA_AREA] == `AREA_T;
-  wire e_re   = e_is_t ? timer_status_i[e_tc]  : counter_status_i[e_tc];
-  wire e_upd_re = e_is_t ? timer_updated_i[e_tc] : counter_updated_i[e_tc];
+  wire e_is_c = e_instr_q[`ISA_AREA] == `AREA_C;
+  wire e_tc_fwd = e_on_tc_q && tc_we_i && (tc_idx_i == e_tc) && (tc_is_counter_i == e_is_c);
 
   wire [ChW-1:0] o_ch = o_index[ChW-1:0];
   // (the index fits when its bits above a channel number are 0: no wide compare; a
@@ -331,7 +339,7 @@ module bit_proc #(
   wire pin_live = |(pins_i & e_pinsel_q);
   wire live_opnd = e_lv_ir_q ? (e_lacc_q | (pin_live & ~e_prev_q)) :
                    e_lv_if_q ? (e_lacc_q | (~pin_live & e_prev_q)) : pin_live;
-  wire reg_opnd  = (e_held_q && e_on_tc_q) ? e_re_q : e_opnd_q;
+  wire reg_opnd  = e_opnd_q;
   wire m_opnd    = e_mfwd_q ? e_mfwd_val_q : m_hold_q;
   wire fb_opnd   = |(fbi_rd_data_i & e_chan_q);
   wire operand   = e_src_m_q ? m_opnd : e_src_live_q ? live_opnd :
@@ -457,13 +465,7 @@ module bit_proc #(
       e_mfwd_q     <= 1'b0;
       e_mfwd_val_q <= 1'b0;
       e_upd_q      <= 1'b0;
-      e_held_q     <= 1'b0;
-      e_re_q       <= 1'b0;
-      e_upd_re_q   <= 1'b0;
     end else begin
-      e_held_q   <= e_stall;
-      e_re_q     <= e_re;
-      e_upd_re_q <= e_upd_re;
       if (e_load) begin
         e_instr_q   <= o_instr_q;
         e_pc_q      <= o_pc_q;
@@ -507,8 +509,11 @@ module bit_proc #(
         e_mfwd_q     <= m_fwd_next;
         e_mfwd_val_q <= m_fwd_val;
         e_upd_q     <= !start_i && o_upd;
-      end else if (!e_stall) begin
-        e_valid_q <= 1'b0;               // END executed, or stopped: a bubble
+      end else begin
+        if (!e_stall) e_valid_q <= 1'b0; // END executed, or stopped: a bubble
+        // held (or idle) in execute: T/C status and updated follow the byte side
+        if (e_tc_fwd) e_opnd_q <= tc_val_i;
+        e_upd_q <= (e_upd_q && !latch_i) || e_tc_fwd;
       end
     end
   end
@@ -517,9 +522,8 @@ module bit_proc #(
   assign exec_valid_o = e_go;
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused;
-  // latch_i: END leaves the RLO and the stack reset, the latch clock needs nothing.
-  // verilator lint_off UNUSEDSIGNAL
-  wire unused_bits = ^{e_instr_q, o_instr_q[23:17], latch_i};
+    // verilator lint_off UNUSEDSIGNAL
+  wire unused_bits = ^{e_instr_q, o_instr_q[23:17]};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

@@ -100,8 +100,6 @@ module bitbyte_cpu #(
   // exchange
   wire [StatusBits-1:0] timer_status, counter_status, timer_enable, counter_pulse;
   wire [StatusBits-1:0] timer_updated, counter_updated;
-  wire [StatusBits-1:0] timer_status_next, counter_status_next;
-  wire [StatusBits-1:0] timer_updated_next, counter_updated_next;
   wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
   wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
   wire        fby_wr_data, fbi_wr_data, bit_stall;
@@ -197,11 +195,16 @@ module bitbyte_cpu #(
     .rise_acc_i      (rise_acc_next),
     .fall_acc_i      (fall_acc_next),
     .pio_i           (pio),
-    // the bit processor selects its operand a clock early: next-state values
-    .timer_status_i  (timer_status_next),
-    .counter_status_i(counter_status_next),
-    .timer_updated_i (timer_updated_next),
-    .counter_updated_i(counter_updated_next),
+    .timer_status_i  (timer_status),
+    .counter_status_i(counter_status),
+    .timer_updated_i (timer_updated),
+    .counter_updated_i(counter_updated),
+    // the byte side's status write of this clock (forwarded: the bit processor
+    // selects its operand a clock before it executes)
+    .tc_we_i         (tc_we),
+    .tc_is_counter_i (tc_is_counter),
+    .tc_idx_i        (tc_idx),
+    .tc_val_i        (tc_val),
     .fbi_rd_req_o    (fbi_rd_req),
     .fbi_rd_data_i   (fbi_rd_data),
     .fbi_rd_ready_i  (fbi_rd_ready),
@@ -309,11 +312,7 @@ module bitbyte_cpu #(
     .timer_enable_o     (timer_enable),
     .counter_pulse_o    (counter_pulse),
     .timer_updated_o    (timer_updated),
-    .counter_updated_o  (counter_updated),
-    .timer_status_next_o   (timer_status_next),
-    .counter_status_next_o (counter_status_next),
-    .timer_updated_next_o  (timer_updated_next),
-    .counter_updated_next_o(counter_updated_next)
+    .counter_updated_o  (counter_updated)
   );
 
   byte_port #(
@@ -369,8 +368,7 @@ module bitbyte_cpu #(
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags, timer_updated,
-                     counter_updated};
+  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

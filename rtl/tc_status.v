@@ -31,24 +31,10 @@ module tc_status #(
   output reg  [StatusBits-1:0]         timer_enable_o,
   output reg  [StatusBits-1:0]         counter_pulse_o,
   output reg  [StatusBits-1:0]         timer_updated_o,
-  output reg  [StatusBits-1:0]         counter_updated_o,
-  // status and updated bits as they will be in the next clock (the bit processor
-  // selects its operand a clock before it executes)
-  output wire [StatusBits-1:0]         timer_status_next_o,
-  output wire [StatusBits-1:0]         counter_status_next_o,
-  output wire [StatusBits-1:0]         timer_updated_next_o,
-  output wire [StatusBits-1:0]         counter_updated_next_o
+  output reg  [StatusBits-1:0]         counter_updated_o
 );
   `PARAM_CHECK(g_bad_status_bits, StatusBits < 2,
                "tc_status: StatusBits must be at least 2 (an index needs a bit)")
-
-  wire [StatusBits-1:0] status_bit = {{(StatusBits-1){1'b0}}, 1'b1} << status_idx_i;
-  wire [StatusBits-1:0] t_we = (status_we_i && !status_is_counter_i) ? status_bit : {StatusBits{1'b0}};
-  wire [StatusBits-1:0] c_we = (status_we_i &&  status_is_counter_i) ? status_bit : {StatusBits{1'b0}};
-  assign timer_status_next_o    = (timer_status_o & ~t_we) | (t_we & {StatusBits{status_val_i}});
-  assign counter_status_next_o  = (counter_status_o & ~c_we) | (c_we & {StatusBits{status_val_i}});
-  assign timer_updated_next_o   = (latch_i ? {StatusBits{1'b0}} : timer_updated_o) | t_we;
-  assign counter_updated_next_o = (latch_i ? {StatusBits{1'b0}} : counter_updated_o) | c_we;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
