@@ -51,14 +51,14 @@ module bit_proc #(
   output wire                         end_o,       // END executes in this clock
   output wire                         refresh_o,   // REFRESH executes in this clock
   // operand sources
-  // operand sources. Next-state values: what the registers will hold in the next
-  // clock (the operand stage selects a clock before execute).
-  input  wire [InBits-1:0]            pii_i,       // I (next state)
+  // operand sources (the operand stage selects a clock before execute and works out
+  // what the registers will hold then: a latch at this clock's edge, a write)
+  input  wire [InBits-1:0]            pii_i,       // I: the input unit's image register
   input  wire [InBits-1:0]            pins_i,      // PI: the pins now
-  input  wire [InBits-1:0]            rise_i,      // IR (next state)
-  input  wire [InBits-1:0]            fall_i,      // IF (next state)
-  input  wire [InBits-1:0]            rise_acc_i,  // edges since the last latch (next state)
-  input  wire [InBits-1:0]            fall_acc_i,
+  input  wire [InBits-1:0]            rise_i,      // IR (register)
+  input  wire [InBits-1:0]            fall_i,      // IF (register)
+  input  wire [InBits-1:0]            rise_pend_i, // edges since the last latch, this
+  input  wire [InBits-1:0]            fall_pend_i, // clock's included (what a latch takes)
   input  wire [OutBits-1:0]           pio_i,       // Q/PQ: the PIO register (its only writer
                                                    // is this processor: forwarded here)
   input  wire [StatusBits-1:0]        timer_status_i,    // the status buffer (registers)
@@ -112,6 +112,10 @@ module bit_proc #(
   localparam integer MW    = $clog2(MarkerBits);
   localparam integer SpW   = $clog2(NestDepth + 1);  // 0..NestDepth levels
   // a channel number: one bit at least, also for a single one
+  // the one-hot index select: as wide as the widest bit-indexed image
+  localparam integer SelW  = (InBits > OutBits) ?
+      ((InBits > StatusBits) ? InBits : StatusBits) :
+      ((OutBits > StatusBits) ? OutBits : StatusBits);
   localparam integer ChW   = (Channels > 1) ? $clog2(Channels) : 1;
 
   // ---------------------------------------------------------------- parameter checks
@@ -162,12 +166,26 @@ module bit_proc #(
   wire [7:0]  o_op    = o_instr_q[`ISA_OPCODE];
   wire [3:0]  o_area  = o_instr_q[`ISA_AREA];
   wire [11:0] o_index = o_instr_q[`ISA_INDEX];
-  wire [$clog2(InBits)-1:0]     o_in  = o_index[$clog2(InBits)-1:0];
   wire [$clog2(OutBits)-1:0]    o_out = o_index[$clog2(OutBits)-1:0];
   wire [MW-1:0]                 o_mi  = o_index[MW-1:0];
   wire [$clog2(StatusBits)-1:0] o_tc  = o_index[$clog2(StatusBits)-1:0];
   wire o_logic = (o_op & `OP_LOGIC_MASK) == `OP_LOGIC;
   wire o_on_io = (o_area == `AREA_I) || (o_area == `AREA_IR) || (o_area == `AREA_IF);
+  // Decoded from the word leaving the program RAM as it moves to operand: the index
+  // one-hot (an index past an image's size selects nothing: the assembler rejects it)
+  // and the area one-hot, so that operand selects with AND-OR trees of few levels.
+  reg  [SelW-1:0] o_sel_q;
+  reg  [5:0]      o_asel_q;      // I, IR, IF, Q/PQ, T, C
+  wire [11:0]     d_index = d_instr[`ISA_INDEX];
+  wire [3:0]      d_area  = d_instr[`ISA_AREA];
+  wire [SelW-1:0] d_sel   = ((d_index >> $clog2(SelW)) == 12'd0)
+      ? ({{(SelW-1){1'b0}}, 1'b1} << d_index[$clog2(SelW)-1:0]) : {SelW{1'b0}};
+  wire [5:0]      d_asel  = {d_area == `AREA_C, d_area == `AREA_T,
+                             (d_area == `AREA_Q) || (d_area == `AREA_PQ),
+                             d_area == `AREA_IF, d_area == `AREA_IR, d_area == `AREA_I};
+  wire [InBits-1:0]     o_sel_in = o_sel_q[InBits-1:0];
+  wire [OutBits-1:0]    o_sel_out = o_sel_q[OutBits-1:0];
+  wire [StatusBits-1:0] o_sel_tc = o_sel_q[StatusBits-1:0];
 
   // ---------------------------------------------------------------- execute stage
   reg  [31:0]    e_instr_q;
@@ -307,22 +325,22 @@ module bit_proc #(
   wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);
   wire o_is_c = o_area == `AREA_C;
   wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);
-  reg  o_opnd;
-  always @(*) begin
-    case (o_area)
-      `AREA_I:  o_opnd = pii_i[o_in];
-      `AREA_IR: o_opnd = rise_i[o_in];
-      `AREA_IF: o_opnd = fall_i[o_in];
-      `AREA_Q,
-      `AREA_PQ: o_opnd = q_fwd ? out_wr_val_o : pio_i[o_out];
-      `AREA_T:  o_opnd = tc_fwd ? tc_val_i : timer_status_i[o_tc];
-      `AREA_C:  o_opnd = tc_fwd ? tc_val_i : counter_status_i[o_tc];
-      default:  o_opnd = 1'b0;
-    endcase
-  end
+  // the input unit latches at this clock's edge (scan start or REFRESH): the image
+  // takes the pins and the pending edges; the selection comes first, the latch last
+  wire latching  = latch_i || refresh_o;
+  wire o_pin_bit = |(pins_i & o_sel_in);
+  wire o_rp_bit  = |(rise_pend_i & o_sel_in);
+  wire o_fp_bit  = |(fall_pend_i & o_sel_in);
+  wire o_i_bit   = latching ? o_pin_bit : |(pii_i & o_sel_in);
+  wire o_ir_bit  = latching ? o_rp_bit  : |(rise_i & o_sel_in);
+  wire o_if_bit  = latching ? o_fp_bit  : |(fall_i & o_sel_in);
+  wire o_q_bit  = q_fwd ? out_wr_val_o : |(pio_i & o_sel_out);
+  wire o_t_bit  = tc_fwd ? tc_val_i : |(timer_status_i & o_sel_tc);
+  wire o_c_bit  = tc_fwd ? tc_val_i : |(counter_status_i & o_sel_tc);
+  wire o_opnd   = |(o_asel_q & {o_c_bit, o_t_bit, o_q_bit, o_if_bit, o_ir_bit, o_i_bit});
   // updated in the execute clock: the bits are cleared at the end of the latch clock,
   // a write sets one; an instruction executing in the latch clock sees none (start_i)
-  wire o_upd = (!latch_i && (o_is_c ? counter_updated_i[o_tc] : timer_updated_i[o_tc])) ||
+  wire o_upd = (!latch_i && |((o_is_c ? counter_updated_i : timer_updated_i) & o_sel_tc)) ||
                tc_fwd;
   // the same for the instruction held in execute: the byte side's writes to its T/C
   wire [$clog2(StatusBits)-1:0] e_tc = e_instr_q[$clog2(StatusBits)-1:0];
@@ -428,6 +446,8 @@ module bit_proc #(
       d_pc_q    <= {PcW{1'b0}};
       d_valid_q <= 1'b0;
       o_instr_q <= 32'd0;
+      o_sel_q   <= {SelW{1'b0}};
+      o_asel_q  <= 6'd0;
       o_pc_q    <= {PcW{1'b0}};
       o_valid_q <= 1'b0;
       o_first_q <= 1'b0;
@@ -442,6 +462,8 @@ module bit_proc #(
       o_first_q <= o_move;
       if (o_move) begin
         o_instr_q <= d_instr;
+        o_sel_q   <= d_sel;
+        o_asel_q  <= d_asel;
         o_pc_q    <= d_pc_q;
         o_valid_q <= d_valid_q && !jump_taken;
       end
@@ -501,11 +523,12 @@ module bit_proc #(
         e_src_fb_q  <= o_area == `AREA_FB;
         // the first instruction of a scan reads I/IR/IF as they are being latched
         e_src_live_q <= (o_area == `AREA_PI) || (start_i && o_on_io);
-        e_pinsel_q  <= {{(InBits-1){1'b0}}, 1'b1} << o_in;
+        e_pinsel_q  <= o_sel_in;
         e_lv_ir_q   <= start_i && (o_area == `AREA_IR);
         e_lv_if_q   <= start_i && (o_area == `AREA_IF);
-        e_lacc_q    <= (o_area == `AREA_IR) ? rise_acc_i[o_in] : fall_acc_i[o_in];
-        e_prev_q    <= pins_i[o_in];
+        // the edge accumulator after this clock (cleared by a latch now)
+        e_lacc_q    <= !latching && ((o_area == `AREA_IR) ? o_rp_bit : o_fp_bit);
+        e_prev_q    <= o_pin_bit;
         e_mfwd_q     <= m_fwd_next;
         e_mfwd_val_q <= m_fwd_val;
         e_upd_q     <= !start_i && o_upd;

@@ -89,7 +89,7 @@ module bitbyte_cpu #(
                "bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)")
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
-  wire [InBits-1:0]  pii, rise, fall, pii_now, rise_now, fall_now, rise_acc_next, fall_acc_next;
+  wire [InBits-1:0]  pii, rise, fall, rise_pend, fall_pend;
   wire [OutBits-1:0] pio;
   wire                       out_wr_en, out_wr_val, out_wr_direct;
   wire [$clog2(OutBits)-1:0] out_wr_idx;
@@ -148,11 +148,8 @@ module bitbyte_cpu #(
     .pii_o     (pii),
     .rise_o    (rise),
     .fall_o    (fall),
-    .pii_now_o (pii_now),
-    .rise_now_o(rise_now),
-    .fall_now_o(fall_now),
-    .rise_acc_next_o(rise_acc_next),
-    .fall_acc_next_o(fall_acc_next)
+    .rise_pend_o(rise_pend),
+    .fall_pend_o(fall_pend)
   );
 
   output_unit #(.OutBits(OutBits)) u_output_unit (
@@ -188,12 +185,12 @@ module bitbyte_cpu #(
     .mem_ready_o     (mem_ready),
     .end_o           (end_exec),
     .refresh_o       (refresh),
-    .pii_i           (pii_now),
+    .pii_i           (pii),
     .pins_i          (in_pins_i),
-    .rise_i          (rise_now),
-    .fall_i          (fall_now),
-    .rise_acc_i      (rise_acc_next),
-    .fall_acc_i      (fall_acc_next),
+    .rise_i          (rise),
+    .fall_i          (fall),
+    .rise_pend_i     (rise_pend),
+    .fall_pend_i     (fall_pend),
     .pio_i           (pio),
     .timer_status_i  (timer_status),
     .counter_status_i(counter_status),

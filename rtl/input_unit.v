@@ -18,15 +18,10 @@ module input_unit #(
   output reg  [InBits-1:0] pii_o,    // I b.n (the image register)
   output reg  [InBits-1:0] rise_o,   // IR b.n: rose since the previous latch
   output reg  [InBits-1:0] fall_o,   // IF b.n: fell since the previous latch
-  // The image as an instruction executing in this clock sees it: in a latch clock
-  // the values being latched (the scan's first instruction runs in its latch clock).
-  output wire [InBits-1:0] pii_now_o,
-  output wire [InBits-1:0] rise_now_o,
-  output wire [InBits-1:0] fall_now_o,
-  // The edge accumulators as they will be in the next clock (the bit processor's
-  // operand stage: its first instruction of a scan reads IR/IF in the latch clock).
-  output wire [InBits-1:0] rise_acc_next_o,
-  output wire [InBits-1:0] fall_acc_next_o
+  // The edges since the previous latch, this clock's included: what a latch in this
+  // clock takes into IR/IF (the bit processor's operand stage reads them).
+  output wire [InBits-1:0] rise_pend_o,
+  output wire [InBits-1:0] fall_pend_o
 );
   `PARAM_CHECK(g_bad_in_bits, InBits < 1, "input_unit: InBits must be at least 1")
 
@@ -37,11 +32,8 @@ module input_unit #(
   wire [InBits-1:0] rise_now = pins_i & ~pins_prev_q;
   wire [InBits-1:0] fall_now = ~pins_i & pins_prev_q;
 
-  assign pii_now_o  = latch_i ? pins_i : pii_o;
-  assign rise_now_o = latch_i ? (rise_acc_q | rise_now) : rise_o;
-  assign fall_now_o = latch_i ? (fall_acc_q | fall_now) : fall_o;
-  assign rise_acc_next_o = latch_i ? {InBits{1'b0}} : (rise_acc_q | rise_now);
-  assign fall_acc_next_o = latch_i ? {InBits{1'b0}} : (fall_acc_q | fall_now);
+  assign rise_pend_o = rise_acc_q | rise_now;
+  assign fall_pend_o = fall_acc_q | fall_now;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -56,8 +48,8 @@ module input_unit #(
       if (latch_i) begin
         // The latch clock's own edge belongs to this latch ("up to and including").
         pii_o      <= pins_i;
-        rise_o     <= rise_acc_q | rise_now;
-        fall_o     <= fall_acc_q | fall_now;
+        rise_o     <= rise_pend_o;
+        fall_o     <= fall_pend_o;
         rise_acc_q <= {InBits{1'b0}};
         fall_acc_q <= {InBits{1'b0}};
       end else begin

@@ -38,7 +38,7 @@ class Bench:
         d = self.dut
         cocotb.start_soon(Clock(d.clk_i, 10, unit="ns").start())
         for sig in (d.rst_ni, d.start_i, d.latch_i, d.exec_i, d.prog_we_i, d.pins_i, d.rise_i,
-                    d.fall_i, d.rise_acc_i, d.fall_acc_i, d.pio_i, d.timer_status_i, d.counter_status_i,
+                    d.fall_i, d.rise_pend_i, d.fall_pend_i, d.pio_i, d.timer_status_i, d.counter_status_i,
                     d.timer_updated_i, d.counter_updated_i, d.end_hold_i,
                     d.fbi_rd_data_i, d.fbi_rd_ready_i, d.byte_done_i, d.byte_rlo_i,
                     d.byte_rlo_we_i, d.copy_en_i, d.copy_we_i, d.copy_addr_i, d.copy_wdata_i,
