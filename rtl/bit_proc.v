@@ -142,21 +142,31 @@ module bit_proc #(
   reg            d_valid_q;     // ... which is that word (not after reset / a load)
   wire [31:0]    d_instr;       // that word (decode stage)
   reg  [PcW-1:0] fetch_addr;
+  wire           d_move;        // decode takes the next word (pipeline flow, below)
 
   // verilator lint_off UNUSEDSIGNAL
   wire [31:0]    unused_prog_peek;  // no host looks at the program
   // verilator lint_on UNUSEDSIGNAL
+  // END is marked as the word is written: bit 23 (reserved in a bit instruction, 0 in
+  // the image) is stored as "this is END", so that decode sees END in one bit and
+  // the fetch address of the next scan's first instruction does not wait for an
+  // opcode compare behind the RAM's clock-to-out. Byte instructions keep bit 23.
+  wire        prog_byte  = prog_wdata_i[24 + `OP_BYTE_BIT];
+  wire        prog_end   = prog_wdata_i[`ISA_OPCODE] == `OP_END;
+  wire [31:0] prog_word  = {prog_wdata_i[31:24], prog_byte ? prog_wdata_i[23] : prog_end,
+                            prog_wdata_i[22:0]};
   sync_ram #(.Words(ProgWords), .Width(32)) u_prog_ram (
     .clk_i  (clk_i),
     .we_i   (prog_we_i),
     .waddr_i(prog_waddr_i),
-    .wdata_i(prog_wdata_i),
+    .wdata_i(prog_word),
+    .re_i   (d_move),     // decode holds: the RAM keeps its word (no address mux)
     .raddr_i(fetch_addr),
     .rdata_o(d_instr),
     .peek_addr_i({PcW{1'b0}}),
     .peek_data_o(unused_prog_peek)
   );
-  wire d_is_end = d_valid_q && (d_instr[`ISA_OPCODE] == `OP_END);
+  wire d_is_end = d_valid_q && d_instr[23] && !d_instr[24 + `OP_BYTE_BIT];
 
   // ---------------------------------------------------------------- operand stage
   reg  [31:0]    o_instr_q;
@@ -200,10 +210,8 @@ module bit_proc #(
   // operand sources
   reg              e_opnd_q;            // the registered images' bit, as of execute
   reg              e_src_m_q, e_src_live_q, e_src_fb_q;
-  reg [InBits-1:0] e_pinsel_q;          // live pins: the pin, one-hot
-  reg              e_lv_ir_q, e_lv_if_q;  // latch clock: IR / IF from the live pins
-  reg              e_lacc_q;            // ... the edge accumulator's bit then
-  reg              e_prev_q;            // ... the pin one clock before
+  reg [InBits-1:0] e_pinsel_q;          // live pins: the pin, one-hot (0: not live)
+  reg              e_live1_q, e_live0_q;  // the operand if that pin is 1 / 0
   reg              e_mfwd_q, e_mfwd_val_q;  // a marker write the RAM read missed
   reg              m_hold_q;            // the marker RAM's word for this instruction
   reg              e_upd_q;             // T/C updated this scan, as of execute
@@ -267,6 +275,7 @@ module bit_proc #(
     .we_i   (m_we),
     .waddr_i(m_waddr),
     .wdata_i(m_wdata),
+    .re_i   (1'b1),
     .raddr_i(m_raddr),
     .rdata_o(m_rdata),
     .peek_addr_i(m_peek_addr_i),
@@ -353,15 +362,26 @@ module bit_proc #(
   wire [Channels-1:0] o_chan = (o_index[11:ChW] == 0)
       ? ({{(Channels-1){1'b0}}, 1'b1} << o_ch) : {Channels{1'b0}};
 
+  // Live operands (PI; the first instruction of a scan reads I/IR/IF as they are being
+  // latched): the operand for the pin at 1 / 0 in execute. IR then: the edge
+  // accumulator after this clock (a latch now clears it) or the pin rising from this
+  // clock's value; IF: falling.
+  wire o_live  = (o_area == `AREA_PI) || (start_i && o_on_io);
+  wire o_lacc  = !latching && ((o_area == `AREA_IR) ? o_rp_bit : o_fp_bit);
+  wire o_ir_l  = start_i && (o_area == `AREA_IR);
+  wire o_if_l  = start_i && (o_area == `AREA_IF);
+  wire o_live1 = o_ir_l ? (o_lacc | !o_pin_bit) : o_if_l ? o_lacc : 1'b1;
+  wire o_live0 = o_ir_l ? o_lacc : o_if_l ? (o_lacc | o_pin_bit) : 1'b0;
+
   // ---------------------------------------------------------------- operand in execute
-  wire pin_live = |(pins_i & e_pinsel_q);
-  wire live_opnd = e_lv_ir_q ? (e_lacc_q | (pin_live & ~e_prev_q)) :
-                   e_lv_if_q ? (e_lacc_q | (~pin_live & e_prev_q)) : pin_live;
-  wire reg_opnd  = e_opnd_q;
+  // The live pin enters last: the RLO is worked out for the pin at 1 and at 0 from
+  // registers, and the pin (an AND-OR over the pins, 0 unless the operand is live)
+  // picks one. PI: the pin; I in the latch clock: the pin being latched; IR/IF then:
+  // the pending edge or the edge between the last clock's pin and this one.
+  wire pin_live  = |(pins_i & e_pinsel_q);
   wire m_opnd    = e_mfwd_q ? e_mfwd_val_q : m_hold_q;
   wire fb_opnd   = |(fbi_rd_data_i & e_chan_q);
-  wire operand   = e_src_m_q ? m_opnd : e_src_live_q ? live_opnd :
-                   e_src_fb_q ? fb_opnd : reg_opnd;
+  wire operand   = e_src_m_q ? m_opnd : e_src_fb_q ? fb_opnd : e_opnd_q;
 
   // ---------------------------------------------------------------- RLO and stack
   // RLO := RLO f (x xor n), the one combiner shared by the eight loads/combines and
@@ -382,18 +402,39 @@ module bit_proc #(
   wire       top_rlo = stack_rlo_q[0];
   wire [2:0] top_op  = stack_op_q[2:0];
 
-  reg rlo_d;
+  // the new RLO for the operand at 1 (rlo_x1) and at 0 (rlo_x0), from registers
+  reg rlo_x1, rlo_x0;
   always @(*) begin
-    rlo_d = rlo_o;
-    if (e_logic_q)      rlo_d = combine(e_fn3[2:1], rlo_o, operand ^ e_fn3[0]);
-    else if (e_close_q) rlo_d = combine(top_op[2:1], top_rlo, rlo_o ^ top_op[0]);
-    else if (e_fp_q)    rlo_d = rlo_o & ~operand;
-    else if (e_fn_q)    rlo_d = ~rlo_o & operand;
-    else if (e_not_q)   rlo_d = ~rlo_o;
-    else if (e_set_q)   rlo_d = 1'b1;
-    else if (e_clr_q)   rlo_d = 1'b0;
-    else if (e_end_q)   rlo_d = 1'b0;     // every scan starts with RLO = 0
+    rlo_x1 = rlo_o;
+    rlo_x0 = rlo_o;
+    if (e_logic_q) begin
+      rlo_x1 = combine(e_fn3[2:1], rlo_o, ~e_fn3[0]);
+      rlo_x0 = combine(e_fn3[2:1], rlo_o, e_fn3[0]);
+    end else if (e_close_q) begin
+      rlo_x1 = combine(top_op[2:1], top_rlo, rlo_o ^ top_op[0]);
+      rlo_x0 = rlo_x1;
+    end else if (e_fp_q) begin
+      rlo_x1 = 1'b0;
+      rlo_x0 = rlo_o;
+    end else if (e_fn_q) begin
+      rlo_x1 = ~rlo_o;
+      rlo_x0 = 1'b0;
+    end else if (e_not_q) begin
+      rlo_x1 = ~rlo_o;
+      rlo_x0 = ~rlo_o;
+    end else if (e_set_q) begin
+      rlo_x1 = 1'b1;
+      rlo_x0 = 1'b1;
+    end else if (e_clr_q || e_end_q) begin  // END: every scan starts with RLO = 0
+      rlo_x1 = 1'b0;
+      rlo_x0 = 1'b0;
+    end
   end
+  // a dispatched compare's RLO comes with DONE
+  wire rlo_reg  = (e_byte_q && byte_rlo_we_i) ? byte_rlo_i : (operand ? rlo_x1 : rlo_x0);
+  wire rlo_pin1 = e_live1_q ? rlo_x1 : rlo_x0;
+  wire rlo_pin0 = e_src_live_q ? (e_live0_q ? rlo_x1 : rlo_x0) : rlo_reg;
+  wire rlo_d    = pin_live ? rlo_pin1 : rlo_pin0;
 
   integer lvl;
   always @(posedge clk_i or negedge rst_ni) begin
@@ -403,7 +444,7 @@ module bit_proc #(
       stack_rlo_q <= {NestDepth{1'b0}};
       stack_op_q  <= {(NestDepth*3){1'b0}};
     end else if (e_done) begin
-      rlo_o <= (e_byte_q && byte_rlo_we_i) ? byte_rlo_i : rlo_d;
+      rlo_o <= rlo_d;
       // The assembler bounds the nesting; the stack saturates rather than wraps.
       if (e_end_q) begin
         sp_q <= {SpW{1'b0}};              // ... and with an empty stack
@@ -432,10 +473,11 @@ module bit_proc #(
   // address 0. END in execute: address 0 (in operand) moves on only if a scan follows.
   wire e_load = start_i || (exec_i && !e_stall && !end_o);
   wire o_move = e_load || !o_valid_q;
-  wire d_move = o_move || !d_valid_q;
+  assign d_move = o_move || !d_valid_q;
+  // The waits reach the program RAM's read enable and d_pc_q's enable only, not the
+  // read address.
   always @(*) begin
-    if (!d_move)         fetch_addr = d_pc_q;
-    else if (jump_taken) fetch_addr = e_target;
+    if (jump_taken)      fetch_addr = e_target;
     else if (!d_valid_q) fetch_addr = d_pc_q;
     else if (d_is_end)   fetch_addr = {PcW{1'b0}};
     else                 fetch_addr = d_pc_q + 1'b1;
@@ -457,7 +499,7 @@ module bit_proc #(
       o_valid_q <= 1'b0;
       o_first_q <= 1'b0;
     end else begin
-      d_pc_q    <= fetch_addr;
+      if (d_move) d_pc_q <= fetch_addr;
       d_valid_q <= 1'b1;
       o_first_q <= o_move;
       if (o_move) begin
@@ -483,7 +525,7 @@ module bit_proc #(
       e_opnd_q     <= 1'b0;
       {e_src_m_q, e_src_live_q, e_src_fb_q} <= 3'd0;
       e_pinsel_q   <= {InBits{1'b0}};
-      {e_lv_ir_q, e_lv_if_q, e_lacc_q, e_prev_q} <= 4'd0;
+      {e_live1_q, e_live0_q} <= 2'd0;
       e_mfwd_q     <= 1'b0;
       e_mfwd_val_q <= 1'b0;
       e_upd_q      <= 1'b0;
@@ -522,13 +564,10 @@ module bit_proc #(
         e_src_m_q   <= o_area == `AREA_M;
         e_src_fb_q  <= o_area == `AREA_FB;
         // the first instruction of a scan reads I/IR/IF as they are being latched
-        e_src_live_q <= (o_area == `AREA_PI) || (start_i && o_on_io);
-        e_pinsel_q  <= o_sel_in;
-        e_lv_ir_q   <= start_i && (o_area == `AREA_IR);
-        e_lv_if_q   <= start_i && (o_area == `AREA_IF);
-        // the edge accumulator after this clock (cleared by a latch now)
-        e_lacc_q    <= !latching && ((o_area == `AREA_IR) ? o_rp_bit : o_fp_bit);
-        e_prev_q    <= o_pin_bit;
+        e_src_live_q <= o_live;
+        e_pinsel_q  <= o_live ? o_sel_in : {InBits{1'b0}};
+        e_live1_q   <= o_live1;
+        e_live0_q   <= o_live0;
         e_mfwd_q     <= m_fwd_next;
         e_mfwd_val_q <= m_fwd_val;
         e_upd_q     <= !start_i && o_upd;

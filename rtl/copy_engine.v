@@ -125,6 +125,7 @@ module copy_engine #(
     .we_i   (plan_we_i),
     .waddr_i(plan_waddr_i),
     .wdata_i(plan_wdata_i),
+    .re_i   (1'b1),
     .raddr_i(base_q + issued_q[PaW-1:0]),
     .rdata_o(entry),
     .peek_addr_i({PaW{1'b0}}),

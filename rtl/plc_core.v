@@ -125,6 +125,7 @@ module plc_core #(
     .we_i   (clearing || (copy_en ? w_we : bus_mw_we)),
     .waddr_i(clearing ? clear_q[WaW-1:0] : copy_en ? w_addr : bus_w_addr),
     .wdata_i(clearing ? 16'd0 : copy_en ? w_wdata : bus_wdata_i[15:0]),
+    .re_i   (1'b1),
     .raddr_i(copy_en ? w_addr : bus_w_addr),
     .rdata_o(w_rdata),
     .peek_addr_i(dbg_mw_addr_i),

@@ -56,6 +56,7 @@ module shared_mem #(
           .we_i   (clearing || we_i[w]),
           .waddr_i(clearing ? clear_q[AW-1:0] : waddr_i[w*AW +: AW]),
           .wdata_i(clearing ? 32'd0 : wdata_i[w*32 +: 32]),
+          .re_i   (1'b1),
           .raddr_i(raddr_i[r*AW +: AW]),
           .rdata_o(bank_rdata[(w*Cores + r)*32 +: 32]),
           .peek_addr_i({AW{1'b0}}),

@@ -15,6 +15,7 @@ module sync_ram #(
   input  wire                     we_i,
   input  wire [$clog2(Words)-1:0] waddr_i,
   input  wire [Width-1:0]         wdata_i,
+  input  wire                     re_i,     // read: 0 holds rdata_o (a block RAM's read enable)
   input  wire [$clog2(Words)-1:0] raddr_i,
   output reg  [Width-1:0]         rdata_o,
   input  wire [$clog2(Words)-1:0] peek_addr_i,
@@ -33,7 +34,7 @@ module sync_ram #(
 
   always @(posedge clk_i) begin
     if (we_i) mem[waddr_i] <= wdata_i;
-    rdata_o <= mem[raddr_i];
+    if (re_i) rdata_o <= mem[raddr_i];
   end
   assign peek_data_o = mem[peek_addr_i];
 endmodule
