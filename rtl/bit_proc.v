@@ -18,10 +18,12 @@
 //           I/IR/IF in the latch clock: a one-hot select registered in operand and
 //           an AND-OR over the pins) and the FBI channel data (one bit per channel)
 // A taken jump squashes the instructions in decode and operand (3 clocks). END is
-// recognised in decode, so address 0 is fetched while END is in decode, reaches
+// recognised in decode (one bit of the stored word, set as the program is written), so
+// address 0 is fetched while END is in decode, reaches
 // operand while END executes and moves to execute at the end of END's clock: the next
 // scan's first instruction executes in its latch clock. END leaves RLO = 0 and an
-// empty stack for it. Between scans the pipeline holds (address 0 in operand,
+// empty stack for it. A wait in execute holds decode through the program RAM's read
+// enable, so no wait condition steers the fetch address. Between scans the pipeline holds (address 0 in operand,
 // address 1 in decode) until the scan controller starts the next scan; it fills
 // itself after reset and after a program write.
 // An instruction held in execute (a channel not ready, a T/C read waiting for the

@@ -6,7 +6,8 @@
 // observation ports (dbg_*); no logic uses it, and where its output is left open (as
 // the synthesis wrapper leaves dbg_* open) Yosys removes it and the RAM stays a BRAM.
 // A read of the address written in the same clock returns the old word; the bit
-// processor forwards around that itself.
+// processor forwards around that itself. re_i = 0 keeps the last word read (the block
+// RAM's read enable; the bit processor's decode stage holds its word with it).
 module sync_ram #(
   parameter integer Words = 4096,  // number of words (any; a power of two fills a BRAM)
   parameter integer Width = 32     // bits per word
