@@ -730,7 +730,7 @@ bit ends the loop after exactly n iterations. NOPs make up the rest:
       CLR
       =     M0.1          // ... the bits that are 0
 loop0:
-      NOP                 // 879 NOPs
+      NOP                 // {al.LOOP_NOPS} NOPs
       LD    M0.0          // carries from the old bits: c1 = m0,
       =     M8.1          //   c(i+1) = c(i) AND m(i)    (M8.1 ...)
       LD    M8.1
@@ -744,8 +744,8 @@ loop0:
       =     M0.1
       ...
       LD    M10.4         // carry out of bit 19: the counter overflowed
-      JCN   loop0         // 1000 clocks an iteration, the last one 999
-      NOP                 // the rest, < 1021 clocks
+      JCN   loop0         // {al.LOOP_ITER} clocks an iteration, the last one {al.LOOP_ITER - al.JUMP_EXTRA}
+      NOP                 // the rest, < {al.LOOP_ITER + al.LOOP_FIXED} clocks
       END
 ```
 

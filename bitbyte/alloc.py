@@ -866,7 +866,7 @@ def load_program(clocks: int, header: list[str] = ()) -> str:
     (all ones before the increment) ends the loop after exactly n iterations:
 
         SET; = the counter bits that are 1;  CLR; = the bits that are 0
-        loop: 879 x NOP
+        loop: LOOP_NOPS x NOP (878 with a 3-clock taken jump)
               carries from the old bits: c1 = m0, c(i+1) = c(i) AND m(i)  (markers M8..)
               new bits: m0 = NOT m0, m(i) = m(i) XOR c(i)
               LD c(b); JCN loop

@@ -556,10 +556,16 @@ def git_rev() -> str:
 
 
 LIMITS = [
-    (r"u_bit_proc\.(e_instr_q|e_valid_q|rlo_o|sp_q|stack_|m_bypass)",
-     "the bit processor's execute stage: the instruction register selects the operand "
-     "(area x index multiplexer over I, PI, IR, IF, Q, M, T, C, FBI) and the RLO is "
-     "combined and written back in the same clock - the one-instruction-per-clock loop"),
+    (r"u_bit_proc\.(rlo_o|sp_q|stack_|e_)",
+     "the bit processor's execute stage: the RLO and parenthesis-stack update (the "
+     "one-instruction-per-clock loop), with the live PI pin choosing between two "
+     "precomputed RLOs and the wait inputs (channels, byte done, END hold) in its enables"),
+    (r"u_bit_proc\.(o_|m_hold|lw_)",
+     "the bit processor's operand stage: the one-hot operand select from the decoded "
+     "word, the marker RAM's output register and the forwarding of writes in flight"),
+    (r"u_bit_proc\.(d_|fetch)",
+     "the bit processor's fetch / decode: the program RAM read, END and taken jumps "
+     "choosing the fetch address, the wait inputs in the RAM's read enable"),
     (r"u_prog_ram", "the program memory read (block RAM clock-to-out) feeding decode"),
     (r"u_marker_ram", "the marker memory read feeding the operand multiplexer"),
     (r"u_byte_port", "the byte-side bus (register map read multiplexer / strobes)"),
@@ -755,13 +761,13 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
       "word leaving the program RAM (`END` in decode fetches address 0). What sits in that "
       "clock besides the combine itself is what the paths above show:")
     w("")
-    w("* the operand multiplexer: the area (I, PI, IR, IF, Q, M, T, C, FBI) times a "
-      "128-bit index, selected from the instruction register in execute; on 4-input LUTs "
-      "that is 7 to 9 levels, and the sources (process images, edge flags, status bits) "
-      "are spread over the device, so routing is 70 to 80 % of the path;")
+    w("* the operand select: the area (I, PI, IR, IF, Q, M, T, C, FBI) times a 128-bit "
+      "index; the four-stage pipeline (docs/isa.md) takes it one stage before execute "
+      "from the decoded word, so execute keeps only the combine, the stack and the live "
+      "PI pin's choice between two precomputed RLOs;")
     w("* the wait logic: a channel handshake or a dispatched byte instruction decides in "
       "the same clock whether the pipeline advances, and that decision steers the "
-      "program RAM's read address and the enables of every target;")
+      "program RAM's read enable and the enables of every stage (not yet registered);")
     w("* block-RAM clock-to-out where a RAM output is used in the same clock (ECP5 DP16KD "
       "without its output register: about 4.3 ns of a 5 ns budget at 200 MHz);")
     w("* the byte-side bus read (`bus_rdata_o` is combinational by the bus protocol), which "

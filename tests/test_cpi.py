@@ -1,5 +1,5 @@
 """CPI 1.00: a 1 000-instruction straight-line bit program over every operand area (I,
-IR, IF, PI, Q, M, T, C, parentheses, `= M` read back by the next instruction) runs on
+IR, IF, PI, Q, M, T, C, parentheses, `= M` and `= Q` read back by the next instruction) runs on
 the Verilator harness in exactly N + 1 clocks per scan (N instructions, one clock each,
 plus END), counted from the trace's cycles column against the program's own length,
 not taken from the reference model. The outputs are compared with the reference
@@ -39,13 +39,16 @@ LD M2.0
 = Q0.1
 R M2.0
 ON M2.0""".splitlines()
-BLOCKS = 40                               # 25 x 40 = 1000 instructions
-WATCH = ["Q0.1", "Q0.2", "Q0.3", "M1.0", "M1.1", "M2.0"]
+# Once a scan: Q0.4 toggles and is read back by the very next instruction (the `= Q`
+# forwarding: a stale read gives the old, opposite value and Q0.5 = 0), then filler.
+TOGGLE = ["LDN Q0.4", "= Q0.4", "A Q0.4", "= Q0.5"] + ["LD I0.1"] * 21
+BLOCKS = 39                               # 25 x 39 + 25 = 1000 instructions
+WATCH = ["Q0.1", "Q0.2", "Q0.3", "Q0.4", "Q0.5", "M1.0", "M1.1", "M2.0"]
 SCANS = 6
 
 
 def test_straight_line_bit_code_runs_at_one_instruction_per_clock(tmp_path):
-    lines = BLOCK * BLOCKS
+    lines = BLOCK * BLOCKS + TOGGLE
     n = len(lines)
     assert n == 1000
     src = tmp_path / "cpi.il"
@@ -61,6 +64,7 @@ def test_straight_line_bit_code_runs_at_one_instruction_per_clock(tmp_path):
         rows = list(csv.DictReader(f))
     assert len(rows) == SCANS
     assert [int(r["cycles"]) for r in rows] == [n + 1] * SCANS    # CPI 1.00
+    assert [int(r["Q0.5"]) for r in rows] == [1, 0] * (SCANS // 2)  # by hand: the toggle
 
     program = parse_file(str(src))
     stimulus = load_stimulus(str(stim), program.symbols)
