@@ -26,10 +26,17 @@
 // enable, so no wait condition steers the fetch address. Between scans the pipeline holds (address 0 in operand,
 // address 1 in decode) until the scan controller starts the next scan; it fills
 // itself after reset and after a program write.
-// An instruction held in execute (a channel not ready, a T/C read waiting for the
-// update, a dispatched byte instruction, END waiting for the byte side) sees the
-// operand of the clock it completes in: the byte side's writes to its T/C status and
-// updated bit are caught every clock while it waits, FBI data is read live.
+// An instruction that waits for the byte side's answer (a channel not ready, a
+// dispatched byte instruction) and does not get it in its first execute clock moves
+// into the wait slot (w_*), and the next instruction enters execute behind it,
+// blocked until the clock after the answer: the clock it would have entered execute
+// in. So the answer (DONE written over the bus, a channel's ready) reaches the slot
+// and the RLO, never the pipeline's enables, which see registers only.
+// An instruction held in execute (blocked behind the slot, a T/C read waiting for the
+// update, END waiting for the byte side) sees the operand of the clock it completes
+// in: the byte side's writes to its T/C status and updated bit are caught every clock
+// while it waits, its marker bit is kept (nothing writes markers then), FBI data is
+// read live.
 module bit_proc #(
   parameter integer ProgWords   = 4096,  // program memory, instructions (power of two)
   parameter integer InBits      = 128,   // binary inputs (I, PI, IR, IF)
@@ -223,35 +230,82 @@ module bit_proc #(
   wire           e_go     = e_valid_q && exec_i;
 
   // ---------------------------------------------------------------- waiting
-  // Execute holds its instruction while a channel is empty/full (the buffered
-  // condition flip-flops' handshake) or the byte processor works on a dispatched
-  // instruction; nothing of the instruction takes effect until the clock it completes.
-  // A read of `T n` / `C n` marked "after the update" (bit 16, set by the partitioning
+  // Nothing of an instruction takes effect until the clock it completes. A channel
+  // empty/full (the buffered condition flip-flops' handshake, the queues) or a
+  // dispatched byte instruction not done in the first clock: the instruction moves
+  // into the wait slot at the clock's end and waits there (below). A read of `T n` / `C n` marked "after the update" (bit 16, set by the partitioning
   // compiler when a byte-side instruction on that timer/counter precedes it in the
   // scan) waits until the byte side has written the status this scan (the updated
   // bits are cleared at the end of the latch clock: a read executing in that clock
   // does not see the previous scan's bits).
-  wire fbi_read   = e_go && e_on_fb_q && e_logic_q;
-  wire fby_write  = e_go && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  // The slot holds a byte instruction (w_bwait_q) or a channel access (w_fwait_q):
+  // two flip-flops, so that NEXT (byte_req_o) comes from one register in the slot.
+  reg                w_bwait_q, w_fwait_q;
+  reg                w_fbr_q;      // the channel access is an FBI read (else FBY write)
+  reg [31:0]         w_instr_q;
+  reg [PcW-1:0]      w_pc_q;
+  reg [Channels-1:0] w_chan_q;
+  reg                w_data_q;     // the FBY write's condition
+
+  wire w_busy     = w_bwait_q || w_fwait_q;
+  wire e_act      = e_go && !w_busy;     // not blocked behind the wait slot
+  wire e_blocked  = e_go && w_busy;
+  wire fbi_read   = e_act && e_on_fb_q && e_logic_q;
+  wire fby_write  = e_act && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  wire e_fby_data = !e_rstbit_q && rlo_o;               // =: RLO; S: 1; R: 0
   wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & e_chan_q))) ||
                     (fby_write && !(|(fby_wr_ready_i & e_chan_q)));
-  wire end_wait   = e_go && e_end_q && end_hold_i;
-  wire tc_wait    = e_go && e_tcw_q && !e_upd_q;
-  wire e_stall    = chan_wait || end_wait || tc_wait || (e_go && e_byte_q && !byte_done_i);
-  wire e_done     = e_go && !e_stall;   // the instruction in execute takes effect
+  wire byte_first = e_act && e_byte_q;                  // its first clock in execute
+  wire to_slot    = chan_wait || (byte_first && !byte_done_i);
+  wire end_wait   = e_act && e_end_q && end_hold_i;
+  wire tc_wait    = e_act && e_tcw_q && !e_upd_q;
+  // execute keeps its instruction (registers only: no answer of the byte side)
+  wire e_hold     = end_wait || tc_wait || e_blocked;
+  wire e_done     = e_act && !to_slot && !end_wait && !tc_wait;  // it takes effect
+
+  // The wait slot: loaded from execute (whenever it is free, so that only w_busy_q
+  // depends on the wait), done in the clock the answer comes.
+  wire w_fbr_ready = |(fbi_rd_ready_i & w_chan_q);
+  wire w_fbw_ready = |(fby_wr_ready_i & w_chan_q);
+  wire w_done      = w_bwait_q ? byte_done_i
+                             : w_fwait_q && (w_fbr_q ? w_fbr_ready : w_fbw_ready);
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      w_bwait_q <= 1'b0;
+      w_fwait_q <= 1'b0;
+      w_fbr_q   <= 1'b0;
+      w_instr_q <= 32'd0;
+      w_pc_q    <= {PcW{1'b0}};
+      w_chan_q  <= {Channels{1'b0}};
+      w_data_q  <= 1'b0;
+    end else if (w_busy) begin
+      if (w_done) {w_bwait_q, w_fwait_q} <= 2'b00;
+    end else begin
+      w_bwait_q <= byte_first && !byte_done_i;
+      w_fwait_q <= chan_wait;
+      w_fbr_q   <= e_logic_q;
+      w_instr_q <= e_instr_q;
+      w_pc_q    <= e_pc_q;
+      w_chan_q  <= e_chan_q;
+      w_data_q  <= e_fby_data;
+    end
+  end
+
   // A stall is a wait on the other processor's condition; a dispatched instruction's
   // own clocks (serial mode) are its execution time, not a stall.
-  assign stall_o  = chan_wait || end_wait || tc_wait;
+  assign stall_o  = chan_wait || (w_fwait_q && !w_done) || end_wait || tc_wait;
 
-  assign fbi_rd_req_o  = fbi_read  ? e_chan_q : {Channels{1'b0}};
-  assign fby_wr_req_o  = fby_write ? e_chan_q : {Channels{1'b0}};
-  assign fby_wr_data_o = !e_rstbit_q && rlo_o;          // =: RLO; S: 1; R: 0
-  assign byte_req_o    = e_go && e_byte_q;
-  assign byte_instr_o  = e_instr_q;
+  assign fbi_rd_req_o  = (fbi_read  ? e_chan_q : {Channels{1'b0}}) |
+                         ((w_fwait_q && w_fbr_q) ? w_chan_q : {Channels{1'b0}});
+  assign fby_wr_req_o  = (fby_write ? e_chan_q : {Channels{1'b0}}) |
+                         ((w_fwait_q && !w_fbr_q) ? w_chan_q : {Channels{1'b0}});
+  assign fby_wr_data_o = w_fwait_q ? w_data_q : e_fby_data;
+  assign byte_req_o    = byte_first || w_bwait_q;
+  assign byte_instr_o  = w_bwait_q ? w_instr_q : e_instr_q;
 
-  wire jump_taken = e_go && (e_ju_q || (e_jc_q && rlo_o) || (e_jcn_q && !rlo_o));
-  assign end_o     = e_go && e_end_q && !end_hold_i;
-  assign refresh_o = e_go && e_refresh_q;
+  wire jump_taken = e_act && (e_ju_q || (e_jc_q && rlo_o) || (e_jcn_q && !rlo_o));
+  assign end_o     = e_act && e_end_q && !end_hold_i;
+  assign refresh_o = e_act && e_refresh_q;
   assign rlo_now_o = rlo_o;     // END leaves 0 for the next scan's first instruction
 
   // ---------------------------------------------------------------- marker memory
@@ -319,7 +373,7 @@ module bit_proc #(
   // ---------------------------------------------------------------- targets
   // =, S, R write a target; FP/FN write their edge memory with the old RLO. None of
   // them waits (a write to FBY goes through the channel, fby_write above).
-  wire target_we = e_go && (e_assign_q || e_edge_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  wire target_we = e_act && (e_assign_q || e_edge_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
   assign target_val  = e_setbit_q ? 1'b1 : e_rstbit_q ? 1'b0 : rlo_o;
   assign m_target_we = target_we && e_on_m_q;
 
@@ -438,6 +492,13 @@ module bit_proc #(
   wire rlo_pin0 = e_src_live_q ? (e_live0_q ? rlo_x1 : rlo_x0) : rlo_reg;
   wire rlo_d    = pin_live ? rlo_pin1 : rlo_pin0;
 
+  // the wait slot's instruction completes: a compare's RLO with DONE, an FBI read's
+  // combine with the channel's bit
+  wire w_fb_bit = |(fbi_rd_data_i & w_chan_q);
+  wire w_rlo    = w_bwait_q ? byte_rlo_i
+                            : combine(w_instr_q[26:25], rlo_o, w_fb_bit ^ w_instr_q[24]);
+  wire w_rlo_we = w_done && (w_bwait_q ? byte_rlo_we_i : w_fbr_q);
+
   integer lvl;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -445,6 +506,8 @@ module bit_proc #(
       sp_q        <= {SpW{1'b0}};
       stack_rlo_q <= {NestDepth{1'b0}};
       stack_op_q  <= {(NestDepth*3){1'b0}};
+    end else if (w_busy) begin
+      if (w_rlo_we) rlo_o <= w_rlo;
     end else if (e_done) begin
       rlo_o <= rlo_d;
       // The assembler bounds the nesting; the stack saturates rather than wraps.
@@ -473,7 +536,7 @@ module bit_proc #(
   // operand and decode move up when the stage above takes theirs or is empty.
   // Taken jump: squash operand and decode, fetch the target. END in decode: fetch
   // address 0. END in execute: address 0 (in operand) moves on only if a scan follows.
-  wire e_load = start_i || (exec_i && !e_stall && !end_o);
+  wire e_load = start_i || (exec_i && !e_hold && !end_o);
   wire o_move = e_load || !o_valid_q;
   assign d_move = o_move || !d_valid_q;
   // The waits reach the program RAM's read enable and d_pc_q's enable only, not the
@@ -574,16 +637,19 @@ module bit_proc #(
         e_mfwd_val_q <= m_fwd_val;
         e_upd_q     <= !start_i && o_upd;
       end else begin
-        if (!e_stall) e_valid_q <= 1'b0; // END executed, or stopped: a bubble
-        // held (or idle) in execute: T/C status and updated follow the byte side
+        if (!e_hold) e_valid_q <= 1'b0;  // END executed, or stopped: a bubble
+        // held (or idle) in execute: T/C status and updated follow the byte side; the
+        // marker bit is kept (m_hold_q takes the next instruction's)
         if (e_tc_fwd) e_opnd_q <= tc_val_i;
+        e_mfwd_q     <= 1'b1;
+        e_mfwd_val_q <= m_opnd;
         e_upd_q <= (e_upd_q && !latch_i) || e_tc_fwd;
       end
     end
   end
 
-  assign exec_pc_o    = e_pc_q;
-  assign exec_valid_o = e_go;
+  assign exec_pc_o    = w_busy ? w_pc_q : e_pc_q;
+  assign exec_valid_o = w_busy || e_go;
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused;
     // verilator lint_off UNUSEDSIGNAL

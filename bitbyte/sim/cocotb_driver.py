@@ -199,12 +199,14 @@ class Firmware:
             await Timer(clocks * PERIOD_NS, unit="ns")
 
     async def _wait(self) -> None:
+        # NEXT is combinational: an event-driven simulator may show it rising for a
+        # moment at a clock edge (registers updated one by one), so it is looked at
+        # again in the clock itself
         dut = self.dut
-        if int(dut.byte_next_o.value) or self.stopped.is_set():
-            return
-        await First(RisingEdge(dut.byte_next_o), self.stopped.wait())
-        if not self.stopped.is_set():
-            await FallingEdge(dut.clk_i)               # into the dispatch clock
+        while not (int(dut.byte_next_o.value) or self.stopped.is_set()):
+            await First(RisingEdge(dut.byte_next_o), self.stopped.wait())
+            if not self.stopped.is_set():
+                await FallingEdge(dut.clk_i)           # into the dispatch clock
 
     def _now(self) -> int:
         return int((get_sim_time("ns") - self.clock0_ns) // PERIOD_NS)
