@@ -40,6 +40,7 @@ def _parser() -> argparse.ArgumentParser:
     a.add_argument("program")
     a.add_argument("--mode", choices=["serial", "parallel"], default="serial")
     a.add_argument("-o", "--outdir", default=None)
+    _source_options(a)
 
     r = sub.add_parser("run", help="assemble and simulate PROG.il, write a trace")
     r.add_argument("program")
@@ -60,6 +61,7 @@ def _parser() -> argparse.ArgumentParser:
                         "partitioning compiler uses (1..4, default 4; Fig. 14/15 tasks)")
     r.add_argument("--costs", default="paper",
                    help="byte processor cost table: paper (default) or c320")
+    _source_options(r)
 
     k = sub.add_parser("link", help="check a multi-core plant (PLANT.toml) and print its "
                                     "shared-memory map and copy plan")
@@ -88,8 +90,19 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _source_options(p: argparse.ArgumentParser) -> None:
+    """--lang and --mnemonics (spec §9): how the source file is read."""
+    p.add_argument("--lang", choices=["il", "stl"], default=None,
+                   help="source language: il (spec section 3) or stl (S7 statement "
+                        "list, section 9); default from the suffix (.awl: stl)")
+    p.add_argument("--mnemonics", choices=["de", "en"], default=None,
+                   help="stl: German or English mnemonics (default: detected from "
+                        "the source)")
+
+
 def cmd_asm(args) -> int:
-    result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode)
+    result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode,
+                      lang=args.lang, mnemonics=args.mnemonics)
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
             print(f"wrote {result[kind]}")
@@ -162,7 +175,7 @@ def cmd_run(args) -> int:
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
-        channels=args.channels)
+        channels=args.channels, lang=args.lang, mnemonics=args.mnemonics)
 
     if args.sim == "verilator":
         records, fault, stats = run_harness(job, columns, args.trace, args.waves)

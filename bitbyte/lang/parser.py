@@ -947,11 +947,25 @@ def parse(path: str, text: bytes | str, config: Config = DEFAULT) -> Program:
     return Parser(src, config).parse()
 
 
-def parse_file(path: str, config: Config = DEFAULT) -> Program:
-    """Read and parse `path`.  A file that cannot be read is a SourceError too."""
+def source_language(path: str, lang: str | None = None) -> str:
+    """"il" or "stl": `lang` if given (--lang), else from the suffix (`.awl`: S7
+    statement list, spec §9; anything else: the IL dialect of §3)."""
+    if lang is not None:
+        return lang
+    return "stl" if path.lower().endswith(".awl") else "il"
+
+
+def parse_file(path: str, config: Config = DEFAULT, *, lang: str | None = None,
+               mnemonics: str | None = None) -> Program:
+    """Read and parse `path`.  A file that cannot be read is a SourceError too.
+    S7 sources (`.awl` or lang="stl") go through bitbyte.lang.stl, with mnemonics
+    "de" / "en" forced or (None) detected from the source."""
     try:
         with open(path, "rb") as f:
             data = f.read()
     except OSError as exc:
         raise SourceError(path, 0, 0, f"cannot read: {exc.strerror or exc}") from None
+    if source_language(path, lang) == "stl":
+        from bitbyte.lang.stl import parse_stl
+        return parse_stl(path, data, config, mnemonics)
     return parse(path, data, config)

@@ -1,0 +1,706 @@
+"""S7 statement list (STL, German AWL) -> the toolchain's `Program` (spec §9).
+
+A `.awl` source is read as STEP 7 Classic exports it and awlsim reads it, and
+translated into the instruction-list program model (bitbyte.lang.program) that the
+encoder, the partitioning compiler and the reference interpreter already run.  What
+this slice supports, and why each translation is S7's meaning, is docs/s7.md; in
+short:
+
+* one `ORGANIZATION_BLOCK OB 1` (header lines, `VAR_TEMP`, `BEGIN`, `NETWORK`,
+  `TITLE =`, `END_ORGANIZATION_BLOCK`); every other block is `unsupported:`;
+* German or English mnemonics and addresses, detected from the source (one language
+  per source) or forced with mnemonics="de" / "en";
+* bit logic with S7's status bits /FC (first check) and OR, resolved statically:
+  the first U/UN/O/ON/X/XN of a logic string becomes LD/LDN; `O` without operand
+  (AND before OR) opens an `O(` around the AND term that follows; `U(` ... `)`
+  nesting; jumps SPA/SPB/SPBN (JU/JC/JCN), block ends BE, BEA/BEB (BEU/BEC);
+* everything else an S7 CPU knows is rejected with `file:line:col: unsupported: ...`.
+
+The translation keeps one invariant: the IL RLO equals S7's RLO at every point,
+except inside an AND term after `O` (then S7's RLO is `earlier terms OR this term`
+and the IL RLO is the term, the earlier terms being on the IL parenthesis stack).
+The compiler knows /FC and the OR bit at every instruction (straight-line code: they
+depend only on the instruction sequence); where a jump target is reached with
+different /FC states and its first instruction depends on /FC, the program is
+rejected (`unsupported:`), never run with a different meaning.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.program import Instr, Operand, Program
+
+# --------------------------------------------------------------------------------------
+# Vocabulary: mnemonic as written -> {language: canonical (English S7) mnemonic}
+# --------------------------------------------------------------------------------------
+
+_BOTH = ("O ON X XN O( ON( X( XN( ) = S R FP FN NOT SET CLR SAVE BE NOP BLD "
+         "L T LC SS FR LOOP CALL UC CC TAK PUSH POP ENT LEAVE INC DEC +I -I *I /I +D -D "
+         "*D /D MOD +R -R *R /R +AR1 +AR2 ==I <>I >I <I >=I <=I ==D <>D >D <D >=D <=D "
+         "==R <>R >R <R >=R <=R ITD ITB BTI BTD DTB DTR RND RND+ RND- TRUNC INVI INVD "
+         "NEGI NEGD NEGR ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN CAW CAD SLW SRW "
+         "SLD SRD RLD RRD RLDA RRDA SSI SSD OW XOW OD XOD LAR1 LAR2 TAR1 TAR2 CAR "
+         "MCRA MCRD MCR( )MCR").split()
+_DE_ONLY = {
+    "U": "A", "UN": "AN", "U(": "A(", "UN(": "AN(", "SPA": "JU", "SPB": "JC",
+    "SPBN": "JCN", "SPBB": "JCB", "SPBNB": "JNB", "SPBI": "JBI", "SPBIN": "JNBI",
+    "SPO": "JO", "SPS": "JOS", "SPZ": "JZ", "SPN": "JN", "SPP": "JP", "SPM": "JM",
+    "SPPZ": "JPZ", "SPMZ": "JMZ", "SPU": "JUO", "SPL": "JL", "ZV": "CU", "ZR": "CD",
+    "SI": "SP", "SV": "SE", "SA": "SF", "AUF": "OPN", "TDB": "CDB", "TAW": "CAW",
+    "TAD": "CAD", "BEB": "BEC", "BEA": "BEU", "UW": "AW", "UD": "AD",
+}
+_EN_ONLY = {m: m for m in (
+    "A", "AN", "A(", "AN(", "JU", "JC", "JCN", "JCB", "JNB", "JBI", "JNBI", "JO",
+    "JOS", "JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO", "JL", "CU", "CD", "SP", "SD",
+    "SF", "OPN", "CDB", "BEC", "BEU", "AW", "AD")}
+# SE is both: German SE is the on-delay (English SD), English SE the extended pulse.
+MNEMONIC_TABLE: dict[str, dict[str, str]] = {m: {"de": m, "en": m} for m in _BOTH}
+for _m, _c in _DE_ONLY.items():
+    MNEMONIC_TABLE.setdefault(_m, {})["de"] = _c
+for _m, _c in _EN_ONLY.items():
+    MNEMONIC_TABLE.setdefault(_m, {})["en"] = _c
+MNEMONIC_TABLE["SE"] = {"de": "SD", "en": "SE"}
+
+# Address areas as written -> {language: canonical (English) area}
+_AREAS_BOTH = "M MB MW MD T DB DI DBX DBB DBW DBD DIX DIB DIW DID L LB LW LD".split()
+_AREAS_DE = {"E": "I", "A": "Q", "EB": "IB", "EW": "IW", "ED": "ID", "AB": "QB",
+             "AW": "QW", "AD": "QD", "PEB": "PIB", "PEW": "PIW", "PED": "PID",
+             "PAB": "PQB", "PAW": "PQW", "PAD": "PQD", "Z": "C"}
+_AREAS_EN = {c: c for c in _AREAS_DE.values()} | {"I": "I", "Q": "Q"}
+AREA_TABLE: dict[str, dict[str, str]] = {a: {"de": a, "en": a} for a in _AREAS_BOTH}
+for _a, _c in _AREAS_DE.items():
+    AREA_TABLE.setdefault(_a, {})["de"] = _c
+for _a, _c in _AREAS_EN.items():
+    AREA_TABLE.setdefault(_a, {})["en"] = _c
+
+LANGUAGE_NAME = {"de": "German", "en": "English"}
+
+# Canonical mnemonics this slice translates.
+COMBINE = {"A": ("A", 0), "AN": ("A", 1), "O": ("O", 0), "ON": ("O", 1),
+           "X": ("X", 0), "XN": ("X", 1)}
+OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),
+        "X(": ("X", 0), "XN(": ("X", 1)}
+BIT_AREAS = ("I", "Q", "M")
+# instructions that neither read /FC nor the OR bit, and leave /FC = 0 (a jump
+# target starting with one of them may be reached with any /FC)
+FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC")
+END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
+
+
+# --------------------------------------------------------------------------------------
+# Statements of the block body
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class Word:
+    text: str
+    col: int            # 1-based
+
+
+@dataclass
+class Stmt:
+    """One statement: labels, the mnemonic as written, the operand words."""
+
+    line: int
+    col: int
+    source: str
+    mnemonic: Word
+    operands: list[Word]
+    labels: list[Word] = field(default_factory=list)
+    canon: str = ""     # canonical (English) mnemonic, once the language is known
+
+
+_TOKEN = re.compile(r'"[^"]*"|\(|\)|[^\s()"]+')
+_LABEL = re.compile(r"\s*([A-Za-z_][A-Za-z0-9_]*)\s*:(?!=)")
+
+
+def _strip_comment(text: str) -> str:
+    """The line without its `//` comment (a `//` inside quotes does not count)."""
+    quoted = False
+    for i, ch in enumerate(text):
+        if ch == '"':
+            quoted = not quoted
+        elif not quoted and text.startswith("//", i):
+            return text[:i]
+    return text
+
+
+def _split_statements(text: str) -> list[tuple[int, str]]:
+    """(offset, piece) for the `;`-separated pieces of a line (quotes respected)."""
+    pieces, start, quoted = [], 0, False
+    for i, ch in enumerate(text):
+        if ch == '"':
+            quoted = not quoted
+        elif ch == ";" and not quoted:
+            pieces.append((start, text[start:i]))
+            start = i + 1
+    pieces.append((start, text[start:]))
+    return pieces
+
+
+# --------------------------------------------------------------------------------------
+# The front end
+# --------------------------------------------------------------------------------------
+
+class _State:
+    """What the compiler knows at a point of the statement sequence.
+
+    ner: S7's /FC (0: the next combine loads).  orm: the OR bit's role — "none",
+    "pending" (`O` seen, no AND term yet: S7's OR = /FC = RLO) or "term" (an IL
+    `O(` is open around the AND term).  parens: the open S7 parentheses, innermost
+    last, each (canonical opener, statement, virtual?, orm outside it); a virtual
+    one was opened with /FC = 0 and has no IL parenthesis.
+    """
+
+    def __init__(self):
+        self.ner = 0
+        self.orm = "none"
+        self.parens: list[tuple[str, Stmt, bool, str]] = []
+        self.il_depth = 0
+        self.need_set = False           # IL RLO must be made 1 (after SPB/SPBN/BEB)
+
+    def key(self) -> tuple:
+        return (self.ner, self.orm, len(self.parens))
+
+
+class StlFrontEnd:
+    def __init__(self, path: str, text: str, config: Config = DEFAULT,
+                 mnemonics: str | None = None):
+        self.path = path
+        self.config = config
+        self.lines = text.split("\n")
+        self.forced = mnemonics
+        self.lang = mnemonics or "de"
+        self.stmts: list[Stmt] = []
+        self.temps: dict[str, int] = {}
+
+    # -- errors --------------------------------------------------------------------
+
+    def error(self, line: int, col: int, message: str) -> SourceError:
+        text = self.lines[line - 1] if 1 <= line <= len(self.lines) else ""
+        return SourceError(self.path, line, col, message, text)
+
+    def unsupported(self, stmt: Stmt, what: str, col: int | None = None) -> SourceError:
+        return self.error(stmt.line, col or stmt.mnemonic.col, f"unsupported: {what}")
+
+    # -- block structure -------------------------------------------------------------
+
+    def parse(self) -> Program:
+        self.read_blocks()
+        self.detect_language()
+        for stmt in self.stmts:
+            self.canonical(stmt)
+        return self.translate()
+
+    def read_blocks(self) -> None:
+        """Find `ORGANIZATION_BLOCK OB 1` ... `END_ORGANIZATION_BLOCK`, collect its
+        body statements; other blocks are unsupported."""
+        state, ob1_seen, begin_line = "outside", False, 0
+        for n, raw in enumerate(self.lines, start=1):
+            text = _strip_comment(raw.rstrip("\r"))
+            stripped = text.strip()
+            if not stripped:
+                continue
+            col = len(text) - len(text.lstrip()) + 1
+            words = stripped.replace(";", " ").split()
+            head = words[0].upper()
+            if state == "outside":
+                if head == "ORGANIZATION_BLOCK":
+                    rest = "".join(words[1:]).upper()
+                    if rest != "OB1":
+                        raise self.error(n, col, "unsupported: `" + stripped + "` (this "
+                                         "slice runs ORGANIZATION_BLOCK OB 1 only)")
+                    if ob1_seen:
+                        raise self.error(n, col, "duplicate block OB 1")
+                    ob1_seen, state = True, "header"
+                elif head in ("FUNCTION", "FUNCTION_BLOCK", "DATA_BLOCK", "TYPE"):
+                    raise self.error(n, col, f"unsupported: {head} (this slice runs "
+                                     "ORGANIZATION_BLOCK OB 1 only)")
+                else:
+                    raise self.error(n, col, f"expected ORGANIZATION_BLOCK OB 1, found "
+                                     f"`{words[0]}`")
+            elif state == "header":
+                if head == "BEGIN":
+                    state, begin_line = "body", n
+                elif head == "VAR_TEMP":
+                    state = "temp"
+                elif head.startswith(("VAR", "END_VAR")):
+                    raise self.error(n, col, f"unsupported: {head} in OB 1 (only VAR_TEMP)")
+                elif head.startswith(("TITLE", "AUTHOR", "FAMILY", "NAME", "VERSION",
+                                      "KNOW_HOW_PROTECT", "CODE_VERSION", "{")):
+                    pass
+                else:
+                    raise self.error(n, col, f"expected BEGIN, found `{words[0]}`")
+            elif state == "temp":
+                if head == "END_VAR":
+                    state = "header"
+                else:
+                    name = stripped.split(":")[0].strip()
+                    self.temps[name.upper()] = n
+            elif state == "body":
+                if head == "END_ORGANIZATION_BLOCK":
+                    state = "outside"
+                elif head in ("NETWORK",) or head.startswith("TITLE"):
+                    pass
+                elif head.startswith("END_"):
+                    raise self.error(n, col, f"expected END_ORGANIZATION_BLOCK, found "
+                                     f"`{words[0]}`")
+                else:
+                    self.read_statements(n, text)
+        if state in ("header", "temp"):
+            raise self.error(len(self.lines), 1, "missing BEGIN in OB 1")
+        if state == "body":
+            raise self.error(begin_line, 1, "missing END_ORGANIZATION_BLOCK for the "
+                             "OB 1 that begins here")
+        if not ob1_seen:
+            raise SourceError(self.path, 0, 0, "no ORGANIZATION_BLOCK OB 1 in the source")
+
+    def read_statements(self, n: int, text: str) -> None:
+        source = self.lines[n - 1].rstrip("\r")
+        for offset, piece in _split_statements(text):
+            labels: list[Word] = []
+            pos = 0
+            while True:
+                m = _LABEL.match(piece, pos)
+                if not m:
+                    break
+                labels.append(Word(m.group(1), offset + m.start(1) + 1))
+                pos = m.end()
+            words = [Word(t.group(0), offset + t.start() + 1)
+                     for t in _TOKEN.finditer(piece, pos)]
+            if not words:
+                if labels:      # a label alone on its line marks the next statement
+                    self.stmts.append(Stmt(n, labels[0].col, source, Word("", 0), [],
+                                           labels))
+                continue
+            mnem = words[0]
+            rest = words[1:]
+            if rest and rest[0].text == "(" and mnem.text.upper() in (
+                    "U", "UN", "A", "AN", "O", "ON", "X", "XN"):
+                mnem = Word(mnem.text + "(", mnem.col)
+                rest = rest[1:]
+            self.stmts.append(Stmt(n, mnem.col, source, mnem, rest, labels))
+
+    # -- mnemonics -----------------------------------------------------------------
+
+    def evidence(self) -> list[tuple[str, Stmt, Word]]:
+        """(language, statement, word) for every word that belongs to one language."""
+        found = []
+        for stmt in self.stmts:
+            if not stmt.mnemonic.text:
+                continue
+            langs = MNEMONIC_TABLE.get(stmt.mnemonic.text.upper(), {})
+            if len(langs) == 1:
+                found.append((next(iter(langs)), stmt, stmt.mnemonic))
+            if stmt.operands and not self.is_jump(stmt):
+                area = _split_area(stmt.operands[0].text)[0]
+                alangs = AREA_TABLE.get(area, {})
+                if len(alangs) == 1:
+                    found.append((next(iter(alangs)), stmt, stmt.operands[0]))
+        return found
+
+    @staticmethod
+    def is_jump(stmt: Stmt) -> bool:
+        langs = MNEMONIC_TABLE.get(stmt.mnemonic.text.upper(), {})
+        return any(c.startswith("J") or c == "LOOP" for c in langs.values())
+
+    def detect_language(self) -> None:
+        """One language per source: the first word that is German-only or
+        English-only decides (forced: mnemonics=...); a word of the other one is
+        an error."""
+        first = None
+        for lang, stmt, word in self.evidence():
+            if self.forced and lang != self.forced:
+                raise self.error(stmt.line, word.col,
+                                 f"`{word.text}` is {LANGUAGE_NAME[lang]}, but the "
+                                 f"mnemonics are {LANGUAGE_NAME[self.forced]} "
+                                 f"(--mnemonics {self.forced})")
+            if first is None:
+                first = (lang, stmt, word)
+                self.lang = lang
+            elif lang != first[0]:
+                f_lang, f_stmt, f_word = first
+                raise self.error(stmt.line, word.col,
+                                 f"mixed mnemonics: `{word.text}` is "
+                                 f"{LANGUAGE_NAME[lang]}, but this source is "
+                                 f"{LANGUAGE_NAME[f_lang]} (`{f_word.text}` at "
+                                 f"{f_stmt.line}:{f_word.col}); use one language, or "
+                                 "--mnemonics de|en")
+
+    def canonical(self, stmt: Stmt) -> None:
+        if not stmt.mnemonic.text:
+            return
+        word = stmt.mnemonic.text.upper()
+        langs = MNEMONIC_TABLE.get(word)
+        if langs is None:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"unknown mnemonic `{stmt.mnemonic.text}`")
+        stmt.canon = langs[self.lang]
+
+    # -- operands ------------------------------------------------------------------
+
+    def bit_operand(self, stmt: Stmt, targets: tuple[str, ...] = BIT_AREAS) -> Operand:
+        """`E 0.0` / `I0.0` / `A 4.1` / `M 10.7` -> a bit Operand (English area)."""
+        ops = stmt.operands
+        if not ops:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"missing operand: `{stmt.mnemonic.text}` needs a bit")
+        first = ops[0]
+        text = first.text
+        if text.startswith('"'):
+            raise self.unsupported(stmt, f"symbol `{text}` (symbols come in a later "
+                                   "slice)", first.col)
+        if text.startswith("#"):
+            raise self.unsupported(stmt, f"local variable `{text}`", first.col)
+        area, rest = _split_area(text)
+        used = 1
+        if area and rest == "" and len(ops) > 1:
+            rest, used = ops[1].text, 2
+        written = " ".join(w.text for w in ops[:used])
+        if len(ops) > used:
+            raise self.error(stmt.line, ops[used].col,
+                             f"extra operand `{ops[used].text}`")
+        langs = AREA_TABLE.get(area)
+        if langs is None or not area:
+            raise self.error(stmt.line, first.col, f"invalid operand `{written}`")
+        canon = langs[self.lang]
+        if canon not in BIT_AREAS:
+            what = {"T": "timer status", "C": "counter status"}.get(canon, "operand")
+            if canon.endswith(("B", "W", "D")) and canon not in ("DB",):
+                what = "byte/word operand"
+            raise self.unsupported(stmt, f"{what} `{written}` in "
+                                   f"`{stmt.mnemonic.text}`", first.col)
+        if canon not in targets:
+            raise self.error(stmt.line, first.col,
+                             f"operand of the wrong kind: `{stmt.mnemonic.text}` needs "
+                             f"{' or '.join(_english_area_names(targets, self.lang))}, "
+                             f"not `{written}`")
+        byte, dot, bit = rest.partition(".")
+        if not (dot and byte.isdigit() and bit.isdigit()):
+            raise self.error(stmt.line, first.col,
+                             f"malformed address `{written}`: {area} <byte>.<bit> expected")
+        b, n = int(byte), int(bit)
+        if n > 7:
+            raise self.error(stmt.line, first.col,
+                             f"operand out of range: `{written}` (bit 0..7)")
+        limit = self.config.area_size(canon)
+        if b >= limit:
+            raise self.error(stmt.line, first.col,
+                             f"operand out of range: `{written}` (byte 0..{limit - 1} "
+                             "in this build)")
+        return Operand("bit", area=canon, byte=b, bit=n, text=written)
+
+    def no_operand(self, stmt: Stmt) -> None:
+        if stmt.operands:
+            raise self.error(stmt.line, stmt.operands[0].col,
+                             f"extra operand `{stmt.operands[0].text}`: "
+                             f"`{stmt.mnemonic.text}` takes no operand")
+
+    def label_operand(self, stmt: Stmt) -> str:
+        if not stmt.operands:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"missing operand: `{stmt.mnemonic.text}` needs a label")
+        if len(stmt.operands) > 1:
+            raise self.error(stmt.line, stmt.operands[1].col,
+                             f"extra operand `{stmt.operands[1].text}`")
+        return stmt.operands[0].text.upper()
+
+    # -- translation ---------------------------------------------------------------
+
+    def translate(self) -> Program:
+        """Translate with assumed states at the labels, until the assumptions hold
+        (a label reached only by a later backward jump learns its state in the
+        first pass)."""
+        self.label_defs: dict[str, Stmt] = {}
+        for stmt in self.stmts:
+            for w in stmt.labels:
+                if w.text.upper() in self.label_defs:
+                    first = self.label_defs[w.text.upper()]
+                    raise self.error(stmt.line, w.col, f"duplicate label `{w.text}` "
+                                     f"(first defined at {first.line}:{first.col})")
+                self.label_defs[w.text.upper()] = stmt
+        assumed: dict[str, int] = {}
+        for _ in range(4):
+            program, edges = self.translate_once(assumed)
+            wanted = self.check_edges(edges)
+            if wanted == assumed:
+                return program
+            assumed = wanted
+        return program          # pragma: no cover (states settle in two passes)
+
+    def check_edges(self, edges: dict[str, list[tuple[int, Stmt]]]) -> dict[str, int]:
+        """One /FC per label, or an unsupported error; returns the states."""
+        states = {}
+        for name, incoming in edges.items():
+            values = {ner for ner, _ in incoming}
+            target = self.label_defs[name]
+            if len(values) > 1 and target.canon not in FC_BLIND:
+                (a, sa), (b, sb) = next(((x, y) for x in incoming for y in incoming
+                                         if x[0] == 0 and y[0] == 1))
+                raise self.error(target.line, target.labels[0].col,
+                                 f"unsupported: jump target `{target.labels[0].text}` is "
+                                 f"reached with /FC = 0 (from line {sa.line}) and "
+                                 f"/FC = 1 (from line {sb.line}), and "
+                                 f"`{target.mnemonic.text}` depends on it")
+            states[name] = 0 if len(values) > 1 else values.pop()
+        return states
+
+    def translate_once(self, assumed: dict[str, int]):
+        self.out: list[Instr] = []
+        self.labels: dict[str, int] = {}
+        self.pending: list[str] = []
+        edges: dict[str, list[tuple[int, Stmt]]] = {n: [] for n in self.label_defs}
+        st = _State()
+        reachable = True            # the previous statement runs and falls through
+        for i, stmt in enumerate(self.stmts):
+            self.stmt = stmt
+            if st.need_set and (stmt.labels or not self.overwrites_rlo(stmt, st)):
+                self.emit("SET")
+            st.need_set = False
+            if stmt.labels:
+                if st.parens or st.orm != "none":
+                    raise self.unsupported(stmt, "a label inside parentheses or an "
+                                           "AND-before-OR term", stmt.labels[0].col)
+                name = stmt.labels[0].text.upper()
+                if reachable:
+                    edges[name].append((st.ner, self.prev_stmt(i)))
+                st.ner = assumed.get(name, st.ner if reachable else 0)
+                for w in stmt.labels:
+                    self.pending.append(w.text)
+                reachable = True    # (a label nobody jumps to counts as reached)
+            if not stmt.mnemonic.text:
+                continue
+            falls = self.statement(stmt, st, edges)
+            reachable = reachable and falls
+        if st.parens:
+            opener = st.parens[-1][1]
+            raise self.error(opener.line, opener.col, f"unbalanced parentheses: "
+                             f"`{opener.mnemonic.text}` is never closed")
+        self.close_term(st)
+        self.pending.append(END_LABEL)
+        self.emit("END", line=len(self.lines) + 1, col=1, source="")
+        for ins in self.out:
+            if ins.operand is not None and ins.operand.kind == "label" \
+                    and ins.operand.label not in self.labels:
+                raise self.error(ins.line, ins.col,
+                                 f"unknown label `{ins.operand.text}`")
+        program = Program(self.path, self.out, dict(self.labels), {})
+        return program, {n: e for n, e in edges.items() if e}
+
+    def prev_stmt(self, i: int) -> Stmt:
+        return self.stmts[i - 1] if i > 0 else self.stmts[i]
+
+    @staticmethod
+    def overwrites_rlo(stmt: Stmt, st: _State) -> bool:
+        """Does stmt ignore the RLO it finds (after SPB/SPBN, /FC = 0)?"""
+        return stmt.canon in COMBINE or stmt.canon in OPEN or stmt.canon in (
+            "SET", "CLR", "NOP", "BLD") or (stmt.canon == "O" and not stmt.operands)
+
+    def emit(self, mnemonic: str, operand: Operand | None = None, *, line=None,
+             col=None, source=None) -> None:
+        s = self.stmt
+        ins = Instr(mnemonic, operand, s.line if line is None else line,
+                    s.col if col is None else col, s.source if source is None else source)
+        ins.labels = self.pending
+        for name in self.pending:
+            self.labels[name.upper()] = len(self.out)
+        self.pending = []
+        if len(self.out) >= self.config.prog_words:
+            raise self.error(ins.line or s.line, ins.col or s.col,
+                             f"program too large: more than {self.config.prog_words} "
+                             "words (prog_words)")
+        self.out.append(ins)
+
+    def open_il(self, mnemonic: str, st: _State) -> None:
+        st.il_depth += 1
+        if st.il_depth > self.config.nest_depth:
+            raise self.unsupported(self.stmt, f"parentheses (with AND-before-OR terms) "
+                                   f"nested deeper than {self.config.nest_depth} levels "
+                                   "in this build")
+        self.emit(mnemonic)
+
+    def close_term(self, st: _State) -> None:
+        """End an AND term after `O`: S7's RLO (earlier terms OR this one) becomes
+        the IL RLO."""
+        if st.orm == "term":
+            self.emit(")")
+            st.il_depth -= 1
+        st.orm = "none"
+
+    def statement(self, stmt: Stmt, st: _State, edges) -> bool:
+        """Translate one statement; False when it never falls through."""
+        m = stmt.canon
+        if m in COMBINE and stmt.operands:
+            self.combine(stmt, st, m)
+        elif m == "O":                          # O without operand: AND before OR
+            self.no_operand(stmt)
+            if st.ner == 1:
+                self.close_term(st)
+                st.orm = "pending"
+        elif m in OPEN:
+            self.no_operand(stmt)
+            self.open_paren(stmt, st, m)
+        elif m == ")":
+            self.no_operand(stmt)
+            self.close_paren(stmt, st)
+        elif m in ("=", "S", "R"):
+            op = self.bit_operand(stmt, ("Q", "M"))
+            self.close_term(st)
+            self.emit(m, op)
+            st.ner = 0
+        elif m in ("FP", "FN"):
+            op = self.bit_operand(stmt, ("Q", "M"))
+            self.close_term(st)
+            self.emit(m, op)
+            st.ner = 1
+        elif m in ("SET", "CLR"):
+            self.no_operand(stmt)
+            self.close_term(st)
+            self.emit(m)
+            st.ner = 0
+        elif m == "NOT":
+            self.no_operand(stmt)
+            if st.orm != "none":
+                raise self.unsupported(stmt, "NOT after `O` in an AND-before-OR "
+                                       "string (S7 keeps the OR bit)")
+            self.emit("NOT")
+        elif m == "SAVE":                       # BR is never read in this slice
+            self.no_operand(stmt)
+        elif m in ("NOP", "BLD"):               # NOP 0 / NOP 1 / BLD n: display hints
+            if len(stmt.operands) != 1 or not stmt.operands[0].text.isdigit():
+                raise self.error(stmt.line, stmt.mnemonic.col,
+                                 f"`{stmt.mnemonic.text}` needs a number")
+        elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC"):
+            return self.jump(stmt, st, m, edges)
+        elif m in COMBINE:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"missing operand: `{stmt.mnemonic.text}` needs a bit")
+        else:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}`")
+        return True
+
+    def combine(self, stmt: Stmt, st: _State, m: str) -> None:
+        func, neg = COMBINE[m]
+        op = self.bit_operand(stmt)
+        if st.ner == 0:                         # first check: the string starts
+            self.emit("LDN" if neg else "LD", op)
+        elif func == "A":
+            if st.orm == "pending":             # the AND term after `O` starts
+                self.open_il("O(", st)
+                st.orm = "term"
+                self.emit("LDN" if neg else "LD", op)
+            else:
+                self.emit(m, op)
+        else:                                   # O / X end an AND term
+            self.close_term(st)
+            self.emit(m, op)
+        st.ner = 1
+
+    def open_paren(self, stmt: Stmt, st: _State, m: str) -> None:
+        func, neg = OPEN[m]
+        if st.ner == 0:
+            virtual = True                      # the parenthesis starts the string
+        elif func == "A" and st.orm == "pending":
+            self.open_il("O(", st)
+            st.orm = "term"
+            virtual = True                      # it starts the AND term
+        else:
+            if func != "A":
+                self.close_term(st)
+            self.open_il(m, st)
+            virtual = False
+        st.parens.append((m, stmt, virtual, st.orm))
+        st.ner, st.orm = 0, "none"
+        nxt = self.next_stmt(stmt)
+        if nxt is None or not (nxt.canon in OPEN or (nxt.canon in COMBINE
+                                                     and nxt.operands)) or nxt.labels:
+            where = nxt if nxt is not None else stmt
+            raise self.unsupported(where, f"`{where.mnemonic.text or 'a label'}` right "
+                                   f"after `{stmt.mnemonic.text}` (a parenthesis starts "
+                                   "with U/UN/O/ON/X/XN or another parenthesis here)")
+
+    def next_stmt(self, stmt: Stmt) -> Stmt | None:
+        i = self.stmts.index(stmt)
+        return self.stmts[i + 1] if i + 1 < len(self.stmts) else None
+
+    def close_paren(self, stmt: Stmt, st: _State) -> None:
+        if not st.parens:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             "unbalanced parentheses: `)` without an open `(`")
+        self.close_term(st)
+        m, _, virtual, outer_orm = st.parens.pop()
+        if virtual:
+            if OPEN[m][1]:
+                self.emit("NOT")
+        else:
+            self.emit(")")
+            st.il_depth -= 1
+        st.ner, st.orm = 1, outer_orm
+
+    def jump(self, stmt: Stmt, st: _State, m: str, edges) -> bool:
+        if m in ("BE", "BEU", "BEC"):
+            self.no_operand(stmt)
+            label = END_LABEL
+        else:
+            label = self.label_operand(stmt)
+            if label not in self.label_defs:
+                raise self.error(stmt.line, stmt.operands[0].col,
+                                 f"unknown label `{stmt.operands[0].text}`")
+        if st.parens:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+        target = Operand("label", label=label,
+                         text=stmt.operands[0].text if stmt.operands else label)
+        if m in ("JU", "BE", "BEU"):
+            if st.orm != "none":
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` after `O` in an "
+                                       "AND-before-OR string")
+            if label != END_LABEL:
+                edges[label].append((st.ner, stmt))
+            self.emit("JU", target)
+            return False
+        self.close_term(st)
+        if m == "JCN":                          # S7 sets RLO = 1 on both paths
+            self.emit("NOT")
+        self.emit("JC", target)
+        st.ner = 0
+        st.need_set = True                      # not taken: S7's RLO is 1
+        if label != END_LABEL:
+            edges[label].append((0, stmt))
+        return True
+
+
+def _split_area(text: str) -> tuple[str, str]:
+    i = 0
+    while i < len(text) and text[i].isascii() and text[i].isalpha():
+        i += 1
+    return text[:i].upper(), text[i:]
+
+
+def _english_area_names(areas: tuple[str, ...], lang: str) -> list[str]:
+    if lang == "en":
+        return list(areas)
+    back = {"I": "E", "Q": "A", "M": "M"}
+    return [back[a] for a in areas]
+
+
+# --------------------------------------------------------------------------------------
+# Entry points
+# --------------------------------------------------------------------------------------
+
+def decode(data: bytes) -> str:
+    """UTF-8, else Windows-1252 (STEP 7 Classic's export encoding); CR LF -> LF."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        text = data.decode("cp1252", errors="replace")
+    return text.replace("\r\n", "\n")
+
+
+def parse_stl(path: str, data: bytes | str, config: Config = DEFAULT,
+              mnemonics: str | None = None) -> Program:
+    """Check and translate one .awl source.  Raises only SourceError."""
+    text = data if isinstance(data, str) else decode(data)
+    return StlFrontEnd(path, text, config, mnemonics).parse()
