@@ -1,0 +1,120 @@
+"""The independent oracle for `.awl` sources (spec §9): awlsim (PyPI `awlsim`, pinned in
+requirements.txt, GPL-2.0, used as a test tool from the registry and never copied into
+the tree) runs an S7 program scan by scan, and `bitbyte run` runs the same file; the
+helpers here put both into one shape so that tests compare them scan for scan.
+
+awlsim is driven as its own `awlsim-test` drives it: `Project.fromProjectOrRawAwlFile`,
+`AwlParser` per source, `AwlSim.load`, `build`, `startup` (OB 100 would run there),
+then one `runCycle()` per scan.  Before each cycle the scan's input bytes are written
+into the process image (`cpu.storeInputByte`); simulated time replaces
+`cpu.updateTimestamp`, so that `cpu.now` is each scan's latch time (seconds since
+reset), never the wall clock.  After each cycle the output image and the marker bytes
+are read back.
+
+A scan of either simulator becomes {"Q0.0": 0/1, ..., "M1.7": 0/1}: the bits of the
+output bytes and marker bytes asked for.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+BITS = range(8)
+
+
+def scan_inputs_csv(inputs: list[dict[int, int]], in_bytes: int) -> str:
+    """A `scan`-keyed STIM.csv (spec §4) for per-scan input bytes {byte: value}."""
+    names = [f"I{b}.{n}" for b in range(in_bytes) for n in BITS]
+    rows = ["scan," + ",".join(names)]
+    for k, image in enumerate(inputs):
+        rows.append(f"{k}," + ",".join(str((image.get(b, 0) >> n) & 1)
+                                       for b in range(in_bytes) for n in BITS))
+    return "\n".join(rows) + "\n"
+
+
+def columns_of(out_bytes: int, marker_bytes: int) -> list[str]:
+    return ([f"Q{b}.{n}" for b in range(out_bytes) for n in BITS]
+            + [f"M{b}.{n}" for b in range(marker_bytes) for n in BITS])
+
+
+def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: str,
+                 out_bytes: int = 2, marker_bytes: int = 2,
+                 scan_times_s: list[float] | None = None) -> list[dict[str, int]]:
+    """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"."""
+    from awlsim.common.cpuconfig import S7CPUConfig
+    from awlsim.common.project import Project
+    from awlsim.core.main import AwlSim
+    from awlsim.awlcompiler.tokenizer import AwlParser
+
+    project = Project.fromProjectOrRawAwlFile(str(path))
+    sim = AwlSim()
+    sim.reset()
+    cpu = sim.getCPU()
+    cpu.getConf().setConfiguredMnemonics(
+        {"de": S7CPUConfig.MNEMONICS_DE, "en": S7CPUConfig.MNEMONICS_EN}[mnemonics])
+    for src in project.getAwlSources():
+        parser = AwlParser()
+        parser.parseSource(src)
+        sim.load(parser.getParseTree())
+    sim.build()
+    clock = {"now": 0.0}
+
+    def update_timestamp(*_args):
+        cpu.now = clock["now"]
+
+    cpu.updateTimestamp = update_timestamp
+    sim.startup()
+    scans = []
+    for k, image in enumerate(inputs):
+        clock["now"] = scan_times_s[k] if scan_times_s else 0.0
+        for b in range(max(image, default=-1) + 1):
+            cpu.storeInputByte(b, image.get(b, 0))
+        sim.runCycle()
+        markers = cpu.flags.getDataBytes()
+        row = {}
+        for b in range(out_bytes):
+            value = cpu.fetchOutputByte(b)
+            row.update({f"Q{b}.{n}": (value >> n) & 1 for n in BITS})
+        for b in range(marker_bytes):
+            row.update({f"M{b}.{n}": (markers[b] >> n) & 1 for n in BITS})
+        scans.append(row)
+    return scans
+
+
+def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
+                  sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
+                  out_bytes: int = 2, marker_bytes: int = 2,
+                  mnemonics: str | None = None) -> list[dict[str, int]]:
+    """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
+    the C++ harness), one row per scan with the same keys as awlsim_scans."""
+    from bitbyte.lang.config import Config
+    from bitbyte.lang.stimulus import load_stimulus
+    from bitbyte.ref.refsim import refsim_trace
+    from bitbyte.run.prepare import prepare_run
+
+    stim = tmp / (Path(path).stem + ".stim.csv")
+    stim.write_text(scan_inputs_csv(inputs, in_bytes))
+    watch = columns_of(out_bytes, marker_bytes)
+    program, columns, job, f = prepare_run(
+        str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
+        mode=mode, mnemonics=mnemonics)
+    if sim == "ref":
+        assert mode == "serial", "the reference interpreter runs serial mode"
+        stimulus = load_stimulus(str(stim), program.symbols)
+        _, records, fault = refsim_trace(program, Config(), stimulus, watch,
+                                         scans=len(inputs))
+    else:
+        from bitbyte.sim.verilator import run_harness
+        records, fault, _ = run_harness(job, columns)
+    assert not fault, f"{path}: watchdog"
+    return [{name: rec.values[name] for name in watch} for rec in records]
+
+
+def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]]):
+    """(scan, {column: (awlsim, bitbyte)}) of the first scan that differs, or None."""
+    if len(expected) != len(got):
+        return (min(len(expected), len(got)), {"scans": (len(expected), len(got))})
+    for k, (a, b) in enumerate(zip(expected, got)):
+        diff = {c: (a[c], b[c]) for c in a if a[c] != b.get(c)}
+        if diff:
+            return k, diff
+    return None
