@@ -29,7 +29,8 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     """Parse, encode and write the three files (and `<stem>.pool.hex` when the
     program has constants too wide for the 24-bit immediate).
 
-    Returns {"hex": path, "lst": path, "json": path, "words": n}.  Raises only
+    Returns {"hex": path, "lst": path, "json": path, "words": n, "program": the
+    parsed Program}.  Raises only
     SourceError for a bad program (OSError if outdir cannot be written).
     """
     if mode == "parallel":            # two images and the partition report
@@ -47,7 +48,7 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     if pool:
         paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
         _write(paths["pool"], hex_image(pool))
-    return {**paths, "words": len(words)}
+    return {**paths, "words": len(words), "program": program}
 
 
 def hex_image(words: list[int]) -> str:
@@ -86,7 +87,7 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
                              "transfers", "mirrored_jumps", "estimate"}
 
     Returns {"bit_hex", "byte_hex", ["pool"], "lst", "report", "json": paths,
-    "words": bit words, "byte_words": byte words}.  Nothing is written on an error."""
+    "words": bit words, "byte_words": byte words, "program": the parsed Program}.  Nothing is written on an error."""
     program = parse_file(path, config, lang=lang, mnemonics=mnemonics)
     part = partition(program, channels or config.channels, config=config)
     report = report_text(part)
@@ -116,4 +117,5 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
         "estimate": asdict(est),
     }
     _write(paths["json"], json.dumps(summary, indent=2) + "\n")
-    return {**paths, "words": len(part.bit_words), "byte_words": len(part.byte_words)}
+    return {**paths, "words": len(part.bit_words), "byte_words": len(part.byte_words),
+            "program": program}

@@ -21,6 +21,8 @@ from bitbyte.asm import assemble
 from bitbyte.lang.config import Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SimError, SourceError, UsageError, format_error
+from bitbyte.lang.firstcheck import first_check_warnings
+from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import parse_clock_mhz, prepare_run
@@ -100,9 +102,17 @@ def _source_options(p: argparse.ArgumentParser) -> None:
                         "the source)")
 
 
+def _warnings(args, program) -> None:
+    """The first-check warning for IL sources (issue 19): on stderr, the run goes on."""
+    if source_language(args.program, args.lang) == "il":
+        for warning in first_check_warnings(program):
+            print(format_error(warning), file=sys.stderr)
+
+
 def cmd_asm(args) -> int:
     result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode,
                       lang=args.lang, mnemonics=args.mnemonics)
+    _warnings(args, result["program"])
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
             print(f"wrote {result[kind]}")
@@ -171,11 +181,12 @@ def cmd_run(args) -> int:
     if args.program.lower().endswith(".toml"):
         return cmd_run_plant(args)
 
-    _, columns, job, f = prepare_run(
+    program, columns, job, f = prepare_run(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
         channels=args.channels, lang=args.lang, mnemonics=args.mnemonics)
+    _warnings(args, program)
 
     if args.sim == "verilator":
         records, fault, stats = run_harness(job, columns, args.trace, args.waves)
