@@ -217,6 +217,48 @@ M3:     U     E 0.1
         SET
         =     A 0.5
         """,
+    # jump targets reached with /FC = 0 and /FC = 1: the /FC = 0 paths get SET before
+    # U/U( and CLR before O/X (S7 loads there, 1 AND x = 0 OR x = x)
+    "jump_fc_merge": """
+        U     E 0.0
+        SPB   M5
+        U     E 0.1
+        SPA   M1
+M5:     =     M 0.2
+        U     E 0.3
+        SPB   M1
+        =     A 0.0
+        SPA   M1
+M1:     U     E 0.2
+        =     A 0.1
+        U     E 0.3
+        SPB   M6
+        U     E 0.0
+        SPA   M2
+M6:     =     A 0.2
+M2:     O     E 0.0
+        X     E 0.1
+        =     A 0.3
+        U     E 0.2
+        SPBN  M7
+        U     E 0.1
+        SPA   M3
+M7:     =     M 0.0
+M3:     X(
+        U     E 0.1
+        O     E 0.3
+        )
+        =     A 0.4
+        U     E 0.1
+        SPB   M8
+        U     E 0.2
+        SPA   M4
+M8:     =     M 0.1
+M4:     UN(
+        U     E 0.0
+        )
+        =     A 0.5
+        """,
 }
 
 
@@ -336,8 +378,10 @@ ERRORS = [
     ("U     E 0.0\n=", 9, 1, "missing operand"),
     ("U     E 0.0 E 0.1", 8, 13, "extra operand"),
     ("U     E 0.0\nO\nNOT\n=     A 0.0", 10, 1, "unsupported: NOT after `O`"),
-    ("U     E 0.0\nSPB   M2\nU     E 0.1\nSPA   M1\nM2:   U     E 0.2\n=     A 0.0\n"
-     "M1:   O     E 0.3\n=     A 0.1", 14, 1,
+    ("U     E 0.0\nSPB   M1\nU     E 0.1\nSPA   M1\nM1:   O     E 0.3\n=     A 0.1",
+     12, 1, "unsupported: jump target `M1` is reached with /FC = 0 (from line 9) and "
+     "/FC = 1 (from line 11)"),
+    ("U     E 0.0\nSPA   M1\nM2:   =     A 0.0\nM1:   NOT\nSPA   M2", 11, 1,
      "unsupported: jump target `M1` is reached with /FC = 0"),
     ("U(\n=     A 0.0\n)", 9, 1, "unsupported: `=` right after `U(`"),
 ]

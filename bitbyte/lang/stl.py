@@ -422,7 +422,7 @@ class StlFrontEnd:
                     raise self.error(stmt.line, w.col, f"duplicate label `{w.text}` "
                                      f"(first defined at {first.line}:{first.col})")
                 self.label_defs[w.text.upper()] = stmt
-        assumed: dict[str, int] = {}
+        assumed: dict[str, tuple[int, str]] = {}
         for _ in range(4):
             program, edges = self.translate_once(assumed)
             wanted = self.check_edges(edges)
@@ -431,43 +431,67 @@ class StlFrontEnd:
             assumed = wanted
         return program          # pragma: no cover (states settle in two passes)
 
-    def check_edges(self, edges: dict[str, list[tuple[int, Stmt]]]) -> dict[str, int]:
-        """One /FC per label, or an unsupported error; returns the states."""
+    def check_edges(self, edges: dict[str, list[tuple[int, Stmt, str]]]
+                    ) -> dict[str, tuple[int, str]]:
+        """One /FC per label: (/FC, how paths with /FC = 0 are made /FC = 1: "" for
+        none, "SET" or "CLR"), or an unsupported error.
+
+        Where both states meet and the target starts with U/UN/U(/UN(, a path with
+        /FC = 0 sets the RLO to 1 before it arrives (1 AND x = x: the load S7 does
+        there); before O/ON/X/XN/O(/... it clears it (0 OR x = 0 XOR x = x).  A
+        conditional jump arrives with the RLO 1 (S7 and the IL agree), which suits the
+        first kind only."""
         states = {}
         for name, incoming in edges.items():
-            values = {ner for ner, _ in incoming}
+            values = {ner for ner, _, _ in incoming}
             target = self.label_defs[name]
-            if len(values) > 1 and target.canon not in FC_BLIND:
-                (a, sa), (b, sb) = next(((x, y) for x in incoming for y in incoming
-                                         if x[0] == 0 and y[0] == 1))
-                raise self.error(target.line, target.labels[0].col,
-                                 f"unsupported: jump target `{target.labels[0].text}` is "
-                                 f"reached with /FC = 0 (from line {sa.line}) and "
-                                 f"/FC = 1 (from line {sb.line}), and "
-                                 f"`{target.mnemonic.text}` depends on it")
-            states[name] = 0 if len(values) > 1 else values.pop()
+            if len(values) == 1:
+                states[name] = (values.pop(), "")
+                continue
+            if target.canon in FC_BLIND:
+                states[name] = (0, "")
+                continue
+            combine = target.canon in COMBINE and target.operands
+            if (combine or target.canon in OPEN) and target.canon.startswith("A"):
+                states[name] = (1, "SET")
+                continue
+            jc = [s for ner, s, kind in incoming if ner == 0 and kind == "JC"]
+            if (combine or target.canon in OPEN) and not jc:
+                states[name] = (1, "CLR")
+                continue
+            sa = jc[0] if jc else next(s for ner, s, _ in incoming if ner == 0)
+            sb = next(s for ner, s, _ in incoming if ner == 1)
+            raise self.error(target.line, target.labels[0].col,
+                             f"unsupported: jump target `{target.labels[0].text}` is "
+                             f"reached with /FC = 0 (from line {sa.line}) and "
+                             f"/FC = 1 (from line {sb.line}), and "
+                             f"`{target.mnemonic.text}` depends on it")
         return states
 
-    def translate_once(self, assumed: dict[str, int]):
+    def translate_once(self, assumed: dict[str, tuple[int, str]]):
         self.out: list[Instr] = []
         self.labels: dict[str, int] = {}
         self.pending: list[str] = []
-        edges: dict[str, list[tuple[int, Stmt]]] = {n: [] for n in self.label_defs}
+        self.assumed = assumed
+        edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
         for i, stmt in enumerate(self.stmts):
             self.stmt = stmt
-            if st.need_set and (stmt.labels or not self.overwrites_rlo(stmt, st)):
+            name = stmt.labels[0].text.upper() if stmt.labels else ""
+            ner, fix = assumed.get(name, (None, ""))
+            if fix and reachable and st.ner == 0:
+                self.emit(fix)              # this path arrives with /FC = 0
+            elif st.need_set and (stmt.labels or not self.overwrites_rlo(stmt, st)):
                 self.emit("SET")
             st.need_set = False
             if stmt.labels:
                 if st.parens or st.orm != "none":
                     raise self.unsupported(stmt, "a label inside parentheses or an "
                                            "AND-before-OR term", stmt.labels[0].col)
-                name = stmt.labels[0].text.upper()
                 if reachable:
-                    edges[name].append((st.ner, self.prev_stmt(i)))
-                st.ner = assumed.get(name, st.ner if reachable else 0)
+                    edges[name].append((st.ner, self.prev_stmt(i), "fall"))
+                st.ner = ner if ner is not None else (st.ner if reachable else 0)
                 for w in stmt.labels:
                     self.pending.append(w.text)
                 reachable = True    # (a label nobody jumps to counts as reached)
@@ -658,7 +682,10 @@ class StlFrontEnd:
                 raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` after `O` in an "
                                        "AND-before-OR string")
             if label != END_LABEL:
-                edges[label].append((st.ner, stmt))
+                edges[label].append((st.ner, stmt, "JU"))
+                fix = self.assumed.get(label, (0, ""))[1]
+                if fix and st.ner == 0:
+                    self.emit(fix)          # this path arrives with /FC = 0
             self.emit("JU", target)
             return False
         self.close_term(st)
@@ -668,7 +695,7 @@ class StlFrontEnd:
         st.ner = 0
         st.need_set = True                      # not taken: S7's RLO is 1
         if label != END_LABEL:
-            edges[label].append((0, stmt))
+            edges[label].append((0, stmt, "JC"))
         return True
 
 
