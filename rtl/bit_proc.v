@@ -422,7 +422,9 @@ module bit_proc #(
   // latched): the operand for the pin at 1 / 0 in execute. IR then: the edge
   // accumulator after this clock (a latch now clears it) or the pin rising from this
   // clock's value; IF: falling.
-  wire o_live  = (o_area == `AREA_PI) || (start_i && o_on_io);
+  // (not a byte instruction: its operand field is no bit operand, and a compare's
+  // zero field reads as I 0 in the latch clock — the live path would drop its RLO)
+  wire o_live  = !o_op[`OP_BYTE_BIT] && ((o_area == `AREA_PI) || (start_i && o_on_io));
   wire o_lacc  = !latching && ((o_area == `AREA_IR) ? o_rp_bit : o_fp_bit);
   wire o_ir_l  = start_i && (o_area == `AREA_IR);
   wire o_if_l  = start_i && (o_area == `AREA_IF);

@@ -57,6 +57,9 @@ CASES = [
     ("direct_input", "NOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
      "t_us,I0.0\n0.03,1\n", 1, ["10"]),
     ("end_mid_program", "SET\n= Q0.0\nEND\nCLR\n= Q0.0\n", "", 1, ["1"]),
+    # a byte compare as a scan's first instruction (its latch clock): ACCU1 = ACCU2 = 0
+    # at the scan start, so ==I gives RLO 1 (the live-pin path once dropped it)
+    ("compare_first", "==I\n= Q0.0\n", "", 1, ["1"]),
 ]
 
 
