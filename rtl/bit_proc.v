@@ -164,6 +164,9 @@ module bit_proc #(
   wire        prog_end   = prog_wdata_i[`ISA_OPCODE] == `OP_END;
   wire [31:0] prog_word  = {prog_wdata_i[31:24], prog_byte ? prog_wdata_i[23] : prog_end,
                             prog_wdata_i[22:0]};
+`ifdef FORMAL
+  (* anyconst *) reg [PcW-1:0] f_pa;  // the proof looks at the program word at f_pa
+`endif
   sync_ram #(.Words(ProgWords), .Width(32)) u_prog_ram (
     .clk_i  (clk_i),
     .we_i   (prog_we_i),
@@ -172,7 +175,11 @@ module bit_proc #(
     .re_i   (d_move),     // decode holds: the RAM keeps its word (no address mux)
     .raddr_i(fetch_addr),
     .rdata_o(d_instr),
+`ifdef FORMAL
+    .peek_addr_i(f_pa),
+`else
     .peek_addr_i({PcW{1'b0}}),
+`endif
     .peek_data_o(unused_prog_peek)
   );
   wire d_is_end = d_valid_q && d_instr[23] && !d_instr[24 + `OP_BYTE_BIT];
@@ -657,5 +664,405 @@ module bit_proc #(
     // verilator lint_off UNUSEDSIGNAL
   wire unused_bits = ^{e_instr_q, o_instr_q[23:17]};
   // verilator lint_on UNUSEDSIGNAL
+`ifdef FORMAL
+  // ================================================================ formal properties
+  // formal/bit_proc.sby (docs/verification.md): a reference model of the ISA
+  // (docs/isa.md) checks every retired instruction against the architectural state,
+  // by k-induction at small parameters. The environment below is the CPU's: the scan
+  // controller is modelled here, the input unit, the output unit and the T/C status
+  // buffer are the CPU's own modules; the program is any fixed program (the RAM's
+  // contents are free; it is not written while the proof runs); the byte side, the
+  // channels, the pins and END's hold are free inputs.
+`include "formal_past.vh"
+  reg f_rst_past = 1'b0;                // rst_ni was high in the last clock
+  always @(posedge clk_i) f_rst_past <= rst_ni;
+  wire f_ok = f_past_valid && f_rst_past && rst_ni;    // a clock with a past
+
+  // ---------------------------------------------------------------- the environment
+  // scan controller (scan_ctrl.v): a scan starts from idle (memories cleared) or at
+  // END; exec from the latch clock to END's clock; no watchdog
+  reg f_exec, f_latch;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_exec  <= 1'b0;
+      f_latch <= 1'b0;
+    end else begin
+      f_exec  <= start_i || (f_exec && !end_o);
+      f_latch <= start_i;
+    end
+  always @(*) begin
+    assume (exec_i == f_exec);
+    assume (latch_i == f_latch);
+    if (start_i) assume (f_exec ? end_o : mem_ready_o);
+    // the copy engine works between scans, on a cleared memory
+    if (copy_en_i) assume (!f_exec && !start_i && mem_ready_o);
+    assume (!prog_we_i);                  // the program is fixed (any program)
+  end
+
+  // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
+  // (its PIO register) and T/C status buffer (written by the byte side at any time)
+  wire [InBits-1:0]     f_pii, f_rise, f_fall, f_rpend, f_fpend;
+  wire [OutBits-1:0]    f_pio;
+  wire [StatusBits-1:0] f_tst, f_cst, f_tupd, f_cupd;
+  // verilator lint_off PINCONNECTEMPTY
+  input_unit #(.InBits(InBits)) f_in (
+    .clk_i(clk_i), .rst_ni(rst_ni), .pins_i(pins_i), .latch_i(latch_i || refresh_o),
+    .pii_o(f_pii), .rise_o(f_rise), .fall_o(f_fall),
+    .rise_pend_o(f_rpend), .fall_pend_o(f_fpend));
+  output_unit #(.OutBits(OutBits)) f_out (
+    .clk_i(clk_i), .rst_ni(rst_ni), .wr_en_i(out_wr_en_o), .wr_idx_i(out_wr_idx_o),
+    .wr_val_i(out_wr_val_o), .wr_direct_i(out_wr_direct_o), .update_i(end_o),
+    .fault_i(1'b0), .pio_o(f_pio), .pins_o());
+  tc_status #(.StatusBits(StatusBits)) f_tc (
+    .clk_i(clk_i), .rst_ni(rst_ni), .status_we_i(tc_we_i),
+    .status_is_counter_i(tc_is_counter_i), .status_idx_i(tc_idx_i),
+    .status_val_i(tc_val_i), .ctl_we_i(1'b0), .ctl_is_counter_i(1'b0),
+    .ctl_idx_i({$clog2(StatusBits){1'b0}}), .ctl_val_i(1'b0), .latch_i(latch_i),
+    .timer_status_o(f_tst), .counter_status_o(f_cst), .timer_enable_o(),
+    .counter_pulse_o(), .timer_updated_o(f_tupd), .counter_updated_o(f_cupd));
+  // verilator lint_on PINCONNECTEMPTY
+  always @(*) begin
+    assume (pii_i == f_pii && rise_i == f_rise && fall_i == f_fall);
+    assume (rise_pend_i == f_rpend && fall_pend_i == f_fpend);
+    assume (pio_i == f_pio);
+    assume (timer_status_i == f_tst && counter_status_i == f_cst);
+    assume (timer_updated_i == f_tupd && counter_updated_i == f_cupd);
+  end
+
+  // ---------------------------------------------------------------- the program
+  // Any fixed program: the RAM's contents are free; f_pw is its word at the anyconst
+  // address f_pa (its peek port). Every word is one the assembler can write: bit 23
+  // of a bit instruction marks END (bit_proc stores it so as the word is written), an
+  // operand's index is inside its area (the assembler rejects the others).
+  wire [31:0] f_pw = unused_prog_peek;
+  function automatic f_wellformed(input [31:0] w);
+    reg [3:0] a;
+    reg [11:0] i;
+    begin
+      a = w[`ISA_AREA];
+      i = w[`ISA_INDEX];
+      f_wellformed = 1'b1;
+      if (!w[24 + `OP_BYTE_BIT]) begin
+        if (w[23] != (w[`ISA_OPCODE] == `OP_END)) f_wellformed = 1'b0;
+        if ((w[`ISA_OPCODE] & 8'hE0) != 8'h20) begin   // not a jump: an operand
+          if ((a <= `AREA_IF) && i >= InBits) f_wellformed = 1'b0;
+          if ((a == `AREA_Q || a == `AREA_PQ) && i >= OutBits) f_wellformed = 1'b0;
+          if ((a == `AREA_M) && i >= MarkerBits) f_wellformed = 1'b0;
+          if ((a == `AREA_T || a == `AREA_C) && i >= StatusBits) f_wellformed = 1'b0;
+          if ((a == `AREA_FB) && i >= Channels) f_wellformed = 1'b0;
+        end
+      end
+    end
+  endfunction
+  // (every word decode sees is one of the RAM's: the assumption constrains the
+  // contents, it cannot make decode see a word the RAM does not hold)
+  always @(*) begin
+    assume (f_wellformed(f_pw));
+    if (d_valid_q) assume (f_wellformed(d_instr));
+  end
+
+  // ---------------------------------------------------------------- the reference
+  // Decoded from the instruction in execute, independently of the e_* flags.
+  wire [7:0]  f_op   = e_instr_q[`ISA_OPCODE];
+  wire [3:0]  f_area = e_instr_q[`ISA_AREA];
+  wire [11:0] f_idx  = e_instr_q[`ISA_INDEX];
+  wire f_isbyte  = f_op[`OP_BYTE_BIT];
+  wire f_islogic = (f_op & 8'hF8) == 8'h08;
+  wire f_isopen  = (f_op & 8'hF8) == 8'h10;
+  wire f_isclose = f_op == `OP_CLOSE;
+  wire f_isfp    = f_op == `OP_FP;
+  wire f_isfn    = f_op == `OP_FN;
+  wire f_isend   = f_op == `OP_END;
+  wire f_isref   = f_op == `OP_REFRESH;
+  wire f_isassign = f_op == `OP_ASSIGN;
+  wire f_isset   = f_op == `OP_SETBIT;
+  wire f_isrst   = f_op == `OP_RESETBIT;
+  wire f_uses_x  = f_islogic || f_isfp || f_isfn;   // reads its operand
+  wire f_on_m    = f_area == `AREA_M;
+  wire f_on_q    = (f_area == `AREA_Q) || (f_area == `AREA_PQ);
+  wire f_on_fb   = f_area == `AREA_FB;
+  wire f_on_tc   = (f_area == `AREA_T) || (f_area == `AREA_C);
+  wire f_taken   = e_go && ((f_op == `OP_JU) || (f_op == `OP_JC && rlo_o) ||
+                            (f_op == `OP_JCN && !rlo_o));
+  // a write of the target: =, S / R if RLO, FP / FN (the edge memory, the old RLO)
+  wire f_writes  = f_isassign || f_isfp || f_isfn || ((f_isset || f_isrst) && rlo_o);
+  wire f_wval    = f_isset ? 1'b1 : f_isrst ? 1'b0 : rlo_o;
+
+  // the marker at f_ma: its architectural value (every retired write, the copy port)
+  (* anyconst *) reg [MW-1:0] f_ma;
+  reg f_m;
+  wire f_mcl = !clearing || clear_addr_q[MW-1:0] > f_ma;   // f_ma is cleared
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) f_m <= 1'b0;             // the clear after reset writes 0
+    else if (copy_we && copy_addr_i == f_ma) f_m <= copy_wdata_i;
+    else if (e_done && f_writes && f_on_m && f_idx[MW-1:0] == f_ma) f_m <= f_wval;
+
+  // the operand as the ISA defines it in the clock the instruction completes in: the
+  // first instruction of a scan reads I/IR/IF as they are being latched; a marker
+  // other than f_ma is taken from the pipeline (f_ma, any address, checks it)
+  wire [$clog2(InBits)-1:0]     f_ii = f_idx[$clog2(InBits)-1:0];
+  wire [$clog2(OutBits)-1:0]    f_qi = f_idx[$clog2(OutBits)-1:0];
+  wire [$clog2(StatusBits)-1:0] f_ti = f_idx[$clog2(StatusBits)-1:0];
+  wire [ChW-1:0]                f_ci = f_idx[ChW-1:0];
+  wire f_m_hit = f_on_m && f_idx[MW-1:0] == f_ma;
+  reg  f_x;
+  always @(*) begin
+    case (f_area)
+      `AREA_I:  f_x = latch_i ? pins_i[f_ii] : f_pii[f_ii];
+      `AREA_PI: f_x = pins_i[f_ii];
+      `AREA_IR: f_x = latch_i ? f_rpend[f_ii] : f_rise[f_ii];
+      `AREA_IF: f_x = latch_i ? f_fpend[f_ii] : f_fall[f_ii];
+      `AREA_Q, `AREA_PQ: f_x = f_pio[f_qi];
+      `AREA_M:  f_x = f_m_hit ? f_m : m_opnd;
+      `AREA_T:  f_x = f_tst[f_ti];
+      `AREA_C:  f_x = f_cst[f_ti];
+      `AREA_FB: f_x = fbi_rd_data_i[f_ci];
+      default:  f_x = 1'b0;
+    endcase
+  end
+  // RLO := RLO f (x xor n) and the other updates (docs/isa.md, opcode table)
+  function automatic f_comb(input [1:0] f, input acc, input x);
+    f_comb = (f == 2'b00) ? x : (f == 2'b01) ? (acc & x) : (f == 2'b10) ? (acc | x) : (acc ^ x);
+  endfunction
+  reg f_rlo_nx;
+  always @(*) begin
+    f_rlo_nx = rlo_o;
+    if (f_isbyte)                f_rlo_nx = byte_rlo_we_i ? byte_rlo_i : rlo_o;
+    else if (f_islogic)          f_rlo_nx = f_comb(f_op[2:1], rlo_o, f_x ^ f_op[0]);
+    else if (f_isclose)          f_rlo_nx = f_comb(stack_op_q[2:1], stack_rlo_q[0],
+                                                   rlo_o ^ stack_op_q[0]);
+    else if (f_isfp)             f_rlo_nx = rlo_o && !f_x;
+    else if (f_isfn)             f_rlo_nx = !rlo_o && f_x;
+    else if (f_op == `OP_NOT)    f_rlo_nx = !rlo_o;
+    else if (f_op == `OP_SET)    f_rlo_nx = 1'b1;
+    else if (f_op == `OP_CLR || f_isend) f_rlo_nx = 1'b0;
+  end
+  // when the instruction must wait (docs/isa.md; spec §5): a channel not ready, a T/C
+  // read marked "after the update" before the update (none counts in the latch
+  // clock), a byte instruction until DONE, END while the byte side holds it
+  wire f_fbwr = f_on_fb && (f_isassign || ((f_isset || f_isrst) && rlo_o));
+  wire f_upd  = !latch_i && ((f_area == `AREA_C) ? f_cupd[f_ti] : f_tupd[f_ti]);
+  wire f_wait = (f_on_fb && f_islogic && !fbi_rd_ready_i[f_ci]) ||
+                (f_fbwr && !fby_wr_ready_i[f_ci]) ||
+                (f_islogic && f_on_tc && e_instr_q[`ISA_WAIT_UPDATE] && !f_upd) ||
+                (f_isbyte && !byte_done_i) || (f_isend && end_hold_i);
+
+  // the next instruction to retire (program order: taken jumps, END -> address 0) and
+  // the squash of a taken jump (the two instructions behind it)
+  reg [PcW-1:0] f_npc;
+  reg [1:0]     f_squash;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_npc    <= {PcW{1'b0}};
+      f_squash <= 2'd0;
+    end else begin
+      if (e_done) f_npc <= f_taken ? e_target : f_isend ? {PcW{1'b0}} : e_pc_q + 1'b1;
+      if (e_done && f_taken) f_squash <= 2'd2;
+      else if (f_squash != 2'd0) f_squash <= f_squash - 1'b1;
+    end
+
+  // ---------------------------------------------------------------- properties
+  // (5, and the ISA) the instruction in execute is the program's word at its address,
+  // the operand it reads is the architectural value (every write of the instructions
+  // ahead of it included), the RLO, the stack and the targets follow the ISA
+  always @(*) if (rst_ni) begin
+    if (e_valid_q && e_pc_q == f_pa) assert (e_instr_q == f_pw);
+    if (e_go && f_m_hit && (f_islogic || f_isfp || f_isfn)) assert (m_opnd == f_m);
+    if (e_go && !f_isbyte) assert (rlo_d == f_rlo_nx);
+    if (e_done && f_isbyte) assert (rlo_d == f_rlo_nx);
+    // targets: only at retirement
+    assert (m_target_we == (e_done && f_writes && f_on_m && !f_isbyte));
+    if (m_target_we) assert (m_waddr == f_idx[MW-1:0] && m_wdata == f_wval);
+    assert (out_wr_en_o == (e_done && f_writes && f_on_q && !f_isbyte));
+    if (out_wr_en_o) assert (out_wr_idx_o == f_qi && out_wr_val_o == f_wval &&
+                             out_wr_direct_o == (f_area == `AREA_PQ));
+    assert (fby_wr_req_o == ((e_go && f_fbwr && !f_isbyte) ?
+                             ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    if (f_fbwr) assert (fby_wr_data_o == f_wval);
+    assert (fbi_rd_req_o == ((e_go && f_on_fb && f_islogic) ?
+                             ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    assert (end_o == (e_done && f_isend));
+    assert (refresh_o == (e_done && f_isref));
+    assert (byte_req_o == (e_go && f_isbyte));
+    if (byte_req_o) assert (byte_instr_o == e_instr_q);
+    assert (stall_o == (e_go && f_wait && !f_isbyte));   // a byte instruction's clocks are no stall
+    // (1, 2) the instruction waits exactly when the ISA says so
+    if (e_go) assert (e_stall == f_wait);
+    // the marker RAM holds the architectural value (once cleared)
+    if (f_mcl) assert (m_peek_o == f_m);
+    if (clearing) assert (!f_exec && f_m == 1'b0);
+  end
+  always @(*) assume (m_peek_addr_i == f_ma);   // the peek port looks at f_ma
+
+  // (2) the architectural state changes only when an instruction retires: a stalled
+  // (or idle) clock leaves the RLO, the stack and the pipeline as they are
+  always @(posedge clk_i) if (f_ok) begin
+    if ($past(e_done)) begin
+      assert (rlo_o == $past(f_rlo_nx));
+      if ($past(f_isend))
+        assert (sp_q == 0 && stack_rlo_q == $past(stack_rlo_q) && stack_op_q == $past(stack_op_q));
+      else if ($past(f_isopen) && $past(sp_q) != NestDepth)
+        assert (sp_q == $past(sp_q) + 1'b1 && stack_rlo_q[0] == $past(rlo_o) &&
+                stack_op_q[2:0] == $past(f_op[2:0]) &&
+                stack_rlo_q[NestDepth-1:1] == $past(stack_rlo_q[NestDepth-2:0]) &&
+                stack_op_q[NestDepth*3-1:3] == $past(stack_op_q[NestDepth*3-4:0]));
+      else if ($past(f_isclose) && $past(sp_q) != 0)
+        assert (sp_q == $past(sp_q) - 1'b1 &&
+                stack_rlo_q[NestDepth-2:0] == $past(stack_rlo_q[NestDepth-1:1]) &&
+                stack_op_q[NestDepth*3-4:0] == $past(stack_op_q[NestDepth*3-1:3]));
+      else
+        assert (sp_q == $past(sp_q) && stack_rlo_q == $past(stack_rlo_q) &&
+                stack_op_q == $past(stack_op_q));
+    end else begin
+      assert (rlo_o == $past(rlo_o) && sp_q == $past(sp_q));
+      assert (stack_rlo_q == $past(stack_rlo_q) && stack_op_q == $past(stack_op_q));
+    end
+    // a stalled instruction stays in execute, the instructions behind it stay put
+    if ($past(e_go && e_stall))
+      assert (e_valid_q && e_pc_q == $past(e_pc_q) && e_instr_q == $past(e_instr_q) &&
+              o_valid_q == $past(o_valid_q) && o_pc_q == $past(o_pc_q) &&
+              d_valid_q == $past(d_valid_q) && d_pc_q == $past(d_pc_q));
+  end
+  // the copy port reads the marker it addressed in the last clock
+  always @(posedge clk_i) if (f_ok && $past(copy_en_i && copy_addr_i == f_ma && !copy_we_i))
+    assert (copy_rdata_o == f_m);
+  always @(*) if (rst_ni && e_stall)
+    assert (!m_target_we && !out_wr_en_o && !end_o && !refresh_o && !jump_taken);
+
+  // (1, 3) program order, one instruction per clock: in a scan every clock executes
+  // one (the next in program order) except the two clocks after a taken jump, whose
+  // instructions (fetched behind it: in operand and decode) are squashed
+  always @(*) if (rst_ni) begin
+    if (e_valid_q) assert (e_pc_q == f_npc && f_exec);
+    if (f_exec && f_squash == 2'd0) assert (e_valid_q);
+    if (f_squash != 2'd0) assert (f_exec && !e_valid_q);
+    if (jump_taken) assert (f_taken && (!o_valid_q || o_pc_q == e_pc_q + 1'b1));
+    if (f_squash == 2'd1) assert (!o_valid_q || o_pc_q == f_npc);
+    if (f_squash == 2'd2) assert (!o_valid_q && d_valid_q && d_pc_q == f_npc);
+  end
+  // (4) END hands over to the next scan: its first instruction (address 0) executes in
+  // the latch clock, with RLO = 0 and an empty stack
+  always @(*) if (rst_ni && latch_i)
+    assert (e_valid_q && e_pc_q == 0 && rlo_o == 1'b0 && sp_q == 0);
+
+
+  // ---------------------------------------------------------------- covers
+  // (the properties are not vacuous: each situation they speak of is reachable)
+  reg [2:0] f_mw_hist, f_qw_hist, f_done_hist;  // retired: a write of f_ma / of Q, any
+  reg [2:0] f_stall_hist;
+  reg       f_jumped, f_ended;
+  wire      f_qw_hit = out_wr_en_o && out_wr_idx_o == f_qi && f_on_q;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      {f_mw_hist, f_qw_hist, f_done_hist, f_stall_hist} <= 12'd0;
+      {f_jumped, f_ended} <= 2'b00;
+    end else begin
+      f_mw_hist    <= {f_mw_hist[1:0], e_done && f_writes && f_m_hit};
+      f_qw_hist    <= {f_qw_hist[1:0], out_wr_en_o};
+      f_done_hist  <= {f_done_hist[1:0], e_done};
+      f_stall_hist <= {f_stall_hist[1:0], e_go && e_stall};
+      f_jumped     <= jump_taken;
+      f_ended      <= end_o && start_i;
+    end
+  wire f_rd_m = e_done && f_m_hit && f_uses_x;
+  wire f_rd_q = e_done && f_on_q && f_uses_x;
+  always @(posedge clk_i) if (rst_ni) begin
+    // straight-line code: four instructions retire in four consecutive clocks
+    cover (e_done && f_done_hist == 3'b111 && !f_jumped);
+    // a marker written by the instruction 1, 2, 3 ahead of the one reading it
+    cover (f_rd_m && f_mw_hist[0] && f_islogic);
+    cover (f_rd_m && f_mw_hist[0] && f_isfp);    // an FP on the edge memory just written
+    cover (f_rd_m && f_mw_hist[1] && !f_mw_hist[0]);
+    cover (f_rd_m && f_mw_hist[2] && f_mw_hist[1:0] == 2'b00);
+    // = Q / = PQ read back by the next instruction
+    cover (f_rd_q && f_qw_hist[0] && $past(out_wr_idx_o) == f_qi && f_area == `AREA_Q);
+    cover (f_rd_q && f_qw_hist[0] && $past(out_wr_idx_o) == f_qi && f_area == `AREA_PQ);
+    // a stall of two clocks, then the instruction retires (T after the update, FBI)
+    cover (e_done && f_stall_hist[1:0] == 2'b11 && f_on_tc && f_islogic);
+    cover (e_done && f_stall_hist[1:0] == 2'b11 && f_on_fb && f_islogic);
+    cover (e_done && f_stall_hist[0] && f_isbyte && byte_rlo_we_i);
+    cover (e_done && f_stall_hist[0] && f_fbwr);
+    // a taken jump: two clocks squashed, the target retires in the third
+    cover (e_done && f_done_hist == 3'b100 && $past(f_squash, 2) == 2'd2 && f_uses_x);
+    cover (e_done && f_taken && $past(f_squash, 2) == 2'd2);  // the target jumps again
+    // END, and the next scan's first instruction retires in the latch clock
+    cover (f_ended && e_done && latch_i && f_on_m);
+    cover (e_done && latch_i && f_area == `AREA_IR && f_x);
+    // REFRESH, then an I read of the new image; a copy-port write read by a scan
+    cover (e_done && f_isref && f_x);
+    cover (e_done && latch_i && f_rd_m && $past(copy_we, 2));
+  end
+
+  // ---------------------------------------------------------------- invariants
+  function automatic [SelW-1:0] d_sel_of(input [31:0] w);
+    d_sel_of = ((w[`ISA_INDEX] >> $clog2(SelW)) == 12'd0)
+        ? ({{(SelW-1){1'b0}}, 1'b1} << w[$clog2(SelW)-1:0]) : {SelW{1'b0}};
+  endfunction
+  function automatic [5:0] d_asel_of(input [31:0] w);
+    reg [3:0] a;
+    begin
+      a = w[`ISA_AREA];
+      d_asel_of = {a == `AREA_C, a == `AREA_T, (a == `AREA_Q) || (a == `AREA_PQ),
+                   a == `AREA_IF, a == `AREA_IR, a == `AREA_I};
+    end
+  endfunction
+  // (for the induction) the stages hold consecutive words of the program, decoded
+  wire [PcW-1:0] f_e_succ = e_end_q ? {PcW{1'b0}} : e_pc_q + 1'b1;
+  wire [PcW-1:0] f_o_succ = (o_op == `OP_END) ? {PcW{1'b0}} : o_pc_q + 1'b1;
+  always @(*) if (rst_ni) begin
+    if (d_valid_q && d_pc_q == f_pa) assert (d_instr == f_pw);
+    if (o_valid_q && o_pc_q == f_pa) assert (o_instr_q == f_pw);
+    if (o_valid_q) assert (f_wellformed(o_instr_q));
+    if (e_valid_q) assert (f_wellformed(e_instr_q));
+    if (o_valid_q && d_valid_q) assert (d_pc_q == f_o_succ);
+    if (o_valid_q && e_valid_q) assert (o_pc_q == f_e_succ);
+    if (o_valid_q && !e_valid_q && f_squash == 2'd0) assert (o_pc_q == f_npc);
+    if (!f_exec && mem_ready_o) assert (o_valid_q && d_valid_q);
+    // between scans: the next scan starts at 0 with RLO = 0 and an empty stack
+    if (!f_exec) assert (!e_valid_q && f_npc == 0 && rlo_o == 1'b0 && sp_q == 0 &&
+                         f_squash == 2'd0 && !latch_i);
+    if (o_valid_q) assert (o_sel_q == d_sel_of(o_instr_q) && o_asel_q == d_asel_of(o_instr_q));
+  end
+  // the e_* flags are the decode of e_instr_q; the registered operand is the image's
+  // bit as of now
+  wire f_live = !f_isbyte && ((f_area == `AREA_PI) ||
+                (latch_i && (f_area == `AREA_I || f_area == `AREA_IR || f_area == `AREA_IF)));
+  always @(*) if (rst_ni && e_valid_q) begin
+    assert (e_logic_q == f_islogic && e_open_q == f_isopen && e_close_q == f_isclose);
+    assert (e_fp_q == f_isfp && e_fn_q == f_isfn && e_edge_q == (f_isfp || f_isfn));
+    assert (e_not_q == (f_op == `OP_NOT) && e_set_q == (f_op == `OP_SET) &&
+            e_clr_q == (f_op == `OP_CLR));
+    assert (e_assign_q == f_isassign && e_setbit_q == f_isset && e_rstbit_q == f_isrst);
+    assert (e_byte_q == f_isbyte && e_end_q == f_isend && e_refresh_q == f_isref);
+    assert (e_ju_q == (f_op == `OP_JU) && e_jc_q == (f_op == `OP_JC) &&
+            e_jcn_q == (f_op == `OP_JCN));
+    assert (e_on_m_q == f_on_m && e_on_q_q == f_on_q && e_on_pq_q == (f_area == `AREA_PQ));
+    assert (e_on_fb_q == f_on_fb && e_on_tc_q == f_on_tc && e_src_m_q == f_on_m &&
+            e_src_fb_q == f_on_fb);
+    assert (e_tcw_q == (f_islogic && f_on_tc && e_instr_q[`ISA_WAIT_UPDATE]));
+    assert (e_chan_q == ((f_idx[11:ChW] == 0) ?
+                         ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    // (the operand fields of the instructions without an operand are don't-cares)
+    if (f_uses_x) begin
+      assert (e_src_live_q == f_live);
+      assert (e_pinsel_q == (f_live ? d_sel_of(e_instr_q) : {SelW{1'b0}}));
+      if (!f_live && !f_on_m && !f_on_fb) assert (e_opnd_q == f_x);
+    end
+    if (f_isbyte) assert (!e_src_live_q && e_pinsel_q == {SelW{1'b0}});
+    if (e_tcw_q) assert (e_upd_q == f_upd);
+  end
+  // the marker forwarding: the instruction in operand has f_ma's value (the RAM word
+  // read as it entered operand, or a write since)
+  reg [MW-1:0] f_mraddr;
+  always @(posedge clk_i) f_mraddr <= m_raddr;
+  always @(*) if (rst_ni && f_mcl && o_valid_q && o_area == `AREA_M && o_mi == f_ma) begin
+    if (!o_first_q) assert ((o_mfwd_q ? o_mfwd_val_q : m_hold_q) == f_m);
+    else begin
+      assert (f_mraddr == f_ma);
+      if (lw_we_q && lw_addr_q == f_ma) assert (lw_val_q == f_m);
+      else                              assert (m_rdata == f_m);
+    end
+  end
+`endif
 endmodule
 `default_nettype wire

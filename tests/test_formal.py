@@ -1,5 +1,5 @@
-"""Formal proofs (SymbiYosys, k-induction) of the exchange circuits, as `make formal`
-runs them; and a mutation check: a deliberately broken circuit must fail its proof,
+"""Formal proofs (SymbiYosys, k-induction) of the exchange circuits, the byte bus, the
+semaphore, the core sequencer and the bit processor's pipeline, as `make formal` runs them; and a mutation check: a deliberately broken circuit must fail its proof,
 or the proof would be proving nothing."""
 from __future__ import annotations
 
@@ -60,6 +60,41 @@ MUTATIONS = [
      "assign release_o  = lock_wanted && copying && !list_empty;"),  # frees mid-copy
     ("core_seq", "core_seq.v", "StPostLock: if (grant_i) state_q <= StPostCopy;",
      "StPostLock: if (grant_i || give_up) state_q <= StPostCopy;"),  # postcycle gives up
+    # bit_proc (issue 20 item 5): the pipeline against the ISA reference model
+    ("bit_proc", "bit_proc.v", "wire          m_hit_now  = m_we && (m_waddr == o_mi);",
+     "wire          m_hit_now  = (m_we && !m_target_we) && (m_waddr == o_mi);"),
+                                                            # = M not forwarded (5)
+    ("bit_proc", "bit_proc.v",
+     "wire          m_hit_base = o_first_q ? (lw_we_q && (lw_addr_q == o_mi)) : o_mfwd_q;",
+     "wire          m_hit_base = o_first_q ? 1'b0 : o_mfwd_q;"),  # write at the read's edge lost (5)
+    ("bit_proc", "bit_proc.v", "wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);",
+     "wire q_fwd = 1'b0;"),                                # = Q read back stale (5)
+    ("bit_proc", "bit_proc.v",
+     "wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);",
+     "wire tc_fwd = 1'b0;"),                               # a T/C status write missed (5)
+    ("bit_proc", "bit_proc.v", "if (e_tc_fwd) e_opnd_q <= tc_val_i;",
+     "if (1'b0) e_opnd_q <= tc_val_i;"),                   # a held T read misses the update (5)
+    ("bit_proc", "bit_proc.v", "wire latching  = latch_i || refresh_o;",
+     "wire latching  = latch_i;"),                         # I after REFRESH stale (5)
+    ("bit_proc", "bit_proc.v", "end else if (e_done) begin\n      rlo_o <= rlo_d;",
+     "end else if (e_go) begin\n      rlo_o <= rlo_d;"),  # a stalled instruction sets the RLO (2)
+    ("bit_proc", "bit_proc.v", "if (!e_stall) e_valid_q <= 1'b0;",
+     "e_valid_q <= 1'b0;"),                                # a stalled instruction is dropped (2)
+    ("bit_proc", "bit_proc.v", ".re_i   (d_move),", ".re_i   (1'b1),"),
+                                                            # decode loses its word in a stall (2)
+    ("bit_proc", "bit_proc.v", "wire e_load = start_i || (exec_i && !e_stall && !end_o);",
+     "wire e_load = start_i || (exec_i && !e_stall && !end_o && !e_byte_q);"),
+                                                            # a bubble after a byte instruction (1)
+    ("bit_proc", "bit_proc.v", "o_valid_q <= d_valid_q && !jump_taken;",
+     "o_valid_q <= d_valid_q;"),                           # a taken jump squashes too little (3)
+    ("bit_proc", "bit_proc.v", "e_valid_q   <= o_valid_q && !jump_taken;",
+     "e_valid_q   <= o_valid_q && !jump_taken && !o_first_q;"),  # ... or too much (3)
+    ("bit_proc", "bit_proc.v", "else if (d_is_end)   fetch_addr = {PcW{1'b0}};",
+     "else if (1'b0)       fetch_addr = {PcW{1'b0}};"),     # END hands over to address 1.. (4)
+    ("bit_proc", "bit_proc.v", "end else if (e_clr_q || e_end_q) begin",
+     "end else if (e_clr_q) begin"),                       # the next scan inherits the RLO (4)
+    ("bit_proc", "bit_proc.v", "sp_q <= {SpW{1'b0}};              // ... and with an empty stack",
+     "sp_q <= sp_q;"),                                     # ... or the stack (4)
 ]
 
 
@@ -72,7 +107,14 @@ def test_mutation_is_caught(name, rtl, original, mutated, tmp_path):
     text = source.read_text()
     assert original in text, "the mutation no longer applies: update MUTATIONS"
     source.write_text(text.replace(original, mutated))
-    proc = sby(work / f"{name}.sby", tmp_path)
+    sby_file = work / f"{name}.sby"
+    if "\nbmc\n" in sby_file.read_text():
+        # a .sby with a bmc task (bit_proc): the mutant must have a real counterexample
+        # from reset, not only break the induction step
+        proc = sby(sby_file, tmp_path, "bmc")
+        assert proc.returncode != 0 and "DONE (FAIL" in proc.stdout, proc.stdout[-2000:]
+        return
+    proc = sby(sby_file, tmp_path)
     assert proc.returncode != 0 and "FAIL" in proc.stdout, proc.stdout[-2000:]
 
 
