@@ -670,9 +670,9 @@ module bit_proc #(
   // (docs/isa.md) checks every retired instruction against the architectural state,
   // by k-induction at small parameters. The environment below is the CPU's: the scan
   // controller is modelled here, the input unit, the output unit and the T/C status
-  // buffer are the CPU's own modules; the program is any fixed program (the RAM's
-  // contents are free; it is not written while the proof runs); the byte side, the
-  // channels, the pins and END's hold are free inputs.
+  // buffer are the CPU's own modules; the program is any program (the RAM's contents
+  // are free, image words may be written under reset); the byte side, the channels,
+  // the pins and END's hold are free inputs.
 `include "formal_past.vh"
   reg f_rst_past = 1'b0;                // rst_ni was high in the last clock
   always @(posedge clk_i) f_rst_past <= rst_ni;
@@ -696,7 +696,8 @@ module bit_proc #(
     if (start_i) assume (f_exec ? end_o : mem_ready_o);
     // the copy engine works between scans, on a cleared memory
     if (copy_en_i) assume (!f_exec && !start_i && mem_ready_o);
-    assume (!prog_we_i);                  // the program is fixed (any program)
+    // the program is loaded under reset (docs/isa.md), words of the assembler's image
+    if (prog_we_i) assume (!rst_ni && f_image_word(prog_wdata_i));
   end
 
   // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
@@ -730,36 +731,53 @@ module bit_proc #(
   end
 
   // ---------------------------------------------------------------- the program
-  // Any fixed program: the RAM's contents are free; f_pw is its word at the anyconst
-  // address f_pa (its peek port). Every word is one the assembler can write: bit 23
-  // of a bit instruction marks END (bit_proc stores it so as the word is written), an
-  // operand's index is inside its area (the assembler rejects the others).
+  // Any program: the RAM's contents are free, words may be written under reset;
+  // f_pw is the word at the anyconst address f_pa (the RAM's peek port). A word of the
+  // assembler's image has bit 23 = 0 in a bit instruction and its operand index
+  // inside its area (the assembler rejects the others); stored, bit 23 of a bit
+  // instruction marks END (f_wellformed), for the words never written it is assumed.
   wire [31:0] f_pw = unused_prog_peek;
-  function automatic f_wellformed(input [31:0] w);
+  function automatic f_in_range(input [31:0] w);
     reg [3:0] a;
     reg [11:0] i;
     begin
       a = w[`ISA_AREA];
       i = w[`ISA_INDEX];
-      f_wellformed = 1'b1;
-      if (!w[24 + `OP_BYTE_BIT]) begin
-        if (w[23] != (w[`ISA_OPCODE] == `OP_END)) f_wellformed = 1'b0;
-        if ((w[`ISA_OPCODE] & 8'hE0) != 8'h20) begin   // not a jump: an operand
-          if ((a <= `AREA_IF) && i >= InBits) f_wellformed = 1'b0;
-          if ((a == `AREA_Q || a == `AREA_PQ) && i >= OutBits) f_wellformed = 1'b0;
-          if ((a == `AREA_M) && i >= MarkerBits) f_wellformed = 1'b0;
-          if ((a == `AREA_T || a == `AREA_C) && i >= StatusBits) f_wellformed = 1'b0;
-          if ((a == `AREA_FB) && i >= Channels) f_wellformed = 1'b0;
-        end
+      f_in_range = 1'b1;
+      if (!w[24 + `OP_BYTE_BIT] && (w[`ISA_OPCODE] & 8'hE0) != 8'h20) begin  // an operand
+        if ((a <= `AREA_IF) && i >= InBits) f_in_range = 1'b0;
+        if ((a == `AREA_Q || a == `AREA_PQ) && i >= OutBits) f_in_range = 1'b0;
+        if ((a == `AREA_M) && i >= MarkerBits) f_in_range = 1'b0;
+        if ((a == `AREA_T || a == `AREA_C) && i >= StatusBits) f_in_range = 1'b0;
+        if ((a == `AREA_FB) && i >= Channels) f_in_range = 1'b0;
       end
     end
   endfunction
-  // (every word decode sees is one of the RAM's: the assumption constrains the
-  // contents, it cannot make decode see a word the RAM does not hold)
+  function automatic f_image_word(input [31:0] w);
+    f_image_word = f_in_range(w) && (w[24 + `OP_BYTE_BIT] || !w[23]);
+  endfunction
+  function automatic f_wellformed(input [31:0] w);
+    f_wellformed = f_in_range(w) &&
+                   (w[24 + `OP_BYTE_BIT] || w[23] == (w[`ISA_OPCODE] == `OP_END));
+  endfunction
+  // the image word last written to f_pa
+  reg        f_pa_written = 1'b0;
+  reg [31:0] f_pimg;
+  always @(posedge clk_i)
+    if (prog_we_i && prog_waddr_i == f_pa) begin
+      f_pa_written <= 1'b1;
+      f_pimg       <= prog_wdata_i;
+    end
   always @(*) begin
-    assume (f_wellformed(f_pw));
+    if (!f_pa_written) assume (f_wellformed(f_pw));
+    // (every word decode sees is one of the RAM's: this constrains the contents, it
+    // cannot make decode see a word the RAM does not hold)
     if (d_valid_q) assume (f_wellformed(d_instr));
   end
+  // the stored word is the image's, END marked in bit 23 as it is written
+  always @(*) if (f_pa_written)
+    assert (f_wellformed(f_pw) && f_pw[31:24] == f_pimg[31:24] && f_pw[22:0] == f_pimg[22:0] &&
+            (!f_pimg[24 + `OP_BYTE_BIT] || f_pw[23] == f_pimg[23]));
 
   // ---------------------------------------------------------------- the reference
   // Decoded from the instruction in execute, independently of the e_* flags.
@@ -991,6 +1009,9 @@ module bit_proc #(
     // REFRESH, then an I read of the new image; a copy-port write read by a scan
     cover (e_done && f_isref && f_x);
     cover (e_done && latch_i && f_rd_m && $past(copy_we, 2));
+    // a word loaded under reset executes: END (marked as it was written), a jump
+    cover (e_done && f_pa_written && e_pc_q == f_pa && f_isend && e_pc_q != 0);
+    cover (e_done && f_pa_written && e_pc_q == f_pa && f_taken);
   end
 
   // ---------------------------------------------------------------- invariants

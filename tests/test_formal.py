@@ -104,6 +104,8 @@ MUTATIONS = [
      "end else if (e_clr_q) begin"),                       # the next scan inherits the RLO (4)
     ("bit_proc", "bit_proc.v", "sp_q <= {SpW{1'b0}};              // ... and with an empty stack",
      "sp_q <= sp_q;"),                                     # ... or the stack (4)
+    ("bit_proc", "bit_proc.v", "wire        prog_end   = prog_wdata_i[`ISA_OPCODE] == `OP_END;",
+     "wire        prog_end   = 1'b0;"),                     # END not marked as it is loaded (4)
 ]
 
 
