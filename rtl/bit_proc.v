@@ -671,8 +671,8 @@ module bit_proc #(
   // by k-induction at small parameters. The environment below is the CPU's: the scan
   // controller is modelled here, the input unit, the output unit and the T/C status
   // buffer are the CPU's own modules; the program is any program (the RAM's contents
-  // are free, image words may be written under reset); the byte side, the channels,
-  // the pins and END's hold are free inputs.
+  // are free, image words may be written under reset or while stopped); the byte
+  // side, the channels, the pins and END's hold are free inputs.
 `include "formal_past.vh"
   reg f_rst_past = 1'b0;                // rst_ni was high in the last clock
   always @(posedge clk_i) f_rst_past <= rst_ni;
@@ -693,11 +693,13 @@ module bit_proc #(
   always @(*) begin
     assume (exec_i == f_exec);
     assume (latch_i == f_latch);
-    if (start_i) assume (f_exec ? end_o : mem_ready_o);
+    if (start_i) assume (f_exec ? end_o : (mem_ready_o && f_since_wr >= 2'd2));
     // the copy engine works between scans, on a cleared memory
     if (copy_en_i) assume (!f_exec && !start_i && mem_ready_o);
-    // the program is loaded under reset (docs/isa.md), words of the assembler's image
-    if (prog_we_i) assume (!rst_ni && f_image_word(prog_wdata_i));
+    // the program is loaded under reset or while stopped (docs/isa.md), words of the
+    // assembler's image; after a write while stopped, the refill (f_since_wr)
+    if (prog_we_i) assume ((!rst_ni || (!f_exec && !start_i)) && f_image_word(prog_wdata_i));
+    if (copy_en_i) assume (f_since_wr >= 2'd2);
   end
 
   // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
@@ -731,7 +733,8 @@ module bit_proc #(
   end
 
   // ---------------------------------------------------------------- the program
-  // Any program: the RAM's contents are free, words may be written under reset;
+  // Any program: the RAM's contents are free, words may be written under reset or
+  // while stopped;
   // f_pw is the word at the anyconst address f_pa (the RAM's peek port). A word of the
   // assembler's image has bit 23 = 0 in a bit instruction and its operand index
   // inside its area (the assembler rejects the others); stored, bit 23 of a bit
@@ -760,6 +763,12 @@ module bit_proc #(
     f_wellformed = f_in_range(w) &&
                    (w[24 + `OP_BYTE_BIT] || w[23] == (w[`ISA_OPCODE] == `OP_END));
   endfunction
+  // clocks since a program write while stopped (saturating): the pipeline refills
+  // from address 0 in two, a scan may start (and the copy port work) from the third
+  reg [1:0] f_since_wr = 2'd0;
+  always @(posedge clk_i)
+    if (prog_we_i && rst_ni)    f_since_wr <= 2'd0;
+    else if (f_since_wr != 2'd3) f_since_wr <= f_since_wr + 1'b1;
   // the image word last written to f_pa
   reg        f_pa_written = 1'b0;
   reg [31:0] f_pimg;
@@ -1009,6 +1018,8 @@ module bit_proc #(
     // REFRESH, then an I read of the new image; a copy-port write read by a scan
     cover (e_done && f_isref && f_x);
     cover (e_done && latch_i && f_rd_m && $past(copy_we, 2));
+    // a scan starting as early as it may after a program write while stopped
+    cover (e_done && latch_i && $past(f_since_wr) == 2'd2 && $past(prog_we_i, 4) && $past(rst_ni, 4));
     // a word loaded under reset executes: END (marked as it was written), a jump
     cover (e_done && f_pa_written && e_pc_q == f_pa && f_isend && e_pc_q != 0);
     cover (e_done && f_pa_written && e_pc_q == f_pa && f_taken);
@@ -1038,7 +1049,7 @@ module bit_proc #(
     if (o_valid_q && d_valid_q) assert (d_pc_q == f_o_succ);
     if (o_valid_q && e_valid_q) assert (o_pc_q == f_e_succ);
     if (o_valid_q && !e_valid_q && f_squash == 2'd0) assert (o_pc_q == f_npc);
-    if (!f_exec && mem_ready_o) assert (o_valid_q && d_valid_q);
+    if (!f_exec && mem_ready_o && f_since_wr >= 2'd2) assert (o_valid_q && d_valid_q);
     // between scans: the next scan starts at 0 with RLO = 0 and an empty stack
     if (!f_exec) assert (!e_valid_q && f_npc == 0 && rlo_o == 1'b0 && sp_q == 0 &&
                          f_squash == 2'd0 && !latch_i);
