@@ -268,7 +268,8 @@ module bit_proc #(
   wire tc_wait    = e_act && e_tcw_q && !e_upd_q;
   // execute keeps its instruction (registers only: no answer of the byte side)
   wire e_hold     = end_wait || tc_wait || e_blocked;
-  wire e_done     = e_act && !to_slot && !end_wait && !tc_wait;  // it takes effect
+  wire e_wait     = to_slot || end_wait || tc_wait;   // the acting instruction waits
+  wire e_done     = e_act && !e_wait;                  // ... or takes effect
 
   // The wait slot: loaded from execute (whenever it is free, so that only w_busy_q
   // depends on the wait), done in the clock the answer comes.
@@ -809,7 +810,7 @@ module bit_proc #(
   wire f_on_q    = (f_area == `AREA_Q) || (f_area == `AREA_PQ);
   wire f_on_fb   = f_area == `AREA_FB;
   wire f_on_tc   = (f_area == `AREA_T) || (f_area == `AREA_C);
-  wire f_taken   = e_go && ((f_op == `OP_JU) || (f_op == `OP_JC && rlo_o) ||
+  wire f_taken   = e_act && ((f_op == `OP_JU) || (f_op == `OP_JC && rlo_o) ||
                             (f_op == `OP_JCN && !rlo_o));
   // a write of the target: =, S / R if RLO, FP / FN (the edge memory, the old RLO)
   wire f_writes  = f_isassign || f_isfp || f_isfn || ((f_isset || f_isrst) && rlo_o);
@@ -874,6 +875,20 @@ module bit_proc #(
                 (f_islogic && f_on_tc && e_instr_q[`ISA_WAIT_UPDATE] && !f_upd) ||
                 (f_isbyte && !byte_done_i) || (f_isend && end_hold_i);
 
+  // the wait slot's instruction (a byte instruction, an FBI read, an FBY write that did
+  // not complete in its first clock), decoded from its word
+  wire [7:0]     fw_op     = w_instr_q[`ISA_OPCODE];
+  wire           fw_isbyte = fw_op[`OP_BYTE_BIT];
+  wire           fw_isread = (fw_op & 8'hF8) == 8'h08;          // A/O/X... FBI k
+  wire [ChW-1:0] fw_ci     = w_instr_q[ChW-1:0];
+  wire           fw_wval   = (fw_op == `OP_SETBIT) ? 1'b1 : (fw_op == `OP_RESETBIT) ? 1'b0 : rlo_o;
+  wire           fw_wait   = fw_isbyte ? !byte_done_i :
+                             fw_isread ? !fbi_rd_ready_i[fw_ci] : !fby_wr_ready_i[fw_ci];
+  wire           fw_rlo_nx = fw_isbyte ? (byte_rlo_we_i ? byte_rlo_i : rlo_o) :
+                             fw_isread ? f_comb(fw_op[2:1], rlo_o, fbi_rd_data_i[fw_ci] ^ fw_op[0])
+                                       : rlo_o;
+  wire [Channels-1:0] fw_chan = {{(Channels-1){1'b0}}, 1'b1} << fw_ci;
+
   // the next instruction to retire (program order: taken jumps, END -> address 0) and
   // the squash of a taken jump (the two instructions behind it)
   reg [PcW-1:0] f_npc;
@@ -884,6 +899,7 @@ module bit_proc #(
       f_squash <= 2'd0;
     end else begin
       if (e_done) f_npc <= f_taken ? e_target : f_isend ? {PcW{1'b0}} : e_pc_q + 1'b1;
+      else if (w_done) f_npc <= w_pc_q + 1'b1;
       if (e_done && f_taken) f_squash <= 2'd2;
       else if (f_squash != 2'd0) f_squash <= f_squash - 1'b1;
     end
@@ -895,7 +911,7 @@ module bit_proc #(
   always @(*) if (rst_ni) begin
     if (e_valid_q && e_pc_q == f_pa) assert (e_instr_q == f_pw);
     if (e_go && f_m_hit && (f_islogic || f_isfp || f_isfn)) assert (m_opnd == f_m);
-    if (e_go && !f_isbyte) assert (rlo_d == f_rlo_nx);
+    if (e_act && !f_isbyte) assert (rlo_d == f_rlo_nx);
     if (e_done && f_isbyte) assert (rlo_d == f_rlo_nx);
     // targets: only at retirement
     assert (m_target_we == (e_done && f_writes && f_on_m && !f_isbyte));
@@ -903,18 +919,45 @@ module bit_proc #(
     assert (out_wr_en_o == (e_done && f_writes && f_on_q && !f_isbyte));
     if (out_wr_en_o) assert (out_wr_idx_o == f_qi && out_wr_val_o == f_wval &&
                              out_wr_direct_o == (f_area == `AREA_PQ));
-    assert (fby_wr_req_o == ((e_go && f_fbwr && !f_isbyte) ?
-                             ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
-    if (f_fbwr) assert (fby_wr_data_o == f_wval);
-    assert (fbi_rd_req_o == ((e_go && f_on_fb && f_islogic) ?
-                             ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    // channel requests: the acting instruction's, in its first clock from execute, then
+    // from the wait slot (a blocked instruction asks for nothing)
+    if (w_busy) begin
+      assert (fby_wr_req_o == ((w_fwait_q && !fw_isread) ? fw_chan : {Channels{1'b0}}));
+      assert (fbi_rd_req_o == ((w_fwait_q && fw_isread) ? fw_chan : {Channels{1'b0}}));
+      if (w_fwait_q && !fw_isread) assert (fby_wr_data_o == fw_wval);
+    end else begin
+      assert (fby_wr_req_o == ((e_go && f_fbwr && !f_isbyte) ?
+                               ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+      if (f_fbwr) assert (fby_wr_data_o == f_wval);
+      assert (fbi_rd_req_o == ((e_go && f_on_fb && f_islogic) ?
+                               ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    end
     assert (end_o == (e_done && f_isend));
     assert (refresh_o == (e_done && f_isref));
-    assert (byte_req_o == (e_go && f_isbyte));
-    if (byte_req_o) assert (byte_instr_o == e_instr_q);
-    assert (stall_o == (e_go && f_wait && !f_isbyte));   // a byte instruction's clocks are no stall
-    // (1, 2) the instruction waits exactly when the ISA says so
-    if (e_go) assert (e_stall == f_wait);
+    assert (byte_req_o == ((e_act && f_isbyte) || (w_busy && fw_isbyte)));
+    if (byte_req_o) assert (byte_instr_o == (w_busy ? w_instr_q : e_instr_q));
+    // a byte instruction's clocks are no stall
+    assert (stall_o == (w_busy ? (!fw_isbyte && fw_wait) : (e_go && f_wait && !f_isbyte)));
+    // (1, 2) the instruction waits exactly when the ISA says so: in execute (it moves
+    // into the slot if it waits for the byte side's answer), then in the slot
+    if (e_act) assert (e_wait == f_wait &&
+                       to_slot == ((f_on_fb && f_islogic && !fbi_rd_ready_i[f_ci]) ||
+                                   (f_fbwr && !fby_wr_ready_i[f_ci]) ||
+                                   (f_isbyte && !byte_done_i)));
+    if (w_busy) assert (w_done == !fw_wait);
+    // the slot holds its instruction's decode, the next instruction (if any) behind it
+    if (w_busy) begin
+      assert (f_exec && f_squash == 2'd0 && w_pc_q == f_npc && !(w_bwait_q && w_fwait_q));
+      assert (w_bwait_q == fw_isbyte && w_fbr_q == fw_isread);
+      assert (fw_isbyte || w_instr_q[`ISA_AREA] == `AREA_FB);
+      if (!fw_isbyte) assert (w_chan_q == fw_chan);
+      if (!fw_isbyte && !fw_isread)
+        assert (fw_op == `OP_ASSIGN || fw_op == `OP_SETBIT || fw_op == `OP_RESETBIT);
+      if (w_fwait_q && !fw_isread) assert (w_data_q == fw_wval);
+      assert (f_wellformed(w_instr_q));
+      if (w_pc_q == f_pa) assert (w_instr_q == f_pw);
+      if (e_valid_q) assert (e_pc_q == w_pc_q + 1'b1);
+    end
     // the marker RAM holds the architectural value (once cleared)
     if (f_mcl) assert (m_peek_o == f_m);
     if (clearing) assert (!f_exec && f_m == 1'b0);
@@ -924,7 +967,11 @@ module bit_proc #(
   // (2) the architectural state changes only when an instruction retires: a stalled
   // (or idle) clock leaves the RLO, the stack and the pipeline as they are
   always @(posedge clk_i) if (f_ok) begin
-    if ($past(e_done)) begin
+    if ($past(w_done)) begin
+      assert (rlo_o == $past(fw_rlo_nx));
+      assert (sp_q == $past(sp_q) && stack_rlo_q == $past(stack_rlo_q) &&
+              stack_op_q == $past(stack_op_q));
+    end else if ($past(e_done)) begin
       assert (rlo_o == $past(f_rlo_nx));
       if ($past(f_isend))
         assert (sp_q == 0 && stack_rlo_q == $past(stack_rlo_q) && stack_op_q == $past(stack_op_q));
@@ -944,24 +991,30 @@ module bit_proc #(
       assert (rlo_o == $past(rlo_o) && sp_q == $past(sp_q));
       assert (stack_rlo_q == $past(stack_rlo_q) && stack_op_q == $past(stack_op_q));
     end
-    // a stalled instruction stays in execute, the instructions behind it stay put
-    if ($past(e_go && e_stall))
+    // a stalled or blocked instruction stays in execute, the instructions behind it
+    // stay put; one waiting for the byte side moves into the slot and stays there
+    if ($past(e_blocked || (e_act && (end_wait || tc_wait))))
       assert (e_valid_q && e_pc_q == $past(e_pc_q) && e_instr_q == $past(e_instr_q) &&
               o_valid_q == $past(o_valid_q) && o_pc_q == $past(o_pc_q) &&
               d_valid_q == $past(d_valid_q) && d_pc_q == $past(d_pc_q));
+    if ($past(e_act && to_slot))
+      assert (w_busy && w_pc_q == $past(e_pc_q) && w_instr_q == $past(e_instr_q));
+    if ($past(w_busy && !w_done))
+      assert (w_busy && w_pc_q == $past(w_pc_q) && w_instr_q == $past(w_instr_q));
+    if ($past(w_done)) assert (!w_busy);
   end
   // the copy port reads the marker it addressed in the last clock
   always @(posedge clk_i) if (f_ok && $past(copy_en_i && copy_addr_i == f_ma && !copy_we_i))
     assert (copy_rdata_o == f_m);
-  always @(*) if (rst_ni && e_stall)
+  always @(*) if (rst_ni && (w_busy || (e_act && e_wait)))
     assert (!m_target_we && !out_wr_en_o && !end_o && !refresh_o && !jump_taken);
 
   // (1, 3) program order, one instruction per clock: in a scan every clock executes
   // one (the next in program order) except the two clocks after a taken jump, whose
   // instructions (fetched behind it: in operand and decode) are squashed
   always @(*) if (rst_ni) begin
-    if (e_valid_q) assert (e_pc_q == f_npc && f_exec);
-    if (f_exec && f_squash == 2'd0) assert (e_valid_q);
+    if (e_valid_q && !w_busy) assert (e_pc_q == f_npc && f_exec);
+    if (f_exec && f_squash == 2'd0) assert (e_valid_q || w_busy);
     if (f_squash != 2'd0) assert (f_exec && !e_valid_q);
     if (jump_taken) assert (f_taken && (!o_valid_q || o_pc_q == e_pc_q + 1'b1));
     if (f_squash == 2'd1) assert (!o_valid_q || o_pc_q == f_npc);
@@ -970,7 +1023,7 @@ module bit_proc #(
   // (4) END hands over to the next scan: its first instruction (address 0) executes in
   // the latch clock, with RLO = 0 and an empty stack
   always @(*) if (rst_ni && latch_i)
-    assert (e_valid_q && e_pc_q == 0 && rlo_o == 1'b0 && sp_q == 0);
+    assert (e_valid_q && e_pc_q == 0 && rlo_o == 1'b0 && sp_q == 0 && !w_busy);
 
 
   // ---------------------------------------------------------------- covers
@@ -987,7 +1040,7 @@ module bit_proc #(
       f_mw_hist    <= {f_mw_hist[1:0], e_done && f_writes && f_m_hit};
       f_qw_hist    <= {f_qw_hist[1:0], out_wr_en_o};
       f_done_hist  <= {f_done_hist[1:0], e_done};
-      f_stall_hist <= {f_stall_hist[1:0], e_go && e_stall};
+      f_stall_hist <= {f_stall_hist[1:0], w_busy ? !w_done : (e_act && e_wait)};
       f_jumped     <= jump_taken;
       f_ended      <= end_o && start_i;
     end
@@ -1006,9 +1059,11 @@ module bit_proc #(
     cover (f_rd_q && f_qw_hist[0] && $past(out_wr_idx_o) == f_qi && f_area == `AREA_PQ);
     // a stall of two clocks, then the instruction retires (T after the update, FBI)
     cover (e_done && f_stall_hist[1:0] == 2'b11 && f_on_tc && f_islogic);
-    cover (e_done && f_stall_hist[1:0] == 2'b11 && f_on_fb && f_islogic);
-    cover (e_done && f_stall_hist[0] && f_isbyte && byte_rlo_we_i);
-    cover (e_done && f_stall_hist[0] && f_fbwr);
+    cover (w_done && f_stall_hist[1:0] == 2'b11 && fw_isread);
+    cover (w_done && f_stall_hist[0] && fw_isbyte && byte_rlo_we_i);
+    cover (w_done && f_stall_hist[0] && !fw_isbyte && !fw_isread);
+    // the instruction blocked behind the slot reads the marker the one before wrote
+    cover (f_rd_m && $past(e_blocked) && f_mw_hist[2]);
     // a taken jump: two clocks squashed, the target retires in the third
     cover (e_done && f_done_hist == 3'b100 && $past(f_squash, 2) == 2'd2 && f_uses_x);
     cover (e_done && f_taken && $past(f_squash, 2) == 2'd2);  // the target jumps again
@@ -1048,11 +1103,11 @@ module bit_proc #(
     if (e_valid_q) assert (f_wellformed(e_instr_q));
     if (o_valid_q && d_valid_q) assert (d_pc_q == f_o_succ);
     if (o_valid_q && e_valid_q) assert (o_pc_q == f_e_succ);
-    if (o_valid_q && !e_valid_q && f_squash == 2'd0) assert (o_pc_q == f_npc);
+    if (o_valid_q && !e_valid_q && f_squash == 2'd0 && !w_busy) assert (o_pc_q == f_npc);
     if (!f_exec && mem_ready_o && f_since_wr >= 2'd2) assert (o_valid_q && d_valid_q);
     // between scans: the next scan starts at 0 with RLO = 0 and an empty stack
     if (!f_exec) assert (!e_valid_q && f_npc == 0 && rlo_o == 1'b0 && sp_q == 0 &&
-                         f_squash == 2'd0 && !latch_i);
+                         f_squash == 2'd0 && !latch_i && !w_busy);
     if (o_valid_q) assert (o_sel_q == d_sel_of(o_instr_q) && o_asel_q == d_asel_of(o_instr_q));
   end
   // the e_* flags are the decode of e_instr_q; the registered operand is the image's
@@ -1078,6 +1133,9 @@ module bit_proc #(
     if (f_uses_x) begin
       assert (e_src_live_q == f_live);
       assert (e_pinsel_q == (f_live ? d_sel_of(e_instr_q) : {SelW{1'b0}}));
+      // PI (and I in the latch clock): the operand is the pin (the instruction may wait
+      // blocked behind the slot for any number of clocks)
+      if (f_live && (f_area == `AREA_PI || f_area == `AREA_I)) assert (e_live1_q && !e_live0_q);
       if (!f_live && !f_on_m && !f_on_fb) assert (e_opnd_q == f_x);
     end
     if (f_isbyte) assert (!e_src_live_q && e_pinsel_q == {SelW{1'b0}});

@@ -87,13 +87,21 @@ MUTATIONS = [
      "wire latching  = latch_i;"),                         # I after REFRESH stale (5)
     ("bit_proc", "bit_proc.v", "end else if (e_done) begin\n      rlo_o <= rlo_d;",
      "end else if (e_go) begin\n      rlo_o <= rlo_d;"),  # a stalled instruction sets the RLO (2)
-    ("bit_proc", "bit_proc.v", "if (!e_stall) e_valid_q <= 1'b0;",
+    ("bit_proc", "bit_proc.v", "if (!e_hold) e_valid_q <= 1'b0;",
      "e_valid_q <= 1'b0;"),                                # a stalled instruction is dropped (2)
     ("bit_proc", "bit_proc.v", ".re_i   (d_move),", ".re_i   (1'b1),"),
                                                             # decode loses its word in a stall (2)
-    ("bit_proc", "bit_proc.v", "wire e_load = start_i || (exec_i && !e_stall && !end_o);",
-     "wire e_load = start_i || (exec_i && !e_stall && !end_o && !e_byte_q);"),
+    ("bit_proc", "bit_proc.v", "wire e_load = start_i || (exec_i && !e_hold && !end_o);",
+     "wire e_load = start_i || (exec_i && !e_hold && !end_o && !e_byte_q);"),
                                                             # a bubble after a byte instruction (1)
+    # the wait slot: the instruction behind it acts, or forgets its marker bit, or the
+    # slot's instruction does not set the RLO
+    ("bit_proc", "bit_proc.v", "wire e_act      = e_go && !w_busy;",
+     "wire e_act      = e_go;"),                           # a blocked instruction acts (2)
+    ("bit_proc", "bit_proc.v", "        e_mfwd_q     <= 1'b1;\n        e_mfwd_val_q <= m_opnd;",
+     "        e_mfwd_q     <= e_mfwd_q;\n        e_mfwd_val_q <= e_mfwd_val_q;"),  # (5)
+    ("bit_proc", "bit_proc.v", "if (w_rlo_we) rlo_o <= w_rlo;", "if (1'b0) rlo_o <= w_rlo;"),
+                                                            # a compare's RLO lost (ISA)
     ("bit_proc", "bit_proc.v", "o_valid_q <= d_valid_q && !jump_taken;",
      "o_valid_q <= d_valid_q;"),                           # a taken jump squashes too little (3)
     ("bit_proc", "bit_proc.v", "e_valid_q   <= o_valid_q && !jump_taken;",
