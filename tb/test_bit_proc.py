@@ -266,6 +266,123 @@ async def dispatch_holds_until_done(dut):
     assert wrote == 6
 
 
+CMP_EQ = 0x90            # byte instruction `==I` (a compare: DONE carries the RLO)
+SD_T = 0xB0              # byte instruction `SD T n` (no RLO with DONE)
+
+
+async def run_with_byte_side(bench, cost, tc_writes=(), fbi=None, limit=200):
+    """One scan with a byte side that answers every dispatched instruction `cost(pc)`
+    clocks after it was offered (DONE in its last clock; a compare's DONE carries
+    RLO = 1), writes the T/C status bits of `tc_writes` ((clock, is_counter, index,
+    value)) and makes FBI channels ready from a clock on (`fbi`: {clock: (ready,
+    data)}). Returns per clock (pc or None, stall, byte_req, fbi_rd_req)."""
+    d = bench.dut
+    writes = {c: (isc, idx, val) for c, isc, idx, val in tc_writes}
+    fbi = fbi or {}
+    await bench.begin()
+    trace, offered, tstat, cstat = [], 0, 0, 0
+    for clock in range(limit):
+        if clock in fbi:
+            d.fbi_rd_ready_i.value, d.fbi_rd_data_i.value = fbi[clock]
+        await Timer(1, unit="ns")
+        req = int(d.byte_req_o.value)
+        done = 0
+        if req:
+            offered += 1
+            if offered == cost(int(d.exec_pc_o.value)):
+                done, offered = 1, 0
+        instr = int(d.byte_instr_o.value) >> 24
+        d.byte_done_i.value = done
+        d.byte_rlo_i.value = 1
+        d.byte_rlo_we_i.value = int(done and 0x90 <= instr <= 0xA7)
+        w8 = writes.get(clock)
+        d.tc_we_i.value = int(w8 is not None)
+        if w8:
+            d.tc_is_counter_i.value, d.tc_idx_i.value, d.tc_val_i.value = w8
+        await Timer(1, unit="ns")
+        valid = int(d.exec_valid_o.value)
+        trace.append((int(d.exec_pc_o.value) if valid else None, int(d.stall_o.value),
+                      req, int(d.fbi_rd_req_o.value)))
+        if int(d.out_wr_en_o.value):
+            idx, val = int(d.out_wr_idx_o.value), int(d.out_wr_val_o.value)
+            bench.pio = (bench.pio & ~(1 << idx)) | (val << idx)
+        ended = int(d.end_o.value)
+        await RisingEdge(d.clk_i)
+        if w8:            # the status buffer (tc_status.v) takes the write at the edge
+            isc, idx, val = w8
+            if isc:
+                cstat = (cstat & ~(1 << idx)) | (val << idx)
+            else:
+                tstat = (tstat & ~(1 << idx)) | (val << idx)
+        await FallingEdge(d.clk_i)
+        d.latch_i.value = 0
+        d.tc_we_i.value = 0
+        d.byte_done_i.value = 0
+        d.pio_i.value = bench.pio
+        d.timer_status_i.value, d.counter_status_i.value = tstat, cstat
+        if ended:
+            d.exec_i.value = 0
+            return trace
+    raise AssertionError("no END")
+
+
+@cocotb.test()
+async def blocked_behind_a_byte_instruction_reads_what_was_written(dut):
+    """The instruction behind a byte instruction that waits (it enters execute behind
+    the wait slot, blocked) executes in the clock after DONE and sees M and Q written
+    just before the byte instruction, and T / C status bits the byte side writes
+    during the wait, also in the DONE clock; a compare's RLO comes with DONE."""
+    bench = Bench(dut)
+    prog = [w(SET), w(ASSIGN, "M", 5), w(ASSIGN, "Q", 4),    # 0..2
+            SD_T << 24 | 7 << 12 | 3,                       # 3  byte, 4 clocks
+            w(LD, "M", 5), w(A, "Q", 4), w(ASSIGN, "Q", 0), # 4..6  M5 = Q4 = 1
+            w(CLR), w(ASSIGN, "M", 5),                      # 7, 8  M5 := 0
+            SD_T << 24 | 7 << 12 | 3,                       # 9  byte, 4 clocks
+            w(LDN, "M", 5), w(ASSIGN, "Q", 1),              # 10, 11  Q1 = 1
+            SD_T << 24 | 7 << 12 | 3,                       # 12 byte, 5 clocks; T3 := 1
+            w(LD, "T", 3), w(ASSIGN, "Q", 2),               # 13, 14  Q2 = T3 = 1
+            SD_T << 24 | 7 << 12 | 2,                       # 15 byte, 5 clocks; C2 := 1
+            w(LD, "C", 2), w(ASSIGN, "Q", 3),               #    (in the DONE clock)
+            w(CLR), CMP_EQ << 24,                           # 18, 19 compare: RLO 1
+            w(ASSIGN, "Q", 5), w(END)]                      # 20, 21
+    await bench.start(prog)
+    byte_pcs = {3: 4, 9: 4, 12: 5, 15: 5, 19: 3}
+    cost = lambda pc: byte_pcs[pc]
+    # every instruction in turn, a byte instruction for its cost; the status writes
+    # land in the waits of pcs 12 (T3) and 15 (C2, in its DONE clock)
+    pcs = []
+    for pc in range(len(prog)):
+        pcs += [pc] * byte_pcs.get(pc, 1)
+    t12, t15 = pcs.index(12), pcs.index(15)
+    trace = await run_with_byte_side(
+        bench, cost, tc_writes=[(t12 + 2, 0, 3, 1), (t15 + 4, 1, 2, 1)])
+    assert [t[0] for t in trace] == pcs, "a byte instruction must take exactly its cost"
+    assert [t[2] for t in trace] == [int(pc in byte_pcs) for pc in pcs], "NEXT"
+    assert all(t[1] == 0 for t in trace), "a dispatched instruction's clocks are no stall"
+    assert bench.pio & 0b111111 == 0b111111, f"PIO {bench.pio:#06b}"
+
+
+@cocotb.test()
+async def blocked_behind_a_channel_read(dut):
+    """`A FBI 1` on an empty channel waits in the slot; the next instruction (an FBI
+    read of another channel, then a byte instruction) waits behind it: stalls are the
+    clocks the channel is empty, the byte instruction is offered only from the clock
+    after the read, and reads the data as it is then."""
+    bench = Bench(dut)
+    prog = [w(SET), w(A, "FB", 1), w(A, "FB", 2), CMP_EQ << 24 | 0, w(ASSIGN, "Q", 0),
+            w(LD, "FB", 2), w(ASSIGN, "Q", 1), w(END)]
+    await bench.start(prog)
+    dut.fbi_rd_ready_i.value = 0b0100   # channel 2 ready, 1 empty until clock 5
+    dut.fbi_rd_data_i.value = 0b0100
+    trace = await run_with_byte_side(bench, lambda pc: 3,
+                                     fbi={5: (0b0110, 0b0110)})
+    assert [t[0] for t in trace] == [0, 1, 1, 1, 1, 1, 2, 3, 3, 3, 4, 5, 6, 7]
+    assert [t[1] for t in trace] == [0, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0]
+    assert [t[2] for t in trace] == [0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 0, 0, 0, 0]
+    assert [t[3] for t in trace][:7] == [0, 2, 2, 2, 2, 2, 4]
+    assert bench.pio & 0b11 == 0b11
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_bit_proc(sim):
     run_cocotb(sim, "bit_proc", "test_bit_proc",

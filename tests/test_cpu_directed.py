@@ -57,9 +57,17 @@ CASES = [
     ("direct_input", "NOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
      "t_us,I0.0\n0.03,1\n", 1, ["10"]),
     ("end_mid_program", "SET\n= Q0.0\nEND\nCLR\n= Q0.0\n", "", 1, ["1"]),
-    # a byte compare as a scan's first instruction (its latch clock): ACCU1 = ACCU2 = 0
-    # at the scan start, so ==I gives RLO 1 (the live-pin path once dropped it)
-    ("compare_first", "==I\n= Q0.0\n", "", 1, ["1"]),
+    # a compare as the scan's first instruction (executing from the latch clock; its
+    # word's area bits read as I): its RLO comes with DONE (ACCU1 = ACCU2 = 0 at the
+    # scan start), with the pin I0.0 at 0 and at 1
+    ("compare_first", "==I\n= Q0.0\nO >I\n= Q0.1\n", "scan,I0.0\n0,0\n1,1\n", 2,
+     ["11", "11"]),
+    # behind a word instruction (it waits in the wait slot, the next one behind it):
+    # M and Q written just before it, read just after it
+    ("behind_word", "LD I0.0\n= M0.0\n= Q0.1\nL 5\nLD M0.0\nA Q0.1\n= Q0.0\n",
+     "scan,I0.0\n0,1\n1,0\n", 2, ["11", "00"]),
+    ("behind_compare", "L 2\nL 2\n==I\nJC over\n= Q0.0\nover: L 3\n<I\nL 1\nJCN out\n"
+     "SET\n= Q0.1\nout: NOP\n", "", 1, ["01"]),
 ]
 
 
