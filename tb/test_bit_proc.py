@@ -383,6 +383,34 @@ async def blocked_behind_a_channel_read(dut):
     assert bench.pio & 0b11 == 0b11
 
 
+@cocotb.test()
+async def stopped_while_waiting(dut):
+    """exec_i falling (the scan watchdog's FAULT) while an instruction waits for the
+    byte side ends the wait at once, as for an instruction held in execute: no NEXT,
+    no channel request, no stall, nothing executing in the next clock."""
+    for prog, wait_clocks in (([w(SET), CMP_GE << 24, w(ASSIGN, "Q", 0), w(END)], 3),
+                              ([w(SET), w(A, "FB", 1), w(ASSIGN, "Q", 0), w(END)], 3),
+                              ([w(SET), w(ASSIGN, "FB", 1), w(ASSIGN, "Q", 0), w(END)], 3)):
+        bench = Bench(dut)
+        await bench.start(prog)
+        d = dut
+        d.fbi_rd_ready_i.value, d.fby_wr_ready_i.value = 0, 0
+        await bench.begin()
+        for clock in range(1 + wait_clocks):   # SET, then the wait (no answer)
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            d.latch_i.value = 0
+        d.exec_i.value = 0                      # FAULT: nothing executes any more
+        for clock in range(3):
+            await Timer(1, unit="ns")
+            seen = (int(d.byte_req_o.value), int(d.fbi_rd_req_o.value),
+                    int(d.fby_wr_req_o.value), int(d.stall_o.value), int(d.exec_valid_o.value))
+            assert seen == (0, 0, 0, 0, 0), f"{prog[1]:#010x}: clock {clock} after FAULT: {seen}"
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+        d.fbi_rd_ready_i.value, d.fby_wr_ready_i.value = 0, 0b1111
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_bit_proc(sim):
     run_cocotb(sim, "bit_proc", "test_bit_proc",
