@@ -255,6 +255,9 @@ module bit_proc #(
   reg                w_data_q;     // the FBY write's condition
 
   wire w_busy     = w_bwait_q || w_fwait_q;
+  // exec_i falls (FAULT): the waiting instruction ends at once, as one held in execute
+  wire w_bact     = w_bwait_q && exec_i;
+  wire w_fact     = w_fwait_q && exec_i;
   wire e_act      = e_go && !w_busy;     // not blocked behind the wait slot
   wire e_blocked  = e_go && w_busy;
   wire fbi_read   = e_act && e_on_fb_q && e_logic_q;
@@ -277,6 +280,7 @@ module bit_proc #(
   wire w_fbw_ready = |(fby_wr_ready_i & w_chan_q);
   wire w_done      = w_bwait_q ? byte_done_i
                              : w_fwait_q && (w_fbr_q ? w_fbr_ready : w_fbw_ready);
+  wire w_end       = w_done || !exec_i;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       w_bwait_q <= 1'b0;
@@ -287,7 +291,7 @@ module bit_proc #(
       w_chan_q  <= {Channels{1'b0}};
       w_data_q  <= 1'b0;
     end else if (w_busy) begin
-      if (w_done) {w_bwait_q, w_fwait_q} <= 2'b00;
+      if (w_end) {w_bwait_q, w_fwait_q} <= 2'b00;
     end else begin
       w_bwait_q <= byte_first && !byte_done_i;
       w_fwait_q <= chan_wait;
@@ -301,14 +305,14 @@ module bit_proc #(
 
   // A stall is a wait on the other processor's condition; a dispatched instruction's
   // own clocks (serial mode) are its execution time, not a stall.
-  assign stall_o  = chan_wait || (w_fwait_q && !w_done) || end_wait || tc_wait;
+  assign stall_o  = chan_wait || (w_fact && !w_done) || end_wait || tc_wait;
 
   assign fbi_rd_req_o  = (fbi_read  ? e_chan_q : {Channels{1'b0}}) |
-                         ((w_fwait_q && w_fbr_q) ? w_chan_q : {Channels{1'b0}});
+                         ((w_fact && w_fbr_q) ? w_chan_q : {Channels{1'b0}});
   assign fby_wr_req_o  = (fby_write ? e_chan_q : {Channels{1'b0}}) |
-                         ((w_fwait_q && !w_fbr_q) ? w_chan_q : {Channels{1'b0}});
+                         ((w_fact && !w_fbr_q) ? w_chan_q : {Channels{1'b0}});
   assign fby_wr_data_o = w_fwait_q ? w_data_q : e_fby_data;
-  assign byte_req_o    = byte_first || w_bwait_q;
+  assign byte_req_o    = byte_first || w_bact;
   assign byte_instr_o  = w_bwait_q ? w_instr_q : e_instr_q;
 
   wire jump_taken = e_act && (e_ju_q || (e_jc_q && rlo_o) || (e_jcn_q && !rlo_o));
@@ -507,7 +511,7 @@ module bit_proc #(
   wire w_fb_bit = |(fbi_rd_data_i & w_chan_q);
   wire w_rlo    = w_bwait_q ? byte_rlo_i
                             : combine(w_instr_q[26:25], rlo_o, w_fb_bit ^ w_instr_q[24]);
-  wire w_rlo_we = w_done && (w_bwait_q ? byte_rlo_we_i : w_fbr_q);
+  wire w_rlo_we = w_done && exec_i && (w_bwait_q ? byte_rlo_we_i : w_fbr_q);
 
   integer lvl;
   always @(posedge clk_i or negedge rst_ni) begin
@@ -659,7 +663,7 @@ module bit_proc #(
   end
 
   assign exec_pc_o    = w_busy ? w_pc_q : e_pc_q;
-  assign exec_valid_o = w_busy || e_go;
+  assign exec_valid_o = (w_busy && exec_i) || e_go;
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused;
     // verilator lint_off UNUSEDSIGNAL
