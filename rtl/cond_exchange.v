@@ -66,11 +66,24 @@ module cond_exchange #(
   wire want_ff     = exchange_i == `EXCHANGE_HANDSHAKE;
   wire want_queue  = exchange_i == `EXCHANGE_QUEUE || exchange_i == `EXCHANGE_QUEUE_FREE;
   wire want_marker = exchange_i == `EXCHANGE_MARKER;
-  wire use_queue   = HasQueue && (want_queue || (!(HasFf && want_ff) &&
-                                                 !(HasMarker && want_marker)));
-  wire use_marker  = HasMarker && !use_queue && (want_marker || !(HasFf && want_ff));
-  wire use_ff      = HasFf && !use_queue && !use_marker;
-  wire free        = exchange_i == `EXCHANGE_QUEUE_FREE;
+  wire use_queue_d  = HasQueue && (want_queue || (!(HasFf && want_ff) &&
+                                                  !(HasMarker && want_marker)));
+  wire use_marker_d = HasMarker && !use_queue_d && (want_marker || !(HasFf && want_ff));
+  // The selection is registered, so that the multiplexers below and the queues' mode
+  // come from flip-flops: a channel's ready reaches the waiting processor through one
+  // multiplexer. A setting takes effect in the clock after it is written (the host
+  // sets it before a run; after reset the marker memories take 2 048 clocks to clear).
+  reg use_queue, use_marker, use_ff, free;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      {use_queue, use_marker, use_ff, free} <= 4'b0000;
+    end else begin
+      use_queue  <= use_queue_d;
+      use_marker <= use_marker_d;
+      use_ff     <= HasFf && !use_queue_d && !use_marker_d;
+      free       <= exchange_i == `EXCHANGE_QUEUE_FREE;
+    end
+  end
 
   // ------------------------------------------------------------ handshake channels
   wire [Channels-1:0] ff_fby_wr_ready, ff_fby_rd_data, ff_fby_rd_ready, ff_fby_full;

@@ -48,8 +48,9 @@ module cond_queue #(
   wire            rd_restart = free_i && rd_start_i;
   wire [PtrW-1:0] wr_slot = wr_restart ? {PtrW{1'b0}} : wr_ptr_q[PtrW-1:0];
   wire [PtrW-1:0] rd_slot = rd_restart ? {PtrW{1'b0}} : rd_ptr_q[PtrW-1:0];
-  wire            strict_empty = (wr_ptr_q == rd_ptr_q);
-  wire            strict_full  = (wr_slot == rd_slot) && (wr_ptr_q[PtrW] != rd_ptr_q[PtrW]);
+  // Strict full/empty are registers, worked out from the pointers' next values: the
+  // writer's and the reader's wait conditions come from flip-flops.
+  reg             strict_empty, strict_full;
 
   assign full_o     = free_i ? fresh_q[wr_slot] : strict_full;
   assign empty_o    = free_i ? !fresh_q[rd_slot] : strict_empty;
@@ -59,6 +60,8 @@ module cond_queue #(
 
   wire do_wr = wr_req_i && wr_ready_o;
   wire do_rd = rd_req_i && rd_ready_o;
+  wire [PtrW:0] wr_ptr_d = wr_restart ? {{PtrW{1'b0}}, do_wr} : wr_ptr_q + {{PtrW{1'b0}}, do_wr};
+  wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd};
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -66,6 +69,8 @@ module cond_queue #(
       fresh_q      <= {Depth{1'b0}};
       wr_ptr_q     <= {(PtrW+1){1'b0}};
       rd_ptr_q     <= {(PtrW+1){1'b0}};
+      strict_empty <= 1'b1;
+      strict_full  <= 1'b0;
       overflows_o  <= 16'd0;
       underflows_o <= 16'd0;
     end else begin
@@ -82,10 +87,10 @@ module cond_queue #(
       if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)
         underflows_o <= underflows_o + 16'd1;
       // pointers: free-running ones return to slot 0 at their owner's scan start
-      if (wr_restart)            wr_ptr_q <= {{PtrW{1'b0}}, do_wr};
-      else if (do_wr)            wr_ptr_q <= wr_ptr_q + 1'b1;
-      if (rd_restart)            rd_ptr_q <= {{PtrW{1'b0}}, do_rd};
-      else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;
+      wr_ptr_q     <= wr_ptr_d;
+      rd_ptr_q     <= rd_ptr_d;
+      strict_empty <= wr_ptr_d == rd_ptr_d;
+      strict_full  <= wr_ptr_d == (rd_ptr_d ^ {1'b1, {PtrW{1'b0}}});
     end
   end
 

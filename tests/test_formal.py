@@ -46,8 +46,12 @@ MUTATIONS = [
      "assign rd_ready_o = 1'b1;"),                          # read an empty one
     ("cond_queue", "cond_queue.v", "assign wr_ready_o = free_i || !strict_full;",
      "assign wr_ready_o = 1'b1;"),                          # write into a full queue
-    ("cond_queue", "cond_queue.v", "else if (do_rd)            rd_ptr_q <= rd_ptr_q + 1'b1;",
-     "else if (do_rd && wr_req_i) rd_ptr_q <= rd_ptr_q + 1'b1;"),   # read twice
+    ("cond_queue", "cond_queue.v", "strict_full  <= wr_ptr_d == (rd_ptr_d ^ {1'b1, {PtrW{1'b0}}});",
+     "strict_full  <= wr_ptr_q == (rd_ptr_q ^ {1'b1, {PtrW{1'b0}}});"),  # full a clock late
+    ("cond_queue", "cond_queue.v",
+     "wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd};",
+     "wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd && !wr_req_i};"),
+                                                            # a read lost: read twice
     ("marker_area", "marker_area.v", "if (bit_start_i)  bit_snap_q  <= byte_visible;",
      "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
     ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
