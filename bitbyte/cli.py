@@ -100,6 +100,10 @@ def _source_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mnemonics", choices=["de", "en"], default=None,
                    help="stl: German or English mnemonics (default: detected from "
                         "the source)")
+    p.add_argument("--profile", choices=sorted(DEF.profiles), default=None,
+                   help="check the program against a build profile's sizes ("
+                        + "; ".join(f"{k}: {v['doc']}" for k, v in sorted(DEF.profiles.items()))
+                        + "); default: the full ranges of the default build")
 
 
 def _warnings(args, program) -> None:
@@ -110,7 +114,8 @@ def _warnings(args, program) -> None:
 
 
 def cmd_asm(args) -> int:
-    result = assemble(args.program, outdir=args.outdir, config=Config(), mode=args.mode,
+    result = assemble(args.program, outdir=args.outdir, config=Config.of_profile(args.profile),
+                      mode=args.mode,
                       lang=args.lang, mnemonics=args.mnemonics)
     _warnings(args, result["program"])
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
@@ -185,7 +190,8 @@ def cmd_run(args) -> int:
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
-        channels=args.channels, lang=args.lang, mnemonics=args.mnemonics)
+        channels=args.channels, lang=args.lang, mnemonics=args.mnemonics,
+        profile=args.profile)
     _warnings(args, program)
 
     if args.sim == "verilator":

@@ -41,6 +41,9 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 import gen_wrapper  # noqa: E402
 
+sys.path.insert(0, str(HERE.parent))
+from bitbyte.lang.definition import DEF  # noqa: E402  (build profiles)
+
 TOP_CORE = "bitbyte_cpu"
 TOP_PLANT = "plc_system"   # the multi-core plant, Cores = 2 by default
 PEERS = HERE / "peers.toml"
@@ -151,13 +154,16 @@ def tool(name: str) -> str:
 class Config:
     name: str
     params: dict[str, int] = field(default_factory=dict)  # overrides of the defaults
+    attempt: int = 0          # the how-manieth try of a target (its own work directory)
 
     @property
     def slug(self) -> str:
-        return self.name.replace(" ", "_").replace("=", "").replace(",", "")
+        slug = self.name.replace(" ", "_").replace("=", "").replace(",", "")
+        return f"{slug}{self.attempt}" if self.attempt else slug
 
     def label(self) -> str:
-        return ", ".join(f"{k}={v}" for k, v in self.params.items()) or "defaults"
+        text = ", ".join(f"{k}={v}" for k, v in self.params.items()) or "defaults"
+        return f"{self.name}: {text}" if self.name.startswith("profile") else text
 
 
 def chparams(cfg: Config, module: str) -> str:
@@ -403,6 +409,7 @@ class Job:
     runs: list[tuple[str, str, str]]   # (label, target key, top)
     pnr: list[str]                     # target keys to place & route (label = key)
     shrink: bool = False               # find a configuration that fits if defaults do not
+    profile: Config | None = None      # ... trying this build profile first (definition.toml)
     seeds: list[int] = field(default_factory=lambda: [1])   # nextpnr seeds: the median counts
     files: list[str] | None = None     # its own sources (another top's wrapper), else the common
     result: dict = field(default_factory=dict)
@@ -475,7 +482,10 @@ def execute(job: Job, files: list[str], build: Path, defaults: dict[str, int],
             r = place_seeds(TARGETS[tkey], out / f"{tkey}-top.netlist.json", out, job.seeds)
             placed[tkey] = r
             if "error" in r and r.get("overfull") and job.shrink:
-                retry = shrink(cfg, defaults, present, r.get("bram_over", False))
+                retry = (job.profile if cfg is job.cfg and job.profile else
+                         shrink(cfg, defaults, present, r.get("bram_over", False)))
+                if retry is not None:   # each attempt its own work directory
+                    retry = Config(retry.name, retry.params, len(attempts) + 1)
         job.result = {"cfg": cfg, "stats": stats, "pnr": placed, "yosys_s": ys, "dir": out,
                       "attempts": attempts}
         if retry is None:
@@ -945,8 +955,11 @@ def main() -> int:
     # P&R targets with their own search for a fitting configuration
     for key in ("hx8k", "up5k", "gw1n9"):
         if key in wanted:
+            prof = None
+            if key in DEF.profiles:      # the board's build profile (definition.toml)
+                prof = Config(f"profile {key}", DEF.profile_params(key, TOP_CORE))
             jobs.append(Job(default, [(f"{key}-top", key, TOP_FPGA), (f"{key}-core", key, TOP_CORE)],
-                            [key], shrink=True, seeds=args.seeds))
+                            [key], shrink=True, seeds=args.seeds, profile=prof))
     # ECP5 defaults also give the sweep's default point (core numbers for three families)
     core_runs = [("hx8k-core", "hx8k", TOP_CORE), ("ecp5-core", "ecp5", TOP_CORE),
                  ("xc7-core", "xc7", TOP_CORE)]

@@ -269,3 +269,23 @@ def test_until_us_and_time_stimulus(tmp_path, sim):
     assert proc.returncode == 0, proc.stderr
     assert trace.read_text().splitlines()[1:] == [      # until the scan ending >= 40
         "0,0.09,9,0,0", "1,0.18,9,0,0", "2,0.27,9,1,0", "3,0.36,9,1,1", "4,0.45,9,1,1"]
+
+
+def test_profile_checks_the_program_against_its_sizes(tmp_path):
+    """`--profile hx8k` (definition.toml [profiles], the HX8K build of docs/synthesis.md):
+    an IW past the profile's and a program longer than its memory are rejected with
+    file:line:col, the default build takes both; the Table-1-sized bench program fits."""
+    iw = tmp_path / "iw.il"
+    iw.write_text("  L IW8\n  T QW0\n")
+    big = tmp_path / "big.il"
+    big.write_text("  NOP\n" * 2049)
+    for prog, where, what in ((iw, "iw.il:1:5:", "IW8"), (big, "big.il:2049:3:", "2048")):
+        assert bitbyte("asm", prog, "-o", tmp_path).returncode == 0
+        proc = bitbyte("asm", prog, "--profile", "hx8k", "-o", tmp_path)
+        assert proc.returncode == 1 and where in proc.stderr and what in proc.stderr, proc.stderr
+    proc = bitbyte("run", iw, "--profile", "hx8k", "--scans", "1")
+    assert proc.returncode == 1 and "iw.il:1:5:" in proc.stderr
+    proc = bitbyte("asm", ROOT / "bench" / "programs" / "table1.il", "--profile", "hx8k",
+                   "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert bitbyte("asm", iw, "--profile", "nosuch").returncode == 2

@@ -4,7 +4,7 @@ of each names the RTL parameter of `rtl/bitbyte_cpu.v` it corresponds to (timers
 counters are both `StatusBits`)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from bitbyte.lang.definition import DEF
 
@@ -35,6 +35,15 @@ class Config:
             "FBI": self.channels, "FBY": self.channels, "IW": self.in_words,
             "QW": self.out_words, "MW": self.data_words,
         }[area]
+
+    @classmethod
+    def of_profile(cls, name: str | None, **kw) -> "Config":
+        """The defaults, or with the sizes of a build profile (definition.toml
+        [profiles]: `bitbyte asm|run --profile NAME`)."""
+        if name is None:
+            return cls(**kw)
+        names = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in DEF.profile_sizes(name).items() if k in names}, **kw)
 
 
 DEFAULT = Config()

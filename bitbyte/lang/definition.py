@@ -147,7 +147,11 @@ class Definition:
         self.byte_flag_rows: tuple[dict, ...] = tuple(raw["byte_flag"])
         self.sizes: dict[str, int] = dict(raw["sizes"])
         self.plant: dict[str, int] = dict(raw["plant"])
+        # build profiles: name -> the [sizes] it changes (and a "doc" line)
+        self.profiles: dict[str, dict] = {k: dict(v) for k, v in raw.get("profiles", {}).items()}
         # top module -> RTL parameter -> its default (from [sizes] / [plant])
+        self.rtl_keys: dict[str, dict[str, str]] = {top: dict(params)
+                                                    for top, params in raw["rtl"].items()}
         self.rtl_defaults: dict[str, dict[str, int]] = {
             top: {param: {**self.sizes, **self.plant}[key] for param, key in params.items()}
             for top, params in raw["rtl"].items()}
@@ -182,6 +186,16 @@ class Definition:
                 return r
         raise KeyError(name)
 
+    def profile_sizes(self, name: str) -> dict[str, int]:
+        """[sizes] as the build profile `name` has them."""
+        return {**self.sizes, **{k: v for k, v in self.profiles[name].items() if k != "doc"}}
+
+    def profile_params(self, name: str, top: str) -> dict[str, int]:
+        """The RTL parameters of `top` that the profile changes (name -> value)."""
+        sizes = self.profile_sizes(name)
+        return {param: sizes[key] for param, key in self.rtl_keys[top].items()
+                if key in sizes and sizes[key] != self.rtl_defaults[top][param]}
+
     def _check(self) -> None:
         """The definition is consistent, or DefinitionError says where not: no opcode
         or address used twice, byte opcodes have bit 7 set and bit opcodes do not,
@@ -193,6 +207,11 @@ class Definition:
             if not ok:
                 raise DefinitionError(f"{PATH.name}: {message}")
 
+        for name, prof in self.profiles.items():      # a profile shrinks [sizes]
+            for key, value in prof.items():
+                need(key == "doc" or (key in self.sizes and isinstance(value, int)
+                                      and 0 < value <= self.sizes[key]),
+                     f"[profiles.{name}] {key}: not a [sizes] key, or not 1..its default")
         for key, rows in self.settings.items():       # 2-bit inputs, distinct names
             need(len(rows) <= 4, f"settings.{key}: {len(rows)} codes do not fit 2 bits")
             for col in (0, 1):

@@ -55,14 +55,14 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                 watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
                 mode: str = "serial", exchange: str | None = None,
                 channels: int | None = None, lang: str | None = None,
-                mnemonics: str | None = None):
+                mnemonics: str | None = None, profile: str | None = None):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
     The differential tests call this too, so they exercise the same path."""
 
     f = parse_clock_mhz(clock_mhz)
-    config = Config(clock_mhz=float(f))
+    config = Config.of_profile(profile, clock_mhz=float(f))
     if scans is not None and scans < 1:
         raise UsageError("--scans must be at least 1")
     if not 2 <= watchdog < 2 ** 32:
