@@ -554,13 +554,12 @@ module bit_proc #(
   wire o_move = e_load || !o_valid_q;
   assign d_move = o_move || !d_valid_q;
   // The waits reach the program RAM's read enable and d_pc_q's enable only, not the
-  // read address.
-  always @(*) begin
-    if (jump_taken)      fetch_addr = e_target;
-    else if (!d_valid_q) fetch_addr = d_pc_q;
-    else if (d_is_end)   fetch_addr = {PcW{1'b0}};
-    else                 fetch_addr = d_pc_q + 1'b1;
-  end
+  // read address. The address is a jump's target or the next word, worked out from
+  // registers; END leaving the RAM forces it to 0 through one AND per bit, the only
+  // logic between the RAM's output and its address.
+  wire [PcW-1:0] seq_addr  = jump_taken ? e_target : !d_valid_q ? d_pc_q : d_pc_q + 1'b1;
+  wire           end_fetch = d_is_end && !jump_taken;   // END in decode: address 0
+  always @(*) fetch_addr = seq_addr & {PcW{!end_fetch}};
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -32,13 +32,15 @@ module synth_bus_bridge #(
       rd_valid_o  <= 1'b0;
       rd_data_o   <= 32'd0;
     end else begin
-      rd_valid_o <= 1'b0;
-      if ((bus_we_o || bus_re_o) && bus_ready_i) begin
-        bus_we_o <= 1'b0;
-        bus_re_o <= 1'b0;
-        if (bus_re_o) begin
-          rd_valid_o <= 1'b1;
-          rd_data_o  <= bus_rdata_i;
+      // The core's ready reaches the strobes and rd_valid_o only: the read data is
+      // taken in every clock of a read, the address and the write data only while no
+      // access is under way (a command that comes while one waits is ignored).
+      rd_valid_o <= bus_re_o && bus_ready_i;
+      if (bus_re_o) rd_data_o <= bus_rdata_i;
+      if (bus_we_o || bus_re_o) begin
+        if (bus_ready_i) begin
+          bus_we_o <= 1'b0;
+          bus_re_o <= 1'b0;
         end
       end else if (wr_i) begin
         bus_addr_o  <= addr_i[AddrW-1:0];

@@ -110,8 +110,8 @@ MUTATIONS = [
      "o_valid_q <= d_valid_q;"),                           # a taken jump squashes too little (3)
     ("bit_proc", "bit_proc.v", "e_valid_q   <= o_valid_q && !jump_taken;",
      "e_valid_q   <= o_valid_q && !jump_taken && !o_first_q;"),  # ... or too much (3)
-    ("bit_proc", "bit_proc.v", "else if (d_is_end)   fetch_addr = {PcW{1'b0}};",
-     "else if (1'b0)       fetch_addr = {PcW{1'b0}};"),     # END hands over to address 1.. (4)
+    ("bit_proc", "bit_proc.v", "wire           end_fetch = d_is_end && !jump_taken;",
+     "wire           end_fetch = 1'b0;"),                   # END hands over to address 1.. (4)
     ("bit_proc", "bit_proc.v", "end else if (e_clr_q || e_end_q) begin",
      "end else if (e_clr_q) begin"),                       # the next scan inherits the RLO (4)
     ("bit_proc", "bit_proc.v", "sp_q <= {SpW{1'b0}};              // ... and with an empty stack",
