@@ -767,21 +767,24 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("The bit processor takes one bit instruction per clock, so its execute stage closes "
       "a loop every clock: the RLO written in one clock is an input of the next "
       "instruction's combine, and the next fetch address depends on the instruction in "
-      "execute (taken `JC`/`JCN`, a wait on a channel or on the byte processor) and on the "
-      "word leaving the program RAM (`END` in decode fetches address 0). What sits in that "
+      "execute (a taken `JC`/`JCN`) and on the word leaving the program RAM (`END` in "
+      "decode fetches address 0, through one AND per address bit). What sits in that "
       "clock besides the combine itself is what the paths above show:")
     w("")
     w("* the operand select: the area (I, PI, IR, IF, Q, M, T, C, FBI) times a 128-bit "
       "index; the four-stage pipeline (docs/isa.md) takes it one stage before execute "
       "from the decoded word, so execute keeps only the combine, the stack and the live "
       "PI pin's choice between two precomputed RLOs;")
-    w("* the wait logic: a channel handshake or a dispatched byte instruction decides in "
-      "the same clock whether the pipeline advances, and that decision steers the "
-      "program RAM's read enable and the enables of every stage (not yet registered);")
+    w("* the waits: an instruction waiting for the byte side's answer (DONE, a channel's "
+      "ready) moves into the wait slot (docs/architecture.md), so the answer reaches the "
+      "slot, the RLO and its enable, not the enables of the pipeline, which come from "
+      "registers; a channel's ready comes from flip-flops through one multiplexer (the "
+      "exchange setting and the queues' full/empty are registered);")
     w("* block-RAM clock-to-out where a RAM output is used in the same clock (ECP5 DP16KD "
       "without its output register: about 4.3 ns of a 5 ns budget at 200 MHz);")
-    w("* the byte-side bus read (`bus_rdata_o` is combinational by the bus protocol), which "
-      "appears once the wrapper's bridge registers the address and the data.")
+    w("* the byte-side bus (`bus_rdata_o` and `bus_ready_o` are combinational by the bus "
+      "protocol: the address decode, the read multiplexer and a channel's ready lie "
+      "between the wrapper's bridge registers and back).")
     w("")
     w("The iCE40 costs about 0.3 to 0.4 ns per LUT and 0.6 to 3 ns per route, so 100 MHz "
       "leaves room for about five LUT levels; ECP5-25 speed 8 at 200 MHz for about five "
