@@ -21,25 +21,41 @@ from pathlib import Path
 BITS = range(8)
 
 
-def scan_inputs_csv(inputs: list[dict[int, int]], in_bytes: int) -> str:
-    """A `scan`-keyed STIM.csv (spec §4) for per-scan input bytes {byte: value}."""
+def signed16(value: int) -> int:
+    return value - 0x10000 if value & 0x8000 else value
+
+
+def word_of(image, n: int) -> int:
+    """S7's word n of a byte image: bytes n (high) and n+1 (low), signed."""
+    return signed16((image.get(n, 0) << 8) | image.get(n + 1, 0))
+
+
+def scan_inputs_csv(inputs: list[dict[int, int]], in_bytes: int,
+                    in_words: tuple[int, ...] = ()) -> str:
+    """A `scan`-keyed STIM.csv (spec §4) for per-scan input bytes {byte: value}; the
+    input words IW n of `in_words` are made of bytes n and n+1 as in S7."""
     names = [f"I{b}.{n}" for b in range(in_bytes) for n in BITS]
+    names += [f"IW{n}" for n in in_words]
     rows = ["scan," + ",".join(names)]
     for k, image in enumerate(inputs):
-        rows.append(f"{k}," + ",".join(str((image.get(b, 0) >> n) & 1)
-                                       for b in range(in_bytes) for n in BITS))
+        cells = [str((image.get(b, 0) >> n) & 1) for b in range(in_bytes) for n in BITS]
+        cells += [str(word_of(image, n)) for n in in_words]
+        rows.append(f"{k}," + ",".join(cells))
     return "\n".join(rows) + "\n"
 
 
-def columns_of(out_bytes: int, marker_bytes: int) -> list[str]:
+def columns_of(out_bytes: int, marker_bytes: int, words: tuple[str, ...] = ()
+               ) -> list[str]:
     return ([f"Q{b}.{n}" for b in range(out_bytes) for n in BITS]
-            + [f"M{b}.{n}" for b in range(marker_bytes) for n in BITS])
+            + [f"M{b}.{n}" for b in range(marker_bytes) for n in BITS] + list(words))
 
 
 def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: str,
-                 out_bytes: int = 2, marker_bytes: int = 2,
+                 out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
                  scan_times_s: list[float] | None = None) -> list[dict[str, int]]:
-    """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"."""
+    """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"; `words`
+    ("QW2", "MW10") are read as S7 words (bytes n and n+1) of the output image and
+    the marker area."""
     from awlsim.common.cpuconfig import S7CPUConfig
     from awlsim.common.project import Project
     from awlsim.core.main import AwlSim
@@ -76,13 +92,21 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
             row.update({f"Q{b}.{n}": (value >> n) & 1 for n in BITS})
         for b in range(marker_bytes):
             row.update({f"M{b}.{n}": (markers[b] >> n) & 1 for n in BITS})
+        for name in words:
+            n = int(name[2:])
+            if name.startswith("QW"):
+                image = {b: cpu.fetchOutputByte(b) for b in (n, n + 1)}
+            else:
+                image = {b: markers[b] for b in (n, n + 1)}
+            row[name] = word_of(image, n)
         scans.append(row)
     return scans
 
 
 def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
-                  out_bytes: int = 2, marker_bytes: int = 2,
+                  out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
+                  in_words: tuple[int, ...] = (),
                   mnemonics: str | None = None) -> list[dict[str, int]]:
     """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
     the C++ harness), one row per scan with the same keys as awlsim_scans."""
@@ -92,8 +116,8 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
     from bitbyte.run.prepare import prepare_run
 
     stim = tmp / (Path(path).stem + ".stim.csv")
-    stim.write_text(scan_inputs_csv(inputs, in_bytes))
-    watch = columns_of(out_bytes, marker_bytes)
+    stim.write_text(scan_inputs_csv(inputs, in_bytes, in_words))
+    watch = columns_of(out_bytes, marker_bytes, words)
     program, columns, job, f = prepare_run(
         str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
         mode=mode, mnemonics=mnemonics)

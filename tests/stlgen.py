@@ -6,7 +6,10 @@ U/UN/O/ON/X/XN, and `=`/`S`/`R`, SET/CLR, jumps end one), `O` without operand (A
 before OR, also as the very first statement of a string, where it does nothing),
 nesting `U(`/`UN(`/`O(`/`ON(`/`X(`/`XN(` ... `)` up to three deep, X after `O`,
 FP/FN in the middle of a string, NOT, forward jumps SPA/SPB/SPBN (JU/JC/JCN) to a
-label on a later network, BEB (BEC).  A few programs contain what the front end rejects
+label on a later network, BEB (BEC); word networks: L of words (IW/QW/MW, German
+EW/AW/MW) and constants (INT, W#16#, B#16#, S5T#, C#), +I -I *I /I, T, and the
+compares ==I <>I >I <I >=I <=I (also after a logic string and after `O`, and with the
+string going on after them), L/T in the middle of a string.  A few programs contain what the front end rejects
 (NOT after `O` in a string, a jump target reached with different /FC): the test
 expects `unsupported:` for those, never a silent difference.
 
@@ -22,12 +25,21 @@ OPENS = {"de": ["U(", "UN(", "O(", "ON(", "X(", "XN("],
          "en": ["A(", "AN(", "O(", "ON(", "X(", "XN("]}
 AREA = {"de": {"I": "E", "Q": "A", "M": "M"}, "en": {"I": "I", "Q": "Q", "M": "M"}}
 JUMPS = {"de": ["SPA", "SPB", "SPBN"], "en": ["JU", "JC", "JCN"]}
+# Words: input words on input bytes 2..5, output words and data words apart from the
+# bytes the bit operands use (S7's IW/QW/MW n is bytes n and n+1).
+IN_WORDS = (2, 4)
+WORDS = ("QW2", "QW4", "MW10", "MW12", "MW14")
+WORD_AREA = {"de": {"IW": "EW", "QW": "AW", "MW": "MW"},
+             "en": {"IW": "IW", "QW": "QW", "MW": "MW"}}
+ARITH = ["+I", "-I", "*I", "/I"]
+COMPARE = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
 
 
 class Gen:
-    def __init__(self, seed: int):
+    def __init__(self, seed: int, words: bool = True):
         self.r = random.Random(seed)
         self.lang = self.r.choice(("de", "en"))
+        self.words = words
         self.lines: list[str] = []
         self.label = ""                 # put before the next statement
 
@@ -41,6 +53,64 @@ class Gen:
     def emit(self, text: str) -> None:
         self.lines.append(self.label + "\t" + text)
         self.label = ""
+
+    def word(self, areas: str = "IQM") -> str:
+        r = self.r
+        area = r.choice(areas) + "W"
+        n = r.choice(IN_WORDS) if area == "IW" else int(r.choice(
+            [w for w in WORDS if w.startswith(area)])[2:])
+        return f"{WORD_AREA[self.lang][area]}{' ' if r.random() < 0.7 else ''}{n}"
+
+    def value(self) -> str:
+        """A load operand: a word or a constant of one of the S7 forms."""
+        r = self.r
+        x = r.random()
+        if x < 0.55:
+            return self.word()
+        if x < 0.75:
+            return str(r.choice((0, 1, 2, 3, 7, -1, -5, 100, 1000, 32767, -32768,
+                                 r.randrange(-300, 300))))
+        if x < 0.85:
+            return f"W#16#{r.randrange(0x10000):04X}"
+        if x < 0.9:
+            return f"B#16#{r.randrange(256):02X}"
+        if x < 0.95:
+            return f"S5T#{r.choice(('10MS', '2S', '1M30S', '250MS', '2H'))}"
+        return f"C#{r.randrange(1000)}"
+
+    def loads(self) -> None:
+        """L, L, then arithmetic: a value in ACCU1 and ACCU2."""
+        r = self.r
+        self.emit(f"L\t{self.value()}")
+        self.emit(f"L\t{self.value()}")
+        for _ in range(r.randrange(0, 3)):
+            self.emit(r.choice(ARITH))
+            if r.random() < 0.5:
+                self.emit(f"L\t{self.value()}")
+
+    def word_network(self) -> None:
+        r = self.r
+        x = r.random()
+        if x < 0.03:
+            self.emit(f"L\t{self.value()}")        # ACCU2 not loaded in this scan:
+            self.emit(r.choice(ARITH + COMPARE))  # rejected
+        elif x < 0.5:
+            self.loads()
+            self.emit(f"T\t{self.word('QM')}")
+            if r.random() < 0.3:
+                self.emit(f"T\t{self.word('QM')}")
+            return
+        else:
+            if r.random() < 0.3:
+                self.string(0)                  # a compare overwrites the RLO
+                if r.random() < 0.3:
+                    self.emit("O")
+            self.loads()
+            self.emit(r.choice(COMPARE))
+            if r.random() < 0.3:
+                self.item(0, opening=False)     # the string goes on (/FC = 1)
+        for _ in range(r.randrange(1, 3)):
+            self.emit(f"{r.choice(('=', '=', 'S', 'R'))}\t{self.addr('QM')}")
 
     def string(self, depth: int, first: bool = True) -> None:
         """A logic string: a first combine or parenthesis, then more items."""
@@ -72,10 +142,17 @@ class Gen:
         self.lines.append(f"NETWORK\nTITLE = network {n}")
         if n in labels:
             self.label = f"{labels[n]}:"
+        if self.words and r.random() < 0.35:
+            self.word_network()
+            return
         if r.random() < 0.08:
             self.emit(r.choice(("SET", "CLR")))
         else:
             self.string(0)
+            if self.words and r.random() < 0.1:
+                self.emit(f"L\t{self.value()}")    # L / T inside a string
+                self.emit(f"T\t{self.word('QM')}")
+                self.item(0, opening=False)
         for _ in range(r.randrange(1, 3)):
             op = r.choice(("=", "=", "S", "R"))
             self.emit(f"{op}\t{self.addr('QM')}")
@@ -106,18 +183,30 @@ class Gen:
         return "\n".join(self.lines) + "\n"
 
 
-def random_program(seed: int) -> tuple[str, str]:
-    g = Gen(seed)
+def random_program(seed: int, words: bool = True) -> tuple[str, str]:
+    g = Gen(seed, words)
     return g.program(), g.lang
 
 
 def random_inputs(seed: int, scans: int) -> list[dict[int, int]]:
-    """Input bytes 0 and 1: random at scan 0, then a few bits flip per scan."""
+    """Input bytes 0 and 1 (bits): random at scan 0, then a few bits flip per scan;
+    bytes 2..5 (the input words IW 2, IW 4): small or random values, new ones now
+    and then."""
     r = random.Random(seed * 7919 + 1)
     image = [r.randrange(256), r.randrange(256)]
+
+    def word() -> int:
+        return r.choice((0, 1, 2, 5, 100, r.randrange(65536), 0xFFFF, 0x8000))
+
+    words = [word() for _ in IN_WORDS]
     rows = []
     for _ in range(scans):
-        rows.append({0: image[0], 1: image[1]})
+        row = {0: image[0], 1: image[1]}
+        for n, w in zip(IN_WORDS, words):
+            row[n], row[n + 1] = w >> 8, w & 0xFF
+        rows.append(row)
         for _ in range(r.randrange(0, 4)):
             image[r.randrange(2)] ^= 1 << r.randrange(8)
+        if r.random() < 0.3:
+            words[r.randrange(len(words))] = word()
     return rows

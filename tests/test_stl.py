@@ -21,7 +21,7 @@ from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
-from stlgen import random_inputs, random_program
+from stlgen import IN_WORDS, WORDS, random_inputs, random_program
 
 PROGRAMS = int(os.environ.get("BITBYTE_STL_PROGRAMS", "200"))
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -44,9 +44,10 @@ def every_input(scans: int = 16) -> list[dict[int, int]]:
     return [{0: k % 16} for k in range(scans)] + [{0: (k * 7) % 16} for k in range(scans)]
 
 
-def same_as_awlsim(path: Path, lang: str, inputs, tmp: Path, **kw):
-    expected = awlsim_scans(path, inputs, mnemonics=lang)
-    got = bitbyte_scans(path, inputs, tmp, **kw)
+def same_as_awlsim(path: Path, lang: str, inputs, tmp: Path, words=(), in_words=(),
+                   **kw):
+    expected = awlsim_scans(path, inputs, mnemonics=lang, words=words)
+    got = bitbyte_scans(path, inputs, tmp, words=words, in_words=in_words, **kw)
     assert first_difference(expected, got) is None, (path.read_text(),
                                                      first_difference(expected, got))
     return expected
@@ -324,6 +325,140 @@ def test_step7_export_layout(tmp_path):
 
 
 # --------------------------------------------------------------------------------------
+# Word instructions: L / T, INT arithmetic and compares
+# --------------------------------------------------------------------------------------
+
+WORD_PROGRAM = {
+    # loads of every constant form and of IW/QW/MW, the S7 accumulator push on L,
+    # arithmetic with wrap-around and /I by 0, T to QW and MW
+    "arithmetic": """
+        L     EW 2
+        L     7
+        +I
+        T     MW 10
+        L     MW 10
+        L     W#16#FFF0
+        *I
+        T     AW 2
+        L     AW 2
+        L     EW 4
+        -I
+        L     3
+        /I
+        T     MW 12
+        L     EW 4
+        L     MW 14
+        /I
+        T     MW 14
+        L     32767
+        L     B#16#01
+        +I
+        L     3
+        *I
+        T     AW 4
+        L     S5T#2S
+        T     MW 16
+        L     C#25
+        T     MW 18
+        L     2#1010
+        L     MW 18
+        """,
+    # compares set the RLO (and /FC := 1, OR := 0) whatever came before; the string
+    # goes on after them; L / T inside a string and an AND-before-OR term
+    "compares": """
+        L     EW 2
+        L     100
+        >I
+        =     A 0.0
+        U     E 0.0
+        L     EW 2
+        L     EW 4
+        ==I
+        U     E 0.1
+        =     A 0.1
+        U     E 0.2
+        O
+        U     E 0.3
+        L     EW 4
+        L     0
+        <>I
+        O     E 0.0
+        =     A 0.2
+        U     E 0.1
+        O
+        U     E 0.2
+        L     EW 2
+        T     MW 10
+        U     E 0.3
+        =     A 0.3
+        L     MW 10
+        L     EW 4
+        <I
+        =     A 0.4
+        L     EW 4
+        L     -5
+        >=I
+        S     A 0.5
+        L     EW 2
+        L     EW 4
+        <=I
+        R     A 0.5
+        """,
+    # the accumulators across jumps: the meet of the paths into a label
+    "jumps": """
+        L     EW 2
+        L     EW 4
+        U     E 0.0
+        SPB   M1
+        L     1
+        L     2
+M1:     +I
+        T     MW 10
+        U     E 0.1
+        SPBN  M2
+        L     EW 2
+        L     10
+        >I
+M2:     =     A 0.0
+        """,
+}
+
+
+def word_inputs(scans: int = 24) -> list[dict[int, int]]:
+    """I0.0..I0.3 through all combinations; IW 2 and IW 4 (bytes 2..5) through
+    values around 0, 100 and the ends of the INT range."""
+    values = (0, 1, 100, 101, 0xFFFF, 0x8000, 0x7FFF, 99, 5, 0xFFFB, 0x1234, 2)
+    rows = []
+    for k in range(scans):
+        a, b = values[k % len(values)], values[(k * 5 + 3) % len(values)]
+        rows.append({0: k % 16, 2: a >> 8, 3: a & 0xFF, 4: b >> 8, 5: b & 0xFF})
+    return rows
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+@pytest.mark.parametrize("name", sorted(WORD_PROGRAM))
+def test_word_instructions_against_awlsim(tmp_path, name, lang):
+    body = WORD_PROGRAM[name]
+    if lang == "en":
+        body = to_english(body.replace("EW", "IW").replace("AW", "QW"))
+    words = ("QW2", "QW4", "MW10", "MW12", "MW14", "MW16", "MW18")
+    rows = same_as_awlsim(write(tmp_path, f"{name}_{lang}.awl", body), lang,
+                          word_inputs(), tmp_path, words=words, in_words=(2, 4))
+    if name == "arithmetic":                    # S7's values, stated in words too
+        assert rows[0]["MW16"] == 0x0200 and rows[0]["MW18"] == 0x25
+        assert rows[0]["QW4"] == -32768         # (32767 + 1) * 3, wrapped
+
+
+def test_words_on_verilator_serial_and_parallel(tmp_path):
+    words = ("QW2", "QW4", "MW10", "MW12", "MW14", "MW16", "MW18")
+    for name in ("arithmetic", "compares"):
+        path = write(tmp_path, f"{name}.awl", WORD_PROGRAM[name])
+        for mode in ("serial", "parallel"):
+            same_as_awlsim(path, "de", word_inputs(12), tmp_path, words=words,
+                           in_words=(2, 4), sim="verilator", mode=mode)
+
+
+# --------------------------------------------------------------------------------------
 # The command line and its errors
 # --------------------------------------------------------------------------------------
 
@@ -361,7 +496,30 @@ def test_lang_option_for_another_suffix(tmp_path, capsys):
 
 ERRORS = [
     # (body, line within the file, column, message start); the body starts at line 8
-    ("L     S5T#5S\nSE    T 1\nU     T 1\n=     A 0.0", 8, 1, "unsupported: `L`"),
+    ("L     S5T#5S\nL     1\nSE    T 1", 10, 1, "unsupported: `SE`"),
+    ("L     MW 0\n+I", 9, 1,
+     "unsupported: `+I` reads ACCU2, which here holds what an earlier scan left"),
+    ("T     MW 2", 8, 1, "unsupported: `T` reads ACCU1"),
+    ("U     E 0.0\nSPB   M1\nL     1\nL     2\nM1:   +I\nT     MW 0", 12, 7,
+     "unsupported: `+I` reads ACCU1"),
+    ("L     MW 10\nT     MW 11", 9, 7, "unsupported: `MW 11` and `MW 10` (line 8) "
+     "overlap"),
+    ("U     M 10.1\n=     A 0.0\nL     1\nT     MW 9", 11, 7,
+     "unsupported: word `MW 9` overlaps the bit `M 10.1` (line 8)"),
+    ("L     EW 0\nT     MW 2\nU     E 1.7\n=     A 0.0", 8, 7,
+     "unsupported: word `EW 0` overlaps the bit `E 1.7`"),
+    ("L     40000", 8, 7, "unsupported: DINT constant `40000`"),
+    ("L     L#5", 8, 7, "unsupported: constant `L#5`"),
+    ("L     1.5", 8, 7, "malformed constant `1.5`"),
+    ("L     W#16#10000", 8, 7, "constant out of range: `W#16#10000`"),
+    ("L     C#1000", 8, 7, "malformed constant `C#1000`"),
+    ("L     MB 0", 8, 7, "unsupported: operand `MB 0` in `L`"),
+    ("L     1\nT     EW 0", 9, 7, "operand of the wrong kind: `T` needs a word"),
+    ("L     1\nL     2\nMOD\nT     MW 0", 10, 1, "unsupported: `MOD`"),
+    ("L     1\nL     2\n+D\nT     MW 0", 10, 1, "unsupported: `+D`"),
+    ("L     1\nL     2\nTAK", 10, 1, "unsupported: `TAK`"),
+    ("L     1\n+     1", 9, 1, "unsupported: `+`"),
+    ("L     MW 256", 8, 7, "operand out of range: `MW 256`"),
     ("U     T 1\n=     A 0.0", 8, 7, "unsupported: timer status `T 1`"),
     ("U     Z 3\n=     A 0.0", 8, 7, "unsupported: counter status `Z 3`"),
     ("U     \"Start\"\n=     A 0.0", 8, 7, "unsupported: symbol `\"Start\"`"),
@@ -429,12 +587,12 @@ def test_random_programs_against_awlsim(tmp_path):
     compared, rejected, seen = 0, [], set()
     for seed, path, lang, inputs in random_cases(tmp_path, PROGRAMS):
         try:
-            got = bitbyte_scans(path, inputs, tmp_path)
+            got = bitbyte_scans(path, inputs, tmp_path, words=WORDS, in_words=IN_WORDS)
         except SourceError as e:
             assert e.message.startswith("unsupported:"), (seed, str(e))
             rejected.append(seed)
             continue
-        expected = awlsim_scans(path, inputs, mnemonics=lang)
+        expected = awlsim_scans(path, inputs, mnemonics=lang, words=WORDS)
         diff = first_difference(expected, got)
         assert diff is None, f"seed {seed} ({path}) differs from awlsim: {diff}"
         compared += 1
@@ -445,6 +603,7 @@ def test_random_programs_against_awlsim(tmp_path):
             "FN", "NOT", "SET", "CLR"}
     need |= {"U", "UN", "U(", "UN(", "SPA", "SPB", "SPBN", "BEB",
              "A", "AN", "A(", "AN(", "JU", "JC", "JCN", "BEC"}
+    need |= {"L", "T", "+I", "-I", "*I", "/I", "==I", "<>I", ">I", "<I", ">=I", "<=I"}
     if PROGRAMS >= 200:
         assert need <= seen, need - seen
     print(f"{compared} random STL programs equal awlsim's, {len(rejected)} rejected "
@@ -459,9 +618,10 @@ def test_random_programs_on_verilator_serial_and_parallel(tmp_path):
             parse_file(str(path))
         except SourceError:
             continue
-        expected = awlsim_scans(path, inputs, mnemonics=lang)
+        expected = awlsim_scans(path, inputs, mnemonics=lang, words=WORDS)
         for mode in ("serial", "parallel"):
-            got = bitbyte_scans(path, inputs, tmp_path, sim="verilator", mode=mode)
+            got = bitbyte_scans(path, inputs, tmp_path, sim="verilator", mode=mode,
+                                words=WORDS, in_words=IN_WORDS)
             assert first_difference(expected, got) is None, (seed, mode)
         checked += 1
     assert checked >= 8
@@ -482,11 +642,11 @@ def mismatches(tmp: Path, count: int = 60) -> int:
     found = 0
     for seed, path, lang, inputs in random_cases(tmp, count, offset=90_000):
         try:
-            got = bitbyte_scans(path, inputs, tmp)
+            got = bitbyte_scans(path, inputs, tmp, words=WORDS, in_words=IN_WORDS)
         except SourceError:
             continue
-        found += first_difference(awlsim_scans(path, inputs, mnemonics=lang),
-                                  got) is not None
+        found += first_difference(awlsim_scans(path, inputs, mnemonics=lang,
+                                               words=WORDS), got) is not None
     return found
 
 

@@ -38,7 +38,7 @@ from bitbyte.lang.program import Instr, Operand, Program
 # --------------------------------------------------------------------------------------
 
 _BOTH = ("O ON X XN O( ON( X( XN( ) = S R FP FN NOT SET CLR SAVE BE NOP BLD "
-         "L T LC SS FR LOOP CALL UC CC TAK PUSH POP ENT LEAVE INC DEC +I -I *I /I +D -D "
+         "+ L T LC SS FR LOOP CALL UC CC TAK PUSH POP ENT LEAVE INC DEC +I -I *I /I +D -D "
          "*D /D MOD +R -R *R /R +AR1 +AR2 ==I <>I >I <I >=I <=I ==D <>D >D <D >=D <=D "
          "==R <>R >R <R >=R <=R ITD ITB BTI BTD DTB DTR RND RND+ RND- TRUNC INVI INVD "
          "NEGI NEGD NEGR ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN CAW CAD SLW SRW "
@@ -86,7 +86,13 @@ OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),
 BIT_AREAS = ("I", "Q", "M")
 # instructions that neither read /FC nor the OR bit, and leave /FC = 0 (a jump
 # target starting with one of them may be reached with any /FC)
-FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC")
+COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
+ARITHMETIC = ("+I", "-I", "*I", "/I")
+FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES
+# instructions that neither read nor change /FC, the OR bit or the RLO: a jump
+# target starting with them is judged by the first statement after them
+FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + ARITHMETIC
+WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
 
 
@@ -145,6 +151,34 @@ def _split_statements(text: str) -> list[tuple[int, str]]:
 # The front end
 # --------------------------------------------------------------------------------------
 
+@dataclass(frozen=True)
+class Known:
+    """An accumulator whose value the compiler knows: the 16-bit pattern S7 holds
+    (`value`, signed), and what it means to a timer (`s5t_ms`, from `S5T#`) or a
+    counter (`count`, from `C#`)."""
+
+    value: int
+    s5t_ms: int | None = None
+    count: int | None = None
+
+
+ANY = "defined"         # an accumulator loaded in this scan, value not known
+CLOBBERED = "clobbered"  # changed by this translation where S7 leaves it alone
+TOP = "top"             # not known yet (a label reached only by a later jump)
+
+
+def _meet(a, b):
+    if a == TOP:
+        return b
+    if b == TOP or a == b:
+        return a
+    if a is None or b is None:
+        return None
+    if CLOBBERED in (a, b):
+        return CLOBBERED
+    return ANY
+
+
 class _State:
     """What the compiler knows at a point of the statement sequence.
 
@@ -161,6 +195,9 @@ class _State:
         self.parens: list[tuple[str, Stmt, bool, str]] = []
         self.il_depth = 0
         self.need_set = False           # IL RLO must be made 1 (after SPB/SPBN/BEB)
+        # ACCU1, ACCU2: None (S7: the previous scan's value; here: cleared), ANY,
+        # CLOBBERED, TOP or a Known value
+        self.acc: tuple = (None, None)
 
     def key(self) -> tuple:
         return (self.ner, self.orm, len(self.parens))
@@ -295,7 +332,8 @@ class StlFrontEnd:
             langs = MNEMONIC_TABLE.get(stmt.mnemonic.text.upper(), {})
             if len(langs) == 1:
                 found.append((next(iter(langs)), stmt, stmt.mnemonic))
-            if stmt.operands and not self.is_jump(stmt):
+            if stmt.operands and not self.is_jump(stmt) \
+                    and "#" not in stmt.operands[0].text:
                 area = _split_area(stmt.operands[0].text)[0]
                 alangs = AREA_TABLE.get(area, {})
                 if len(alangs) == 1:
@@ -342,12 +380,13 @@ class StlFrontEnd:
 
     # -- operands ------------------------------------------------------------------
 
-    def bit_operand(self, stmt: Stmt, targets: tuple[str, ...] = BIT_AREAS) -> Operand:
-        """`E 0.0` / `I0.0` / `A 4.1` / `M 10.7` -> a bit Operand (English area)."""
+    def address(self, stmt: Stmt, kind: str) -> tuple[Word, str, str, str]:
+        """The address operand of `stmt` (`E 0.0`, `MW10`, `EW 2`): (its first word,
+        the canonical English area, the rest after the area, the text written)."""
         ops = stmt.operands
         if not ops:
             raise self.error(stmt.line, stmt.mnemonic.col,
-                             f"missing operand: `{stmt.mnemonic.text}` needs a bit")
+                             f"missing operand: `{stmt.mnemonic.text}` needs a {kind}")
         first = ops[0]
         text = first.text
         if text.startswith('"'):
@@ -366,7 +405,12 @@ class StlFrontEnd:
         langs = AREA_TABLE.get(area)
         if langs is None or not area:
             raise self.error(stmt.line, first.col, f"invalid operand `{written}`")
-        canon = langs[self.lang]
+        return first, langs[self.lang], rest, written
+
+    def bit_operand(self, stmt: Stmt, targets: tuple[str, ...] = BIT_AREAS) -> Operand:
+        """`E 0.0` / `I0.0` / `A 4.1` / `M 10.7` -> a bit Operand (English area)."""
+        first, canon, rest, written = self.address(stmt, "bit")
+        area = _split_area(first.text)[0]
         if canon not in BIT_AREAS:
             what = {"T": "timer status", "C": "counter status"}.get(canon, "operand")
             if canon.endswith(("B", "W", "D")) and canon not in ("DB",):
@@ -423,13 +467,22 @@ class StlFrontEnd:
                                      f"(first defined at {first.line}:{first.col})")
                 self.label_defs[w.text.upper()] = stmt
         assumed: dict[str, tuple[int, str]] = {}
-        for _ in range(4):
-            program, edges = self.translate_once(assumed)
+        assumed_acc: dict[str, tuple] = {}
+        for _ in range(6):
+            program, edges = self.translate_once(assumed, assumed_acc)
             wanted = self.check_edges(edges)
-            if wanted == assumed:
+            wanted_acc = {}
+            for name, states in self.acc_edges.items():
+                acc = (TOP, TOP)
+                for a in states:
+                    acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
+                wanted_acc[name] = acc
+            if wanted == assumed and wanted_acc == assumed_acc:
+                self.check_overlaps()
                 return program
-            assumed = wanted
-        return program          # pragma: no cover (states settle in two passes)
+            assumed, assumed_acc = wanted, wanted_acc
+        self.check_overlaps()
+        return program          # pragma: no cover (states settle in a few passes)
 
     def check_edges(self, edges: dict[str, list[tuple[int, Stmt, str]]]
                     ) -> dict[str, tuple[int, str]]:
@@ -444,7 +497,7 @@ class StlFrontEnd:
         states = {}
         for name, incoming in edges.items():
             values = {ner for ner, _, _ in incoming}
-            target = self.label_defs[name]
+            target = self.fc_reader(self.label_defs[name])
             if len(values) == 1:
                 states[name] = (values.pop(), "")
                 continue
@@ -461,18 +514,32 @@ class StlFrontEnd:
                 continue
             sa = jc[0] if jc else next(s for ner, s, _ in incoming if ner == 0)
             sb = next(s for ner, s, _ in incoming if ner == 1)
-            raise self.error(target.line, target.labels[0].col,
-                             f"unsupported: jump target `{target.labels[0].text}` is "
+            label = self.label_defs[name]
+            raise self.error(label.line, label.labels[0].col,
+                             f"unsupported: jump target `{label.labels[0].text}` is "
                              f"reached with /FC = 0 (from line {sa.line}) and "
                              f"/FC = 1 (from line {sb.line}), and "
                              f"`{target.mnemonic.text}` depends on it")
         return states
 
-    def translate_once(self, assumed: dict[str, tuple[int, str]]):
+    def fc_reader(self, stmt: Stmt) -> Stmt:
+        """The statement that decides what a jump target needs of /FC: the target
+        itself, or the first after the L/T/arithmetic that pass /FC along (up to
+        another label)."""
+        i = self.stmts.index(stmt)
+        while self.stmts[i].canon in FC_PASS and i + 1 < len(self.stmts) \
+                and not self.stmts[i + 1].labels:
+            i += 1
+        return self.stmts[i]
+
+    def translate_once(self, assumed: dict[str, tuple[int, str]],
+                       assumed_acc: dict[str, tuple]):
         self.out: list[Instr] = []
         self.labels: dict[str, int] = {}
         self.pending: list[str] = []
         self.assumed = assumed
+        self.acc_edges: dict[str, list[tuple]] = {n: [] for n in self.label_defs}
+        self.word_uses: list[tuple[str, int, Stmt, Word]] = []
         edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
@@ -491,7 +558,14 @@ class StlFrontEnd:
                                            "AND-before-OR term", stmt.labels[0].col)
                 if reachable:
                     edges[name].append((st.ner, self.prev_stmt(i), "fall"))
+                    self.acc_edges[name].append(st.acc)
                 st.ner = ner if ner is not None else (st.ner if reachable else 0)
+                acc = assumed_acc.get(name)
+                if acc is None:
+                    acc = (TOP, TOP)
+                    for a in self.acc_edges[name]:
+                        acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
+                st.acc = acc
                 for w in stmt.labels:
                     self.pending.append(w.text)
                 reachable = True    # (a label nobody jumps to counts as reached)
@@ -521,7 +595,8 @@ class StlFrontEnd:
     def overwrites_rlo(stmt: Stmt, st: _State) -> bool:
         """Does stmt ignore the RLO it finds (after SPB/SPBN, /FC = 0)?"""
         return stmt.canon in COMBINE or stmt.canon in OPEN or stmt.canon in (
-            "SET", "CLR", "NOP", "BLD") or (stmt.canon == "O" and not stmt.operands)
+            "SET", "CLR", "NOP", "BLD") + COMPARES or (stmt.canon == "O"
+                                                      and not stmt.operands)
 
     def emit(self, mnemonic: str, operand: Operand | None = None, *, line=None,
              col=None, source=None) -> None:
@@ -599,12 +674,168 @@ class StlFrontEnd:
                                  f"`{stmt.mnemonic.text}` needs a number")
         elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC"):
             return self.jump(stmt, st, m, edges)
+        elif m in ("L", "T") + ARITHMETIC + COMPARES:
+            self.word_statement(stmt, st, m)
         elif m in COMBINE:
             raise self.error(stmt.line, stmt.mnemonic.col,
                              f"missing operand: `{stmt.mnemonic.text}` needs a bit")
         else:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}`")
         return True
+
+    # -- word instructions -----------------------------------------------------------
+
+    def read_acc(self, stmt: Stmt, st: _State, which: int) -> None:
+        """`stmt` reads ACCU<which>: it must have been loaded in this scan."""
+        value = st.acc[which - 1]
+        if value is None:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
+                                   "which here holds what an earlier scan left (S7 keeps "
+                                   "the accumulators from scan to scan, this CPU clears "
+                                   "them at the scan start): load it first")
+        if value == CLOBBERED:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
+                                   "which the translation of an earlier timer or "
+                                   "counter instruction changed (S7 leaves it alone)")
+
+    def word_statement(self, stmt: Stmt, st: _State, m: str) -> None:
+        if m == "L":
+            op, known = self.load_operand(stmt)
+            self.emit("L", op)
+            st.acc = (known if known is not None else ANY, st.acc[0])
+        elif m == "T":
+            op = self.word_operand(stmt, ("QW", "MW"))
+            self.read_acc(stmt, st, 1)
+            self.emit("T", op)
+        elif m in ARITHMETIC:
+            self.no_operand(stmt)
+            self.read_acc(stmt, st, 1)
+            self.read_acc(stmt, st, 2)
+            self.emit(m)
+            st.acc = (ANY, st.acc[1])
+        else:                                   # a compare: RLO := result, OR := 0
+            self.no_operand(stmt)
+            self.read_acc(stmt, st, 1)
+            self.read_acc(stmt, st, 2)
+            self.close_term(st)
+            self.emit(m)
+            st.ner = 1
+
+    def load_operand(self, stmt: Stmt) -> tuple[Operand, Known | None]:
+        """The operand of `L`: a constant (with what the compiler knows of it) or a
+        word IW/QW/MW."""
+        ops = stmt.operands
+        if not ops:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"missing operand: `{stmt.mnemonic.text}` needs a value")
+        text = ops[0].text
+        if text[0].isdigit() or text[0] in "+-" or "#" in text or text[0] == "'":
+            if len(ops) > 1:
+                raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+            known = self.constant(stmt, ops[0])
+            return Operand("const", area="INT", value=known.value, text=text), known
+        return self.word_operand(stmt, ("IW", "QW", "MW")), None
+
+    def constant(self, stmt: Stmt, word: Word) -> Known:
+        """An S7 constant as the 16-bit pattern S7 loads (INT, W#16#, B#16#, 16#, 2#,
+        S5T#, C#); any other (DINT, REAL, TIME, pointers, strings) is unsupported."""
+        text = word.text
+        up = text.upper()
+
+        def bad(what: str) -> SourceError:
+            return self.error(stmt.line, word.col, what)
+
+        def pattern(value: int) -> int:
+            return value - 0x10000 if value & 0x8000 else value
+
+        prefix, sep, digits = up.rpartition("#")
+        bases = {"W#16": 16, "B#16": 16, "16": 16, "2": 2, "W#2": 2, "B#2": 2}
+        if not sep:
+            sign, body = (up[0], up[1:]) if up[0] in "+-" else ("", up)
+            if not body.isdigit():
+                raise bad(f"malformed constant `{text}`")
+            value = -int(body) if sign == "-" else int(body)
+            if not -32768 <= value <= 32767:
+                raise bad(f"unsupported: DINT constant `{text}` (INT is "
+                          "-32768..32767; DINT comes in a later slice)")
+            return Known(value)
+        if prefix in bases:
+            base = bases[prefix]
+            limit = 0xFF if prefix.startswith("B#") else 0xFFFF
+            try:
+                value = int(digits.replace("_", ""), base)
+            except ValueError:
+                raise bad(f"malformed constant `{text}`") from None
+            if value > limit:
+                raise bad(f"constant out of range: `{text}`")
+            return Known(pattern(value))
+        if prefix in ("S5T", "S5TIME"):
+            ms = _s5t_ms(digits)
+            if ms is None:
+                raise bad(f"malformed constant `{text}`: S5T# with parts <n>H <n>M "
+                          "<n>S <n>MS, largest first, at most S5T#2H46M30S")
+            return _s5t_known(ms)
+        if prefix == "C":
+            if not digits.isdigit() or int(digits) > 999:
+                raise bad(f"malformed constant `{text}`: C#0..C#999")
+            n = int(digits)
+            return Known(int(str(n), 16), count=n)
+        raise bad(f"unsupported: constant `{text}` (this slice loads INT, W#16#, "
+                  "B#16#, 2#, S5T# and C# constants)")
+
+    def word_operand(self, stmt: Stmt, areas: tuple[str, ...]) -> Operand:
+        """`EW 2` / `IW2` / `AW 4` / `MW 10` -> a word Operand (English area)."""
+        first, canon, rest, written = self.address(stmt, "word")
+        area = _split_area(first.text)[0]
+        if canon not in areas:
+            if canon in ("I", "Q", "M") and canon + "W" in areas or canon in WORD_AREAS:
+                raise self.error(stmt.line, first.col,
+                                 f"operand of the wrong kind: `{stmt.mnemonic.text}` "
+                                 f"needs a word, not `{written}`")
+            what = {"T": "the remaining time of a timer", "C": "a counter value"}.get(
+                canon, "operand")
+            raise self.unsupported(stmt, f"{what} `{written}` in "
+                                   f"`{stmt.mnemonic.text}` (words IW, QW, MW here)",
+                                   first.col)
+        if not rest.isdigit():
+            raise self.error(stmt.line, first.col,
+                             f"malformed address `{written}`: {area} <number> expected")
+        n = int(rest)
+        limit = self.config.area_size(canon)
+        if n >= limit:
+            raise self.error(stmt.line, first.col,
+                             f"operand out of range: `{written}` (0..{limit - 1} in "
+                             "this build)")
+        self.word_uses.append((canon, n, stmt, Word(written, first.col)))
+        return Operand("index", area=canon, index=n, text=written)
+
+    def check_overlaps(self) -> None:
+        """S7's IW/QW/MW n is bytes n and n+1 of the I/Q/M area; here words live in
+        the byte processor, apart from the bits, so a program that uses a word and a
+        bit (or two words) in the same bytes is rejected."""
+        bits: dict[tuple[str, int], Instr] = {}
+        for ins in self.out:
+            op = ins.operand
+            if op is not None and op.kind == "bit":
+                bits.setdefault((op.area, op.byte), ins)
+        words: dict[tuple[str, int], tuple[Stmt, Word]] = {}
+        for area, n, stmt, word in self.word_uses:
+            for other in (n - 1, n + 1):
+                if (area, other) in words:
+                    o_stmt, o_word = words[(area, other)]
+                    raise self.unsupported(stmt, f"`{word.text}` and `{o_word.text}` "
+                                           f"(line {o_stmt.line}) overlap (an S7 word n "
+                                           "is bytes n and n+1; here each word stands "
+                                           "alone)", word.col)
+            words.setdefault((area, n), (stmt, word))
+            bit_area = WORD_AREAS[area]
+            for b in (n, n + 1):
+                ins = bits.get((bit_area, b))
+                if ins is not None:
+                    raise self.unsupported(stmt, f"word `{word.text}` overlaps the bit "
+                                           f"`{ins.operand.text}` (line {ins.line}): "
+                                           f"S7's `{word.text}` is bytes {n} and {n + 1}, "
+                                           "here words and bits are apart", word.col)
 
     def combine(self, stmt: Stmt, st: _State, m: str) -> None:
         func, neg = COMBINE[m]
@@ -683,6 +914,7 @@ class StlFrontEnd:
                                        "AND-before-OR string")
             if label != END_LABEL:
                 edges[label].append((st.ner, stmt, "JU"))
+                self.acc_edges[label].append(st.acc)
                 fix = self.assumed.get(label, (0, ""))[1]
                 if fix and st.ner == 0:
                     self.emit(fix)          # this path arrives with /FC = 0
@@ -696,7 +928,45 @@ class StlFrontEnd:
         st.need_set = True                      # not taken: S7's RLO is 1
         if label != END_LABEL:
             edges[label].append((0, stmt, "JC"))
+            self.acc_edges[label].append(st.acc)
         return True
+
+
+_S5T_PART = re.compile(r"(\d+)(MS|D|H|M|S)_?")
+_S5T_UNITS = {"D": 86_400_000, "H": 3_600_000, "M": 60_000, "S": 1000, "MS": 1}
+
+
+def _s5t_ms(body: str) -> int | None:
+    """`1H2M3S4MS` (or with `_`) -> ms; None if malformed or above 2H46M30S."""
+    pos, total, last = 0, 0, -1
+    order = list(_S5T_UNITS)
+    while pos < len(body):
+        m = _S5T_PART.match(body, pos)
+        if not m or order.index(m.group(2)) <= last:
+            return None
+        last = order.index(m.group(2))
+        total += int(m.group(1)) * _S5T_UNITS[m.group(2)]
+        pos = m.end()
+    if pos == 0 or total > 9_990_000:
+        return None
+    return total
+
+
+def _s5t_known(ms: int) -> Known:
+    """The S5TIME pattern for `ms` as S7 (and awlsim) encode it: the finest time base
+    that holds it (10 ms up to 9.99 s, 100 ms, 1 s, 10 s), three BCD digits."""
+    seconds = ms / 1000.0
+    if seconds <= 9.99:
+        base, units = 0, int(round(seconds * 100.0))
+    elif seconds <= 99.9:
+        base, units = 1, int(round(seconds * 10.0))
+    elif seconds <= 999.0:
+        base, units = 2, int(seconds)
+    else:
+        base, units = 3, int(round(seconds)) // 10
+    bcd = int(str(units % 1000), 16)
+    value = (base << 12) | bcd
+    return Known(value, s5t_ms=units * (10, 100, 1000, 10_000)[base])
 
 
 def _split_area(text: str) -> tuple[str, str]:
