@@ -52,10 +52,13 @@ def columns_of(out_bytes: int, marker_bytes: int, words: tuple[str, ...] = ()
 
 def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: str,
                  out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
-                 scan_times_s: list[float] | None = None) -> list[dict[str, int]]:
+                 scan_times_s: list[float] | None = None, timers: tuple[int, ...] = ()
+                 ) -> list[dict[str, int]]:
     """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"; `words`
     ("QW2", "MW10") are read as S7 words (bytes n and n+1) of the output image and
-    the marker area."""
+    the marker area; `timers` adds "@T n", the status of timer n after the cycle, and
+    "@T n<", as at the scan's latch (not compared: stimuli for timer programs are
+    made with them)."""
     from awlsim.common.cpuconfig import S7CPUConfig
     from awlsim.common.project import Project
     from awlsim.core.main import AwlSim
@@ -84,6 +87,8 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
         clock["now"] = scan_times_s[k] if scan_times_s else 0.0
         for b in range(max(image, default=-1) + 1):
             cpu.storeInputByte(b, image.get(b, 0))
+        cpu.now = clock["now"]
+        at_latch = {n: cpu.getTimer(n).get() for n in timers}
         sim.runCycle()
         markers = cpu.flags.getDataBytes()
         row = {}
@@ -99,6 +104,9 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
             else:
                 image = {b: markers[b] for b in (n, n + 1)}
             row[name] = word_of(image, n)
+        for n in timers:
+            row[f"@T{n}"] = cpu.getTimer(n).get()
+            row[f"@T{n}<"] = at_latch[n]            # as the scan's first read sees it
         scans.append(row)
     return scans
 
@@ -106,7 +114,7 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
 def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
                   out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
-                  in_words: tuple[int, ...] = (),
+                  in_words: tuple[int, ...] = (), clock_mhz: str = "100",
                   mnemonics: str | None = None) -> list[dict[str, int]]:
     """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
     the C++ harness), one row per scan with the same keys as awlsim_scans."""
@@ -120,17 +128,56 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
     watch = columns_of(out_bytes, marker_bytes, words)
     program, columns, job, f = prepare_run(
         str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
-        mode=mode, mnemonics=mnemonics)
+        mode=mode, mnemonics=mnemonics, clock_mhz=clock_mhz)
     if sim == "ref":
         assert mode == "serial", "the reference interpreter runs serial mode"
         stimulus = load_stimulus(str(stim), program.symbols)
-        _, records, fault = refsim_trace(program, Config(), stimulus, watch,
-                                         scans=len(inputs))
+        _, records, fault = refsim_trace(program, Config(clock_mhz=float(f)), stimulus,
+                                         watch, scans=len(inputs))
     else:
         from bitbyte.sim.verilator import run_harness
         records, fault, _ = run_harness(job, columns)
     assert not fault, f"{path}: watchdog"
-    return [{name: rec.values[name] for name in watch} for rec in records]
+    rows, latch = [], 0
+    for rec in records:          # LATCH: the scan's latch time in s (awlsim's cpu.now)
+        rows.append({name: rec.values[name] for name in watch} | {LATCH: latch / f / 1e6})
+        latch = rec.end_clock
+    return rows
+
+
+LATCH = "@latch_s"
+
+
+def latch_times(rows: list[dict[str, int]]) -> list[float]:
+    """The scans' latch times (s) of a bitbyte_scans result, for awlsim's cpu.now."""
+    return [float(row[LATCH]) for row in rows]
+
+
+def transitions(rows: list[dict[str, int]], column: str) -> list[tuple[int, int]]:
+    """(scan, new value) of every change of `column`, from the reset value 0."""
+    out, last = [], 0
+    for k, row in enumerate(rows):
+        if row[column] != last:
+            out.append((k, row[column]))
+            last = row[column]
+    return out
+
+
+def transition_difference(expected, got, slack: int = 1):
+    """None if every column makes the same transitions in both, each within `slack`
+    scans (spec §9: timer programs), else (column, awlsim's, bitbyte's).  A
+    transition in the last `slack` scans may be missing from the other trace (it
+    would come after its end)."""
+    end = len(expected) - slack
+    for column in expected[0]:
+        if column[0] == "@":
+            continue
+        a, b = transitions(expected, column), transitions(got, column)
+        longer = a[len(b):] + b[len(a):]
+        if any(k < end for k, _ in longer) or any(
+                va != vb or abs(ka - kb) > slack for (ka, va), (kb, vb) in zip(a, b)):
+            return column, a, b
+    return None
 
 
 def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]]):
@@ -138,7 +185,51 @@ def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]]):
     if len(expected) != len(got):
         return (min(len(expected), len(got)), {"scans": (len(expected), len(got))})
     for k, (a, b) in enumerate(zip(expected, got)):
-        diff = {c: (a[c], b[c]) for c in a if a[c] != b.get(c)}
+        diff = {c: (a[c], b[c]) for c in a if a[c] != b.get(c) and c[0] != "@"}
         if diff:
             return k, diff
     return None
+
+
+def timer_busy(rows: list[dict[str, int]]) -> set[int]:
+    """The scans within one scan of a transition of a timer's status ("@T n")."""
+    busy = set()
+    for column in rows[0]:
+        if column.startswith("@T"):
+            for k, _ in transitions(rows, column):
+                busy |= {k - 1, k, k + 1}
+    return busy
+
+
+def quiet_inputs(inputs: list[dict[int, int]], busy: set[int]) -> list[dict[int, int]]:
+    """`inputs` with every change that falls in a `busy` scan put off until after
+    it.  Spec §9 lets a timer's transition come a scan late; an input that changes
+    in that scan too would make a one-scan pulse in one simulator and none in the
+    other, which no "within one scan" comparison can match."""
+    out, current = [], inputs[0]
+    for k, image in enumerate(inputs):
+        if k not in busy:
+            current = image
+        out.append(current)
+    return out
+
+
+def timer_scans(path, inputs, tmp, *, mnemonics: str, timers: tuple[int, ...],
+                clock_mhz: str = "0.02", words: tuple[str, ...] = (),
+                in_words: tuple[int, ...] = (), quiet: bool = True, **kw):
+    """(awlsim's rows, bitbyte's rows, the inputs used) for a timer program: awlsim
+    runs at bitbyte's latch times, the inputs kept quiet around awlsim's timer
+    transitions (quiet_inputs; the busy scans only grow, so this settles), unless
+    `quiet` is False (hand-written stimuli that keep clear of them by design)."""
+    busy: set[int] = set()
+    for _ in range(12):
+        stimulus = quiet_inputs(inputs, busy)
+        got = bitbyte_scans(path, stimulus, tmp, clock_mhz=clock_mhz, words=words,
+                            in_words=in_words, **kw)
+        expected = awlsim_scans(path, stimulus, mnemonics=mnemonics, words=words,
+                                scan_times_s=latch_times(got), timers=timers)
+        grown = busy | timer_busy(expected) if quiet else busy
+        if grown == busy:
+            break
+        busy = grown
+    return expected, got, stimulus

@@ -9,7 +9,11 @@ FP/FN in the middle of a string, NOT, forward jumps SPA/SPB/SPBN (JU/JC/JCN) to 
 label on a later network, BEB (BEC); word networks: L of words (IW/QW/MW, German
 EW/AW/MW) and constants (INT, W#16#, B#16#, S5T#, C#), +I -I *I /I, T, and the
 compares ==I <>I >I <I >=I <=I (also after a logic string and after `O`, and with the
-string going on after them), L/T in the middle of a string.  A few programs contain what the front end rejects
+string going on after them), L/T in the middle of a string; counter networks: ZV ZR
+(CU CD), S Z with C# and W#16# BCD values (near 999 too), R Z, `L Z n`, and `U Z n` in
+strings.  With timers=True (time-keyed programs, no words, no counters, no jumps):
+the S7 timers SI SE SS SA (SP SD SS SF) with S5T# and W#16# presets, R T, and their
+status read in strings.  A few programs contain what the front end rejects
 (NOT after `O` in a string, a jump target reached with different /FC): the test
 expects `unsupported:` for those, never a silent difference.
 
@@ -31,15 +35,35 @@ IN_WORDS = (2, 4)
 WORDS = ("QW2", "QW4", "MW10", "MW12", "MW14")
 WORD_AREA = {"de": {"IW": "EW", "QW": "AW", "MW": "MW"},
              "en": {"IW": "IW", "QW": "QW", "MW": "MW"}}
+# Timers: German SI SE SS SA = English SP SD SS SF (S7's pulse, on-delay, retentive
+# on-delay, off-delay); the extended pulse (SV / English SE) is not in the set.
+TIMER_KINDS = {"de": ["SI", "SE", "SS", "SA"], "en": ["SP", "SD", "SS", "SF"]}
+PRESETS_MS = (0, 50, 70, 100, 150, 200)   # 0, or five scans and more (below)
+COUNTER = {"de": "Z", "en": "C"}
+UP_DOWN = {"de": ("ZV", "ZR"), "en": ("CU", "CD")}
 ARITH = ["+I", "-I", "*I", "/I"]
 COMPARE = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
 
 
 class Gen:
-    def __init__(self, seed: int, words: bool = True):
+    def __init__(self, seed: int, words: bool = True, timers: bool = False):
         self.r = random.Random(seed)
         self.lang = self.r.choice(("de", "en"))
         self.words = words
+        self.counters = words           # (programs keyed by scan)
+        self.timer_kind: dict[int, str] = {}
+        if timers:
+            for n in self.r.sample(range(1, 6), self.r.randrange(1, 4)):
+                self.timer_kind[n] = self.r.choice(TIMER_KINDS[self.lang])
+        self.preset = {n: self.r.choice(PRESETS_MS) for n in self.timer_kind}
+        self.network_timer = min(self.timer_kind, default=0)
+        self.timer_nets: set[int] = set()
+        self.edge_memories = 0
+        # Timer programs read inputs and timers only: with no feedback through Q and
+        # M, no output oscillates from scan to scan, whose phase a timer's edge
+        # (allowed to come a scan late, spec §9) would turn round.
+        self.read_areas = "I" if timers else "IQM"
+        self.reads_timers = True
         self.lines: list[str] = []
         self.label = ""                 # put before the next statement
 
@@ -48,7 +72,9 @@ class Gen:
         area = r.choice(areas)
         spaced = r.random() < 0.7
         name = AREA[self.lang][area]
-        return f"{name}{' ' if spaced else ''}{r.randrange(2)}.{r.randrange(8)}"
+        # timer programs write M byte 0 only: M byte 1 holds the edge memories
+        byte = 0 if self.timer_kind and area == "M" and areas != "M" else r.randrange(2)
+        return f"{name}{' ' if spaced else ''}{byte}.{r.randrange(8)}"
 
     def emit(self, text: str) -> None:
         self.lines.append(self.label + "\t" + text)
@@ -131,19 +157,86 @@ class Gen:
         elif not opening and x < 0.30:
             self.emit("O")                          # AND before OR
         elif not opening and x < 0.33:
-            self.emit(r.choice(("FP", "FN")) + " " + self.addr("M").replace("0.", "1.", 1))
+            memory = self.addr("M").replace("0.", "1.", 1)
+            if self.timer_kind:         # one edge memory each (M 2.0 .. M 3.7): no
+                k = self.edge_memories  # feedback through a shared one
+                if k == 16:
+                    return self.item(depth, opening)
+                self.edge_memories += 1
+                memory = f"M {2 + k // 8}.{k % 8}"
+            self.emit(r.choice(("FP", "FN")) + " " + memory)
         elif not opening and x < 0.35:
             self.emit("NOT")
+        elif self.counters and r.random() < 0.08:
+            self.emit(f"{r.choice(COMBINES[self.lang])}\t{COUNTER[self.lang]} "
+                      f"{r.randrange(1, 4)}")
+        elif self.timer_kind and self.reads_timers and r.random() < 0.3:
+            n = self.network_timer      # one timer per network: two, each a scan
+            self.emit(f"{r.choice(COMBINES[self.lang])}\tT {n}")
         else:
-            self.emit(f"{r.choice(COMBINES[self.lang])}\t{self.addr()}")
+            self.emit(f"{r.choice(COMBINES[self.lang])}\t{self.addr(self.read_areas)}")
+
+    def timer_network(self) -> None:
+        """An enable from inputs only (a timer started by another timer's status
+        may come two scans late), the preset, the start; now and then `R T n`."""
+        r = self.r
+        n = self.free_timers.pop()
+        kind = self.timer_kind[n]
+        self.network_timer = n          # (a jump condition after it may read it)
+        self.reads_timers = False
+        self.string(0)
+        ms = self.preset[n]
+        if r.random() < 0.15:
+            self.emit(f"L\tW#16#{int(str(ms // 10), 16):04X}")   # 10 ms time base
+        else:
+            self.emit(f"L\tS5T#{ms}MS")
+        self.emit(f"{kind}\tT {n}")
+        if r.random() < 0.3:
+            self.emit(f"=\t{self.addr('QM')}")             # the RLO is the enable
+        if kind not in ("SA", "SF") and r.random() < 0.3:
+            self.string(0)
+            self.emit(f"R\tT {n}")
+        self.reads_timers = True
+
+    def counter_network(self) -> None:
+        """ZV / ZR / S Z / R Z (CU / CD / S C / R C) on Z 1..3, each after a string
+        of its own; presets C# near 999 (S7's counters stop there) or W#16# BCD."""
+        r = self.r
+        area = COUNTER[self.lang]
+        for _ in range(r.randrange(1, 4)):
+            n = r.randrange(1, 4)
+            self.string(0)
+            x = r.random()
+            if x < 0.4:
+                self.emit(f"{UP_DOWN[self.lang][0]}\t{area} {n}")
+            elif x < 0.65:
+                self.emit(f"{UP_DOWN[self.lang][1]}\t{area} {n}")
+            elif x < 0.9:
+                value = r.choice((0, 1, 5, 25, 997, 998, 999, r.randrange(1000)))
+                self.emit(f"L\tC#{value}" if r.random() < 0.8
+                          else f"L\tW#16#{int(str(value), 16):04X}")
+                self.emit(f"S\t{area} {n}")
+            else:
+                self.emit(f"R\t{area} {n}")
+        if self.words and r.random() < 0.5:
+            self.emit(f"L\t{area} {r.randrange(1, 4)}")
+            self.emit(f"T\tMW {r.choice((10, 12, 14))}")
 
     def network(self, n: int, labels: dict[int, str]) -> None:
         r = self.r
         self.lines.append(f"NETWORK\nTITLE = network {n}")
         if n in labels:
             self.label = f"{labels[n]}:"
+        if n in self.timer_nets:
+            self.timer_network()
+            return
+        if self.timer_kind:             # off, could make an edge two scans off
+            self.network_timer = r.choice(sorted(self.timer_kind))
         if self.words and r.random() < 0.35:
             self.word_network()
+            return
+        if self.counters and r.random() < 0.2:
+            self.counter_network()
             return
         if r.random() < 0.08:
             self.emit(r.choice(("SET", "CLR")))
@@ -160,10 +253,21 @@ class Gen:
     def program(self) -> str:
         r = self.r
         networks = r.randrange(2, 7)
+        if self.timer_kind:
+            networks += 1
+            # one start per timer: a timer started twice in a scan with other
+            # enables restarts at each, and its phase drifts by that scan each time
+            self.timer_nets = set(r.sample(range(networks), r.randrange(
+                1, min(len(self.timer_kind), networks) + 1)))
+            self.free_timers = sorted(self.timer_kind)
+            r.shuffle(self.free_timers)
         labels: dict[int, str] = {}
         jumps: dict[int, tuple[str, str]] = {}
         for n in range(networks - 1):
-            if r.random() < 0.25:
+            # (timer programs: no jumps, so that every scan takes as long: a timer
+            # starts at its instruction, not at the latch as in awlsim, and its
+            # run-out may come two scans late after a long scan; docs/s7.md)
+            if r.random() < 0.25 and not self.timer_kind:
                 target = r.randrange(n + 1, networks)
                 name = labels.setdefault(target, f"M{target:03d}")
                 jumps[n] = (r.choice(JUMPS[self.lang]), name)
@@ -176,16 +280,30 @@ class Gen:
                 if r.random() < 0.3:
                     self.string(0)                  # a condition of its own
                 self.emit(f"{mnem}\t{name}")
-            elif r.random() < 0.05:
+            elif r.random() < 0.05 and not self.timer_kind:
                 self.string(0)
                 self.emit("BEB" if self.lang == "de" else "BEC")
         self.lines.append("END_ORGANIZATION_BLOCK")
         return "\n".join(self.lines) + "\n"
 
 
-def random_program(seed: int, words: bool = True) -> tuple[str, str]:
-    g = Gen(seed, words)
+def random_program(seed: int, words: bool = True, timers: bool = False
+                   ) -> tuple[str, str]:
+    g = Gen(seed, words, timers)
     return g.program(), g.lang
+
+
+def slow_inputs(seed: int, scans: int) -> list[dict[int, int]]:
+    """Input bytes 0 and 1 for timer programs: one bit flips now and then, so that
+    timers run out between the changes as well as being cut short by them."""
+    r = random.Random(seed * 7919 + 2)
+    image = [r.randrange(256), r.randrange(256)]
+    rows = []
+    for _ in range(scans):
+        rows.append({0: image[0], 1: image[1]})
+        if r.random() < 0.2:
+            image[r.randrange(2)] ^= 1 << r.randrange(8)
+    return rows
 
 
 def random_inputs(seed: int, scans: int) -> list[dict[int, int]]:

@@ -16,12 +16,13 @@ from pathlib import Path
 
 import pytest
 
-from awlsim_oracle import awlsim_scans, bitbyte_scans, first_difference
+from awlsim_oracle import (awlsim_scans, bitbyte_scans, first_difference, latch_times,
+                           timer_scans, transition_difference, transitions)
 from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
-from stlgen import IN_WORDS, WORDS, random_inputs, random_program
+from stlgen import IN_WORDS, WORDS, random_inputs, random_program, slow_inputs
 
 PROGRAMS = int(os.environ.get("BITBYTE_STL_PROGRAMS", "200"))
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -459,6 +460,271 @@ def test_words_on_verilator_serial_and_parallel(tmp_path):
 
 
 # --------------------------------------------------------------------------------------
+# Timers: S5TIME presets, SI SE SS SA (SP SD SS SF), R T, the status from the time base
+# --------------------------------------------------------------------------------------
+
+TIMER_PROGRAM = {
+    # every kind, read before its instruction (the scan-start view) and after it,
+    # the RLO after a timer instruction (the enable), a W#16# preset
+    "kinds": """
+        U     T 1
+        =     A 0.4
+        U     E 0.0
+        L     S5T#50MS
+        SE    T 1
+        =     A 1.0
+        U     T 1
+        =     A 0.0
+        U     E 0.1
+        L     S5T#70MS
+        SI    T 2
+        U     T 2
+        =     A 0.1
+        U     E 0.2
+        L     W#16#0006
+        SA    T 3
+        U     T 3
+        =     A 0.2
+        U     E 0.3
+        L     S5T#40MS
+        SS    T 4
+        U     E 0.4
+        R     T 4
+        U     T 4
+        =     A 0.3
+        UN    T 2
+        U     T 3
+        =     A 0.5
+        """,
+    # R T while the input is still 1 (S7 keeps the edge memory: no restart), on
+    # SE, SI and SS; preset 0
+    "resets": """
+        U     E 0.0
+        L     S5T#60MS
+        SE    T 1
+        U     T 1
+        =     A 0.0
+        U     E 0.5
+        R     T 1
+        U     E 0.1
+        L     S5T#60MS
+        SI    T 2
+        U     E 0.5
+        R     T 2
+        U     T 2
+        =     A 0.1
+        U     E 0.2
+        L     S5T#0MS
+        SE    T 3
+        U     T 3
+        =     A 0.2
+        U     E 0.3
+        L     S5T#0MS
+        SI    T 4
+        U     T 4
+        =     A 0.3
+        U     E 0.4
+        L     S5T#0MS
+        SA    T 5
+        U     T 5
+        =     A 0.4
+        """,
+    # a timer whose instruction a jump skips: S7's status still runs out; one
+    # preset loaded for two timers (the IL's ACCU1 holds its ms after the first)
+    "skipped": """
+        U     E 0.0
+        L     S5T#80MS
+        SE    T 1
+        U     E 0.6
+        SPB   M1
+        U     E 0.1
+        L     S5T#120MS
+        SS    T 2
+        U     E 0.2
+        L     S5T#90MS
+        SA    T 3
+M1:     U     T 1
+        =     A 0.0
+        U     T 2
+        =     A 0.1
+        U     T 3
+        =     A 0.2
+        L     S5T#30MS
+        L     S5T#30MS
+        U     E 0.3
+        SE    T 4
+        SI    T 5
+        U     T 4
+        =     A 0.3
+        U     T 5
+        =     A 0.4
+        """,
+}
+
+
+def timer_inputs(scans: int = 90) -> list[dict[int, int]]:
+    """E 0.0 .. E 0.6 on and off for runs of 3 to 30 scans (about 5 ms each): the
+    timers run out and are cut short; E 0.5 (the resets) pulses now and then,
+    E 0.6 (the jump over the timers) holds for long."""
+    runs = [18, 5, 4, 25, 9, 3, 30, 12, 6, 21]
+    rows = []
+    for k in range(scans):
+        image = 0
+        for bit in range(7):
+            t, i, value = k + 7 * bit, bit, 0
+            while t >= runs[i % len(runs)]:
+                t -= runs[i % len(runs)]
+                i, value = i + 1, value ^ 1
+            if bit == 5:
+                value &= (k % 23 < 2)
+            if bit == 6:
+                value = (k // 40) % 2
+            image |= value << bit
+        rows.append({0: image})
+    return rows
+
+
+def same_transitions(path: Path, lang: str, tmp: Path, inputs=None, **kw):
+    expected, got, _ = timer_scans(path, inputs or timer_inputs(), tmp, mnemonics=lang,
+                                   timers=(1, 2, 3, 4, 5), quiet=False,
+                                   clock_mhz="0.05", **kw)
+    diff = transition_difference(expected, got)
+    assert diff is None, (path.read_text(), diff)
+    return expected, got
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+@pytest.mark.parametrize("name", sorted(TIMER_PROGRAM))
+def test_timers_against_awlsim(tmp_path, name, lang):
+    """Each transition within one scan of awlsim's (spec §9), awlsim at bitbyte's
+    latch times; the timers do run out and are cut short within the 60 scans."""
+    body = TIMER_PROGRAM[name]
+    if lang == "en":
+        body = to_english(body)
+        for de, en in (("SE ", "SD "), ("SI ", "SP "), ("SA ", "SF ")):
+            body = body.replace(de, en)
+    expected, _ = same_transitions(write(tmp_path, f"{name}_{lang}.awl", body), lang,
+                                   tmp_path)
+    for n in (1, 2, 3):                 # (SS T 2 of "skipped" runs out only once)
+        assert len(transitions(expected, f"@T{n}")) > (n != 2), (name, n)
+
+
+def test_timer_status_from_the_time_base(tmp_path):
+    """An on-delay read before its instruction turns on in the scan whose latch time
+    reaches the preset, not a scan after its next execution (one view per scan)."""
+    path = write(tmp_path, "ton.awl", """
+        U     T 1
+        =     A 0.0
+        U     E 0.0
+        L     S5T#50MS
+        SE    T 1
+        U     T 1
+        =     A 0.1
+        """)
+    expected, got = same_transitions(path, "de", tmp_path, inputs=[{0: 1}] * 120)
+    latch = latch_times(got)
+    on = [k for k, row in enumerate(got) if row["Q0.0"]]
+    assert on and latch[on[0] - 1] < 0.050 <= latch[on[0]] + 0.001
+    assert [r["Q0.0"] for r in got] == [r["Q0.1"] for r in got]
+
+
+def test_timers_on_verilator_serial_and_parallel(tmp_path):
+    for name in ("kinds", "skipped"):
+        path = write(tmp_path, f"{name}.awl", TIMER_PROGRAM[name])
+        for mode in ("serial", "parallel"):
+            same_transitions(path, "de", tmp_path, sim="verilator", mode=mode)
+    checked = 0
+    for seed in range(60_000, 60_008):      # random timer programs too
+        text, lang = random_program(seed, words=False, timers=True)
+        path = tmp_path / f"tm{seed}.awl"
+        path.write_text(text)
+        try:
+            parse_file(str(path))
+        except SourceError:
+            continue
+        for mode in ("serial", "parallel"):
+            expected, got, _ = timer_scans(path, slow_inputs(seed, 40), tmp_path,
+                                           mnemonics=lang, timers=(1, 2, 3, 4, 5),
+                                           sim="verilator", mode=mode)
+            assert transition_difference(expected, got) is None, (seed, mode)
+        checked += 1
+    assert checked >= 5
+
+
+# --------------------------------------------------------------------------------------
+# Counters: ZV ZR (CU CD), S Z with BCD values, R Z, the status, L Z
+# --------------------------------------------------------------------------------------
+
+COUNTER_PROGRAM = """
+        U     E 0.0
+        ZV    Z 1
+        U     E 0.1
+        ZR    Z 1
+        U     E 0.2
+        L     C#997
+        S     Z 1
+        U     E 0.3
+        R     Z 1
+        L     Z 1
+        T     MW 10
+        U     Z 1
+        =     A 0.0
+        U     E 0.4
+        L     C#5
+        S     Z 2
+        T     MW 12
+        U     E 0.0
+        ZR    Z 2
+        U     E 0.4
+        ZV    Z 2
+        L     Z 2
+        T     MW 14
+        UN    Z 2
+        =     A 0.1
+        U     E 0.5
+        L     W#16#0123
+        S     Z 3
+        L     Z 3
+        T     MW 16
+        """
+
+
+def counter_inputs() -> list[dict[int, int]]:
+    """S Z 1 to 997 early, then E 0.0 pulses past 999 (S7 stops there), E 0.1 and
+    E 0.3 count down and reset; E 0.4 sets and counts Z 2, E 0.5 sets Z 3."""
+    rows = []
+    for k in range(48):
+        image = (k % 2) * (k < 20)              # E 0.0: ten rising edges
+        image |= (k == 2) << 2                  # E 0.2: S Z 1 to 997
+        image |= (22 <= k < 30 and k % 2) << 1  # E 0.1: four down
+        image |= (k == 34) << 3                 # E 0.3: R Z 1
+        image |= (k % 7 == 3) << 4              # E 0.4
+        image |= (k > 40) << 5                  # E 0.5
+        rows.append({0: image})
+    return rows
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_counters_against_awlsim(tmp_path, lang):
+    body = COUNTER_PROGRAM
+    if lang == "en":
+        body = to_english(body.replace("ZV", "CU").replace("ZR", "CD")
+                          .replace("Z ", "C "))
+    words = ("MW10", "MW12", "MW14", "MW16")
+    rows = same_as_awlsim(write(tmp_path, f"counters_{lang}.awl", body), lang,
+                          counter_inputs(), tmp_path, words=words)
+    assert max(r["MW10"] for r in rows) == 999      # S7's counters stop at 999
+    assert rows[-1]["MW16"] == 123 and rows[-1]["MW10"] == 0
+
+
+def test_counters_on_verilator_serial_and_parallel(tmp_path):
+    path = write(tmp_path, "counters.awl", COUNTER_PROGRAM)
+    for mode in ("serial", "parallel"):
+        same_as_awlsim(path, "de", counter_inputs(), tmp_path, words=("MW10", "MW14"),
+                       sim="verilator", mode=mode)
+
+
+# --------------------------------------------------------------------------------------
 # The command line and its errors
 # --------------------------------------------------------------------------------------
 
@@ -496,7 +762,36 @@ def test_lang_option_for_another_suffix(tmp_path, capsys):
 
 ERRORS = [
     # (body, line within the file, column, message start); the body starts at line 8
-    ("L     S5T#5S\nL     1\nSE    T 1", 10, 1, "unsupported: `SE`"),
+    ("U     E 0.0\nL     S5T#5S\nSV    T 1", 10, 1, "unsupported: `SV` (extended pulse"),
+    ("U     E 0.0\nL     MW 0\nSE    T 1", 10, 1, "unsupported: `SE` with a preset the "
+     "compiler does not know"),
+    ("U     E 0.0\nL     W#16#00AA\nSE    T 1", 10, 1, "unsupported: `SE` with a preset"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 1\nL     S5T#2S\nSE    T 1", 12, 1,
+     "unsupported: `SE` with another preset than the first start of `T 1`"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 1\nSS    T 1", 11, 1,
+     "unsupported: `SS` on a timer started as `SE` at line 10"),
+    ("U     E 0.0\nL     S5T#1S\nSA    T 1\nR     T 1", 11, 1,
+     "unsupported: `R T 1` on an off-delay timer"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 1\nL     MW 0\n+I", 12, 1,
+     "unsupported: `+I` reads ACCU2, which the translation of an earlier timer"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 1\nT     MW 0", 11, 1,
+     "unsupported: `T` reads ACCU1, which the translation of an earlier timer"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 1\nU     M 255.7\n=     A 0.0", 11, 7,
+     "unsupported: `M 255.7` uses M255.7, which the translation"),
+    ("U     E 0.0\nL     S5T#1S\nSE    T 64", 10, 7, "operand out of range: `T 64`"),
+    ("U     E 0.0\nL     S5T#3H", 9, 7, "malformed constant `S5T#3H`"),
+    ("U     E 0.0\nL     S5T#1S\nFR    T 1", 10, 1, "unsupported: `FR`"),
+    ("U     E 0.0\nL     MW 0\nS     Z 1", 10, 1, "unsupported: `S Z 1` with a value"),
+    ("U     E 0.0\nL     W#16#00AB\nS     Z 1", 10, 1, "unsupported: `S Z 1` with a"),
+    ("U     E 0.0\nZV    Z 1\nT     MW 0", 10, 1, "unsupported: `T` reads ACCU1, which "
+     "the translation of an earlier timer or counter"),
+    ("U     E 0.0\nZV    Z 64", 9, 7, "operand out of range: `Z 64`"),
+    ("U     E 0.0\nZV    M 0.0", 9, 7, "operand of the wrong kind: `ZV` needs a counter"),
+    ("LC    Z 1", 8, 1, "unsupported: `LC`"),
+    ("U     E 0.0\nFR    Z 1", 9, 1, "unsupported: `FR`"),
+    ("L     T 1", 8, 7, "unsupported: the remaining time of a timer `T 1`"),
+    ("U(\nU     E 0.0\nL     S5T#1S\nSE    T 1\n)", 11, 1,
+     "unsupported: `SE` inside parentheses"),
     ("L     MW 0\n+I", 9, 1,
      "unsupported: `+I` reads ACCU2, which here holds what an earlier scan left"),
     ("T     MW 2", 8, 1, "unsupported: `T` reads ACCU1"),
@@ -520,10 +815,7 @@ ERRORS = [
     ("L     1\nL     2\nTAK", 10, 1, "unsupported: `TAK`"),
     ("L     1\n+     1", 9, 1, "unsupported: `+`"),
     ("L     MW 256", 8, 7, "operand out of range: `MW 256`"),
-    ("U     T 1\n=     A 0.0", 8, 7, "unsupported: timer status `T 1`"),
-    ("U     Z 3\n=     A 0.0", 8, 7, "unsupported: counter status `Z 3`"),
     ("U     \"Start\"\n=     A 0.0", 8, 7, "unsupported: symbol `\"Start\"`"),
-    ("U     E 0.0\nZV    Z 1", 9, 1, "unsupported: `ZV`"),
     ("U     E 0.0\nU     I 0.1\n=     A 0.0", 9, 7, "mixed mnemonics: `I` is English"),
     ("U     E 0.0\nA     I 0.1", 9, 1, "mixed mnemonics: `A` is English"),
     ("UX    E 0.0", 8, 1, "unknown mnemonic `UX`"),
@@ -604,10 +896,44 @@ def test_random_programs_against_awlsim(tmp_path):
     need |= {"U", "UN", "U(", "UN(", "SPA", "SPB", "SPBN", "BEB",
              "A", "AN", "A(", "AN(", "JU", "JC", "JCN", "BEC"}
     need |= {"L", "T", "+I", "-I", "*I", "/I", "==I", "<>I", ">I", "<I", ">=I", "<=I"}
+    need |= {"ZV", "ZR", "CU", "CD"}
     if PROGRAMS >= 200:
         assert need <= seen, need - seen
     print(f"{compared} random STL programs equal awlsim's, {len(rejected)} rejected "
           "as unsupported")
+
+
+TIMER_PROGRAMS = int(os.environ.get("BITBYTE_STL_TIMER_PROGRAMS", "100"))
+
+
+def test_random_timer_programs_against_awlsim(tmp_path):
+    """Random programs with timers (tests/stlgen.py, timers=True): every transition
+    within one scan of awlsim's, awlsim at bitbyte's latch times (0.02 MHz: scans of
+    a few ms), the inputs kept quiet around awlsim's timer transitions."""
+    compared, rejected, seen = 0, 0, set()
+    for index in range(TIMER_PROGRAMS):
+        seed = BASE_SEED * 10_000 + 20_000 + index
+        text, lang = random_program(seed, words=False, timers=True)
+        path = tmp_path / f"tm{seed}.awl"
+        path.write_text(text)
+        try:
+            expected, got, _ = timer_scans(path, slow_inputs(seed, 40), tmp_path,
+                                           mnemonics=lang, timers=(1, 2, 3, 4, 5))
+        except SourceError as e:
+            assert e.message.startswith("unsupported:"), (seed, str(e))
+            rejected += 1
+            continue
+        diff = transition_difference(expected, got)
+        assert diff is None, f"seed {seed} ({path}) differs from awlsim: {diff}"
+        compared += 1
+        seen |= {line.split()[0] for line in text.splitlines() if line.startswith("\t")}
+        seen |= {"R T" for line in text.splitlines() if line.startswith("\tR\tT")}
+    assert rejected <= TIMER_PROGRAMS * 0.2
+    if TIMER_PROGRAMS >= 100:
+        need = {"SI", "SE", "SS", "SA", "SP", "SD", "SF", "R T"}
+        assert need <= seen, need - seen
+    print(f"{compared} random STL timer programs make awlsim's transitions, each "
+          f"within one scan; {rejected} rejected as unsupported")
 
 
 def test_random_programs_on_verilator_serial_and_parallel(tmp_path):

@@ -77,8 +77,11 @@ for _a, _c in _AREAS_EN.items():
     AREA_TABLE.setdefault(_a, {})["en"] = _c
 
 LANGUAGE_NAME = {"de": "German", "en": "English"}
+AREA_NAME = {"de": {"C": "Z"}, "en": {"C": "C"}}     # an English area as written
 
 # Canonical mnemonics this slice translates.
+STATUS_AREAS = ("T", "C")   # status bits a combine reads (timers, counters)
+TIMER_STARTS = ("SP", "SD", "SS", "SF")      # canonical: S7 SI, SE, SS, SA
 COMBINE = {"A": ("A", 0), "AN": ("A", 1), "O": ("O", 0), "ON": ("O", 1),
            "X": ("X", 0), "XN": ("X", 1)}
 OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),
@@ -88,7 +91,8 @@ BIT_AREAS = ("I", "Q", "M")
 # target starting with one of them may be reached with any /FC)
 COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
 ARITHMETIC = ("+I", "-I", "*I", "/I")
-FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES
+FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
+    + TIMER_STARTS + ("CU", "CD")
 # instructions that neither read nor change /FC, the OR bit or the RLO: a jump
 # target starting with them is judged by the first statement after them
 FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + ARITHMETIC
@@ -160,6 +164,8 @@ class Known:
     value: int
     s5t_ms: int | None = None
     count: int | None = None
+    il_value: int | None = None     # the IL's accumulator holds this instead (a
+                                    # timer's preset in ms, a counter's binary count)
 
 
 ANY = "defined"         # an accumulator loaded in this scan, value not known
@@ -174,7 +180,8 @@ def _meet(a, b):
         return a
     if a is None or b is None:
         return None
-    if CLOBBERED in (a, b):
+    if CLOBBERED in (a, b) or any(isinstance(v, Known) and v.il_value is not None
+                                  for v in (a, b)):
         return CLOBBERED
     return ANY
 
@@ -230,7 +237,88 @@ class StlFrontEnd:
         self.detect_language()
         for stmt in self.stmts:
             self.canonical(stmt)
+        self.prepare_timers()
         return self.translate()
+
+    # -- timers --------------------------------------------------------------------
+
+    def scratch(self, key: tuple) -> Operand:
+        """A marker bit the translation keeps for itself (from the top of M down)."""
+        if key not in self.scratch_bits:
+            k = self.config.marker_bytes * 8 - 1 - len(self.scratch_bits)
+            self.scratch_bits[key] = Operand("bit", area="M", byte=k // 8, bit=k % 8,
+                                             text=f"M{k // 8}.{k % 8}")
+        return self.scratch_bits[key]
+
+    def check_scratch(self) -> None:
+        """No statement of the source may use a marker bit the translation keeps,
+        nor a word over one."""
+        if not self.scratch_bits:
+            return
+        taken = {(op.byte, op.bit): op for op in self.scratch_bits.values()}
+        for stmt in self.stmts:
+            if not stmt.operands or self.is_jump(stmt):
+                continue
+            text = "".join(w.text for w in stmt.operands[:2]).upper()
+            area, rest = _split_area(text)
+            canon = AREA_TABLE.get(area, {}).get(self.lang)
+            hit = None
+            if canon == "M" and re.fullmatch(r"\d+\.\d", rest):
+                b, n = map(int, rest.split("."))
+                hit = taken.get((b, n))
+            elif canon == "MW" and rest.isdigit():
+                hit = next((op for (b, _), op in taken.items()
+                            if b in (int(rest), int(rest) + 1)), None)
+            if hit is not None:
+                first = stmt.operands[0].text
+                written = " ".join(w.text for w in stmt.operands[:2]) if \
+                    _split_area(first)[1] == "" else first
+                raise self.unsupported(stmt, f"`{written}` uses "
+                                       f"{hit.text}, which the translation of this "
+                                       "program's timers keeps for itself (the top "
+                                       "marker bits)", stmt.operands[0].col)
+
+    def prepare_timers(self) -> None:
+        """One S7 kind per timer, and its scratch bits: the status S7 shows (V, the
+        view), the enable of this and of the last execution (E, P), and for a timer
+        that `R T n` resets, a block bit (B: S7 keeps the edge memory across the
+        reset, this CPU clears it)."""
+        self.scratch_bits: dict[tuple, Operand] = {}
+        self.timer_kinds: dict[int, tuple[str, Stmt]] = {}
+        resets: dict[int, Stmt] = {}
+        for stmt in self.stmts:
+            if stmt.canon in TIMER_STARTS or stmt.canon == "SE":
+                if stmt.canon == "SE":
+                    raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` (extended "
+                                           "pulse, English SE / German SV: the IL has "
+                                           "no retriggered pulse)")
+                n = self.timer_operand(stmt).index
+                kind = self.timer_kinds.setdefault(n, (stmt.canon, stmt))
+                if kind[0] != stmt.canon:
+                    raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` on a timer "
+                                           f"started as `{kind[1].mnemonic.text}` at "
+                                           f"line {kind[1].line} (one kind per timer)")
+            elif stmt.canon == "R" and stmt.operands and _split_area(
+                    stmt.operands[0].text)[0] == "T":
+                resets.setdefault(self.timer_operand(stmt).index, stmt)
+        self.timer_resets = set(resets)
+        for n, stmt in resets.items():
+            kind = self.timer_kinds.get(n)
+            if kind and kind[0] == "SF":
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text} "
+                                       f"{self.timer_operand(stmt).text}` on an "
+                                       "off-delay timer "
+                                       "(S7 keeps its edge memory, this CPU clears it)")
+        for n in sorted(self.timer_kinds):
+            for purpose in ("view", "enable", "previous") + (
+                    ("blocked",) if n in self.timer_resets else ()):
+                self.scratch((purpose, n))
+        up = sorted({self.counter_operand(stmt).index for stmt in self.stmts
+                     if stmt.canon == "CU"})
+        for n in up:
+            for purpose in ("cu-enable", "cu-previous", "cu-pulse"):
+                self.scratch((purpose, n))
+        self.check_scratch()
 
     def read_blocks(self) -> None:
         """Find `ORGANIZATION_BLOCK OB 1` ... `END_ORGANIZATION_BLOCK`, collect its
@@ -411,6 +499,8 @@ class StlFrontEnd:
         """`E 0.0` / `I0.0` / `A 4.1` / `M 10.7` -> a bit Operand (English area)."""
         first, canon, rest, written = self.address(stmt, "bit")
         area = _split_area(first.text)[0]
+        if canon in STATUS_AREAS and canon in targets:
+            return self.numbered(stmt, first, canon, rest, written)
         if canon not in BIT_AREAS:
             what = {"T": "timer status", "C": "counter status"}.get(canon, "operand")
             if canon.endswith(("B", "W", "D")) and canon not in ("DB",):
@@ -436,6 +526,34 @@ class StlFrontEnd:
                              f"operand out of range: `{written}` (byte 0..{limit - 1} "
                              "in this build)")
         return Operand("bit", area=canon, byte=b, bit=n, text=written)
+
+    def numbered(self, stmt: Stmt, first: Word, canon: str, rest: str,
+                 written: str) -> Operand:
+        """`T 1` / `Z 3` -> a timer or counter Operand."""
+        if not rest.isdigit():
+            raise self.error(stmt.line, first.col, f"malformed address `{written}`: "
+                             f"{_split_area(first.text)[0]} <number> expected")
+        n = int(rest)
+        limit = self.config.area_size(canon)
+        if n >= limit:
+            raise self.error(stmt.line, first.col,
+                             f"operand out of range: `{written}` (0..{limit - 1} in "
+                             "this build)")
+        return Operand("index", area=canon, index=n, text=written)
+
+    def counter_operand(self, stmt: Stmt) -> Operand:
+        return self.status_operand(stmt, "C", "counter")
+
+    def timer_operand(self, stmt: Stmt) -> Operand:
+        return self.status_operand(stmt, "T", "timer")
+
+    def status_operand(self, stmt: Stmt, area: str, kind: str) -> Operand:
+        first, canon, rest, written = self.address(stmt, kind)
+        if canon != area:
+            raise self.error(stmt.line, first.col,
+                             f"operand of the wrong kind: `{stmt.mnemonic.text}` needs "
+                             f"a {kind}, not `{written}`")
+        return self.numbered(stmt, first, canon, rest, written)
 
     def no_operand(self, stmt: Stmt) -> None:
         if stmt.operands:
@@ -540,6 +658,8 @@ class StlFrontEnd:
         self.assumed = assumed
         self.acc_edges: dict[str, list[tuple]] = {n: [] for n in self.label_defs}
         self.word_uses: list[tuple[str, int, Stmt, Word]] = []
+        self.last_load: Instr | None = None
+        self.presets: dict[int, int] = {}
         edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
@@ -580,6 +700,7 @@ class StlFrontEnd:
         self.close_term(st)
         self.pending.append(END_LABEL)
         self.emit("END", line=len(self.lines) + 1, col=1, source="")
+        self.prepend_timer_update()
         for ins in self.out:
             if ins.operand is not None and ins.operand.kind == "label" \
                     and ins.operand.label not in self.labels:
@@ -645,6 +766,20 @@ class StlFrontEnd:
         elif m == ")":
             self.no_operand(stmt)
             self.close_paren(stmt, st)
+        elif m in TIMER_STARTS:
+            self.timer(stmt, st, m)
+        elif m == "R" and stmt.operands and _split_area(
+                stmt.operands[0].text)[0] == "T":
+            op = self.timer_operand(stmt)
+            self.close_term(st)
+            self.emit("R", op)
+            if op.index in self.timer_kinds:
+                self.emit("S", self.scratch(("blocked", op.index)))
+                self.emit("R", self.scratch(("view", op.index)))
+            st.ner = 0
+        elif m in ("CU", "CD") or m in ("S", "R") and stmt.operands and _split_area(
+                stmt.operands[0].text)[0] == AREA_NAME[self.lang]["C"]:
+            self.counter(stmt, st, m)
         elif m in ("=", "S", "R"):
             op = self.bit_operand(stmt, ("Q", "M"))
             self.close_term(st)
@@ -683,6 +818,175 @@ class StlFrontEnd:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}`")
         return True
 
+    def prepend_timer_update(self) -> None:
+        """S7 reads a timer's status from the time base; this CPU's status changes
+        when the timer's instruction executes.  So OB 1 starts by executing each
+        timer's instruction once more with the enable (and preset) of its last
+        execution — no edge, no start: the status as at the scan's latch time — and
+        copying that status into the timer's view bit, which every read of `T n`
+        reads (spec §9: one consistent view per scan; also for a timer whose
+        instruction a jump skips)."""
+        block: list[Instr] = []
+        for n in sorted(self.timer_kinds):
+            kind, stmt = self.timer_kinds[n]
+            ms = self.presets.get(n)
+            if ms is None:
+                continue                        # never translated (pass 1 of a jump)
+            where = (stmt.line, stmt.col, stmt.source)
+            timer = Operand("index", area="T", index=n, text=f"T {n}")
+            view = self.scratch(("view", n))
+            code = [("LD", self.scratch(("previous", n)))]
+            if n in self.timer_resets:
+                code.append(("AN", self.scratch(("blocked", n))))
+            code += [("L", Operand("const", area="TIME", value=ms, text=f"{ms}ms")),
+                     ("SD" if kind == "SP" else kind, timer)]
+            # SI runs on the IL's on-delay: S7's pulse is on while that is not
+            code += [("LD", view), ("AN", timer)] if kind == "SP" else [("LD", timer)]
+            code.append(("=", view))
+            block += [Instr(mnem, op, *where) for mnem, op in code]
+        if not block:
+            return
+        last = block[-1]
+        block.append(Instr("CLR", None, last.line, last.col, last.source))
+        if len(self.out) + len(block) > self.config.prog_words:
+            raise self.error(1, 1, f"program too large: more than "
+                             f"{self.config.prog_words} words (prog_words) with the "
+                             "timers' scan-start update")
+        self.out = block + self.out
+        self.labels = {name: i + len(block) for name, i in self.labels.items()}
+
+    # How each S7 timer instruction changes the status S7 shows, in the scan in
+    # which it runs (awlsim's timers.py with cpu.now the latch time): E the enable,
+    # P the last execution's, V the view.  With preset 0 the time has run out at
+    # once.  IL code, leaving the result in V.
+    VIEW_UPDATE = {
+        ("SD", False): [("LD", "E"), ("A", "V")],             # SE: stops at E = 0
+        ("SD", True): [("LD", "E")],                          # (runs out at once)
+        ("SS", False): [],                                    # SS: only at run-out
+        ("SS", True): [("LD", "E"), ("AN", "P"), ("O", "V")],  # a start runs out
+        ("SP", False): [("LD", "V"), ("ON", "P"), ("A", "E")],  # SI: on at a rising
+        ("SP", True): [("CLR", None)],                        # edge, off at E = 0
+        ("SF", False): [("LD", "V"), ("O", "E"), ("O", "P")],  # SA: on at E = 1 and
+        ("SF", True): [("LD", "E")],                          # at its falling edge
+    }
+
+    def counter(self, stmt: Stmt, st: _State, m: str) -> None:
+        """ZV / ZR / S Z / R Z (English CU / CD / S C / R C) on the IL's: S7's
+        counter holds 0..999 (the IL's 0..32767), so a count up is a pulse on S7's
+        rising edge AND a count below 999; `S Z` loads the BCD value in ACCU1, known
+        to the compiler, as its binary count; /FC and OR become 0, the RLO stays."""
+        op = self.counter_operand(stmt)
+        n = op.index
+        if st.parens:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+        if m == "S":
+            known = self.known_acc1(stmt, st)
+            count = _bcd_decode(known.value) if known is not None else None
+            if count is None:
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text} {op.text}` with a "
+                                       "value the compiler does not know: load a C# "
+                                       "constant (or a W#16# BCD) in this scan")
+            in_place = bool(self.out) and self.out[-1] is self.last_load
+            self.close_term(st)
+            self.with_acc1(st, known, count, in_place, "INT", ("S", op))
+        elif m == "CU":
+            self.close_term(st)
+            enable = self.scratch(("cu-enable", n))
+            previous = self.scratch(("cu-previous", n))
+            pulse = self.scratch(("cu-pulse", n))
+            self.emit("=", enable)
+            self.emit("AN", previous)
+            self.emit("=", pulse)
+            self.emit("L", op)
+            self.emit("L", Operand("const", area="INT", value=999, text="999"))
+            self.emit("<I")
+            self.emit("A", pulse)
+            self.emit("CU", op)
+            self.emit("LD", enable)
+            self.emit("=", previous)
+            st.acc = (CLOBBERED, CLOBBERED)
+        else:                                   # ZR (CD), R Z (R C)
+            self.close_term(st)
+            self.emit(m, op)
+        st.ner = 0
+
+    def known_acc1(self, stmt: Stmt, st: _State) -> Known | None:
+        """ACCU1 for a timer preset or a counter value: what the compiler knows of
+        it (None: a value it does not know)."""
+        known = st.acc[0]
+        if not (isinstance(known, Known) and known.il_value is not None):
+            self.read_acc(stmt, st, 1)
+        return known if isinstance(known, Known) else None
+
+    def with_acc1(self, st: _State, known: Known, il_value: int, in_place: bool,
+                  area: str, instr: tuple[str, Operand]) -> None:
+        """Emit `instr` with the IL's ACCU1 = il_value (S7's holds known.value):
+        the `L` right before it is changed (in_place; ACCU1 then differs from S7's
+        until the next load), or il_value is loaded and S7's value loaded back
+        (ACCU2 then differs)."""
+        value = Operand("const", area=area, value=il_value,
+                        text=f"{il_value}ms" if area == "TIME" else str(il_value))
+        if known.value == il_value and known.il_value is None:
+            self.emit(*instr)                   # the same number for both (C#5)
+            return
+        if known.il_value == il_value:          # the IL's ACCU1 holds it already
+            in_place = True
+        elif in_place:
+            self.last_load.operand = value
+        else:
+            self.emit("L", value)
+        self.emit(*instr)
+        if in_place:
+            st.acc = (Known(known.value, il_value=il_value), st.acc[1])
+        else:
+            self.emit("L", Operand("const", area="INT", value=known.value,
+                                   text=f"W#16#{known.value & 0xFFFF:04X}"))
+            st.acc = (st.acc[0], CLOBBERED)
+
+    def timer(self, stmt: Stmt, st: _State, m: str) -> None:
+        """SI / SE / SS / SA (English SP / SD / SS / SF) on the IL's SD / SS / SF:
+        the enable is the RLO (S7's, so an AND term is closed first), the preset the
+        S5TIME in ACCU1, known to the compiler; the view bit follows S7; /FC and OR
+        become 0, the RLO stays."""
+        op = self.timer_operand(stmt)
+        n = op.index
+        if st.parens:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+        known = self.known_acc1(stmt, st)
+        ms = _s5t_decode(known.value) if known is not None else None
+        if ms is None:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` with a preset the "
+                                   "compiler does not know: load an S5T# constant "
+                                   "(or a W#16# S5TIME) in this scan")
+        if self.presets.setdefault(n, ms) != ms:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` with another preset "
+                                   f"than the first start of `{op.text}` "
+                                   "(one preset per timer: the scan-start update "
+                                   "needs it)")
+        in_place = bool(self.out) and self.out[-1] is self.last_load
+        self.close_term(st)
+        bits = {"E": self.scratch(("enable", n)), "P": self.scratch(("previous", n)),
+                "V": self.scratch(("view", n))}
+        self.emit("=", bits["E"])
+        if n in self.timer_resets:
+            # S7 keeps the edge memory across `R T n`, this CPU clears it: after a
+            # reset the IL timer's enable is held at 0 until S7's input falls
+            blocked = self.scratch(("blocked", n))
+            self.emit("A", blocked)
+            self.emit("A", bits["P"])
+            self.emit("=", blocked)
+            self.emit("LD", bits["E"])
+            self.emit("AN", blocked)
+        self.with_acc1(st, known, ms, in_place, "TIME", ("SD" if m == "SP" else m, op))
+        code = self.VIEW_UPDATE[(m, ms == 0)]
+        for mnem, name in code:
+            self.emit(mnem, bits[name] if name else None)
+        if code:
+            self.emit("=", bits["V"])
+        self.emit("LD", bits["E"])
+        self.emit("=", bits["P"])
+        st.ner = 0
+
     # -- word instructions -----------------------------------------------------------
 
     def read_acc(self, stmt: Stmt, st: _State, which: int) -> None:
@@ -693,7 +997,7 @@ class StlFrontEnd:
                                    "which here holds what an earlier scan left (S7 keeps "
                                    "the accumulators from scan to scan, this CPU clears "
                                    "them at the scan start): load it first")
-        if value == CLOBBERED:
+        if value == CLOBBERED or isinstance(value, Known) and value.il_value is not None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    "which the translation of an earlier timer or "
                                    "counter instruction changed (S7 leaves it alone)")
@@ -702,6 +1006,7 @@ class StlFrontEnd:
         if m == "L":
             op, known = self.load_operand(stmt)
             self.emit("L", op)
+            self.last_load = self.out[-1]
             st.acc = (known if known is not None else ANY, st.acc[0])
         elif m == "T":
             op = self.word_operand(stmt, ("QW", "MW"))
@@ -734,7 +1039,7 @@ class StlFrontEnd:
                 raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
             known = self.constant(stmt, ops[0])
             return Operand("const", area="INT", value=known.value, text=text), known
-        return self.word_operand(stmt, ("IW", "QW", "MW")), None
+        return self.word_operand(stmt, ("IW", "QW", "MW", "C")), None
 
     def constant(self, stmt: Stmt, word: Word) -> Known:
         """An S7 constant as the 16-bit pattern S7 loads (INT, W#16#, B#16#, 16#, 2#,
@@ -786,7 +1091,6 @@ class StlFrontEnd:
     def word_operand(self, stmt: Stmt, areas: tuple[str, ...]) -> Operand:
         """`EW 2` / `IW2` / `AW 4` / `MW 10` -> a word Operand (English area)."""
         first, canon, rest, written = self.address(stmt, "word")
-        area = _split_area(first.text)[0]
         if canon not in areas:
             if canon in ("I", "Q", "M") and canon + "W" in areas or canon in WORD_AREAS:
                 raise self.error(stmt.line, first.col,
@@ -797,17 +1101,10 @@ class StlFrontEnd:
             raise self.unsupported(stmt, f"{what} `{written}` in "
                                    f"`{stmt.mnemonic.text}` (words IW, QW, MW here)",
                                    first.col)
-        if not rest.isdigit():
-            raise self.error(stmt.line, first.col,
-                             f"malformed address `{written}`: {area} <number> expected")
-        n = int(rest)
-        limit = self.config.area_size(canon)
-        if n >= limit:
-            raise self.error(stmt.line, first.col,
-                             f"operand out of range: `{written}` (0..{limit - 1} in "
-                             "this build)")
-        self.word_uses.append((canon, n, stmt, Word(written, first.col)))
-        return Operand("index", area=canon, index=n, text=written)
+        op = self.numbered(stmt, first, canon, rest, written)
+        if canon in WORD_AREAS:
+            self.word_uses.append((canon, op.index, stmt, Word(written, first.col)))
+        return op
 
     def check_overlaps(self) -> None:
         """S7's IW/QW/MW n is bytes n and n+1 of the I/Q/M area; here words live in
@@ -839,7 +1136,12 @@ class StlFrontEnd:
 
     def combine(self, stmt: Stmt, st: _State, m: str) -> None:
         func, neg = COMBINE[m]
-        op = self.bit_operand(stmt)
+        op = self.bit_operand(stmt, BIT_AREAS + STATUS_AREAS)
+        if op.area == "T":                      # S7's status: the view bit
+            view = self.scratch_bits.get(("view", op.index))
+            if view is not None:
+                op = Operand("bit", area="M", byte=view.byte, bit=view.bit,
+                             text=op.text)
         if st.ner == 0:                         # first check: the string starts
             self.emit("LDN" if neg else "LD", op)
         elif func == "A":
@@ -950,6 +1252,26 @@ def _s5t_ms(body: str) -> int | None:
     if pos == 0 or total > 9_990_000:
         return None
     return total
+
+
+def _bcd_decode(value: int) -> int | None:
+    """The count of a BCD counter value 16#0000..16#0999, or None."""
+    value &= 0xFFFF
+    digits = [(value >> k) & 0xF for k in (12, 8, 4, 0)]
+    if digits[0] or max(digits) > 9:
+        return None
+    return digits[1] * 100 + digits[2] * 10 + digits[3]
+
+
+def _s5t_decode(value: int) -> int | None:
+    """ms of an S5TIME pattern (time base in bits 13..12, three BCD digits), or
+    None if it is not one."""
+    value &= 0xFFFF
+    digits = [(value >> k) & 0xF for k in (8, 4, 0)]
+    if value & 0xC000 or max(digits) > 9:
+        return None
+    units = digits[0] * 100 + digits[1] * 10 + digits[2]
+    return units * (10, 100, 1000, 10_000)[(value >> 12) & 3]
 
 
 def _s5t_known(ms: int) -> Known:
