@@ -104,6 +104,9 @@ def _source_options(p: argparse.ArgumentParser) -> None:
                    help="check the program against a build profile's sizes ("
                         + "; ".join(f"{k}: {v['doc']}" for k, v in sorted(DEF.profiles.items()))
                         + "); default: the full ranges of the default build")
+    p.add_argument("--symbols", metavar="FILE", default=None,
+                   help="stl: a STEP 7 symbol table export (.asc, .seq or .sdf) for "
+                        "the quoted symbols of the source")
 
 
 def _warnings(args, program) -> None:
@@ -115,8 +118,8 @@ def _warnings(args, program) -> None:
 
 def cmd_asm(args) -> int:
     result = assemble(args.program, outdir=args.outdir, config=Config.of_profile(args.profile),
-                      mode=args.mode,
-                      lang=args.lang, mnemonics=args.mnemonics)
+                      mode=args.mode, lang=args.lang, mnemonics=args.mnemonics,
+                      symbols=args.symbols)
     _warnings(args, result["program"])
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
@@ -191,7 +194,7 @@ def cmd_run(args) -> int:
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
         channels=args.channels, lang=args.lang, mnemonics=args.mnemonics,
-        profile=args.profile)
+        profile=args.profile, symbols=args.symbols)
     _warnings(args, program)
 
     if args.sim == "verilator":

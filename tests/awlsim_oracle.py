@@ -52,13 +52,14 @@ def columns_of(out_bytes: int, marker_bytes: int, words: tuple[str, ...] = ()
 
 def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: str,
                  out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
-                 scan_times_s: list[float] | None = None, timers: tuple[int, ...] = ()
-                 ) -> list[dict[str, int]]:
+                 scan_times_s: list[float] | None = None, timers: tuple[int, ...] = (),
+                 symbols: str | Path | None = None) -> list[dict[str, int]]:
     """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"; `words`
     ("QW2", "MW10") are read as S7 words (bytes n and n+1) of the output image and
     the marker area; `timers` adds "@T n", the status of timer n after the cycle, and
     "@T n<", as at the scan's latch (not compared: stimuli for timer programs are
-    made with them)."""
+    made with them); `symbols`: a STEP 7 .asc symbol table, loaded as awlsim loads
+    one (SymTabParser, loadSymbolTable)."""
     from awlsim.common.cpuconfig import S7CPUConfig
     from awlsim.common.project import Project
     from awlsim.core.main import AwlSim
@@ -70,6 +71,11 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
     cpu = sim.getCPU()
     cpu.getConf().setConfiguredMnemonics(
         {"de": S7CPUConfig.MNEMONICS_DE, "en": S7CPUConfig.MNEMONICS_EN}[mnemonics])
+    if symbols is not None:
+        from awlsim.core.symbolparser import SymTabParser
+        sim.loadSymbolTable(SymTabParser.parseText(
+            Path(symbols).read_text(encoding="cp1252"), mnemonics={
+                "de": S7CPUConfig.MNEMONICS_DE, "en": S7CPUConfig.MNEMONICS_EN}[mnemonics]))
     for src in project.getAwlSources():
         parser = AwlParser()
         parser.parseSource(src)
@@ -115,7 +121,8 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
                   out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
                   in_words: tuple[int, ...] = (), clock_mhz: str = "100",
-                  mnemonics: str | None = None) -> list[dict[str, int]]:
+                  mnemonics: str | None = None, symbols: str | Path | None = None
+                  ) -> list[dict[str, int]]:
     """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
     the C++ harness), one row per scan with the same keys as awlsim_scans."""
     from bitbyte.lang.config import Config
@@ -128,7 +135,8 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
     watch = columns_of(out_bytes, marker_bytes, words)
     program, columns, job, f = prepare_run(
         str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
-        mode=mode, mnemonics=mnemonics, clock_mhz=clock_mhz)
+        mode=mode, mnemonics=mnemonics, clock_mhz=clock_mhz,
+        symbols=None if symbols is None else str(symbols))
     if sim == "ref":
         assert mode == "serial", "the reference interpreter runs serial mode"
         stimulus = load_stimulus(str(stim), program.symbols)

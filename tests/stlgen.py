@@ -23,6 +23,7 @@ input bytes 0 and 1 per scan.
 from __future__ import annotations
 
 import random
+import re
 
 COMBINES = {"de": ["U", "UN", "O", "ON", "X", "XN"], "en": ["A", "AN", "O", "ON", "X", "XN"]}
 OPENS = {"de": ["U(", "UN(", "O(", "ON(", "X(", "XN("],
@@ -328,3 +329,41 @@ def random_inputs(seed: int, scans: int) -> list[dict[int, int]]:
         if r.random() < 0.3:
             words[r.randrange(len(words))] = word()
     return rows
+
+
+_ADDRESS = re.compile(r"^(\S*\t(?:[A-Z]+\(?|=|[+*/<>=-]+I?)\t)([A-Z]+) ?(\d+(?:\.\d)?)$")
+
+
+def with_symbols(text: str, lang: str, seed: int) -> tuple[str, list[tuple[str, str, str]]]:
+    """The program with about half of its operands written as quoted symbols of a
+    symbol table, and that table as (name, address, type) rows in the program's
+    language (names with blanks and mixed case, as STEP 7 allows them)."""
+    r = random.Random(seed * 31 + 5)
+    names: dict[str, str] = {}
+    out = []
+    for line in text.split("\n"):
+        m = _ADDRESS.match(line)
+        jump = m and m.group(1).split()[-1] in JUMPS[lang]
+        if m and not jump and r.random() < 0.5:
+            address = f"{m.group(2)} {m.group(3)}"
+            if address not in names:
+                names[address] = r.choice(("Valve", "pump", "Level high", "Motor_1",
+                                           "Lamp", "speed SP")) + f" {len(names)}"
+            line = f'{m.group(1)}"{names[address]}"'
+        out.append(line)
+    kinds = {"E": "BOOL", "A": "BOOL", "I": "BOOL", "Q": "BOOL", "M": "BOOL",
+             "EW": "INT", "AW": "INT", "IW": "INT", "QW": "INT", "MW": "INT",
+             "T": "TIMER", "Z": "COUNTER", "C": "COUNTER"}
+    rows = [(name, address, kinds.get(address.split()[0], "BOOL"))
+            for address, name in names.items()]
+    return "\n".join(out), rows
+
+
+def symbol_table(rows: list[tuple[str, str, str]], fmt: str) -> str:
+    """A STEP 7 export of (name, address, type) rows: "asc", "sdf" or "seq"."""
+    if fmt == "asc":
+        return "".join("126," + n.ljust(24) + a.ljust(12) + t.ljust(10) + " " * 80
+                       + "\r\n" for n, a, t in rows)
+    if fmt == "sdf":
+        return "".join(f'"{n}","{a}","{t}",""\r\n' for n, a, t in rows)
+    return "".join(f"\t{a}\t{n}\t\r\n" for n, a, t in rows)

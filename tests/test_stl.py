@@ -22,7 +22,8 @@ from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
-from stlgen import IN_WORDS, WORDS, random_inputs, random_program, slow_inputs
+from stlgen import (IN_WORDS, WORDS, random_inputs, random_program, slow_inputs,
+                    symbol_table, with_symbols)
 
 PROGRAMS = int(os.environ.get("BITBYTE_STL_PROGRAMS", "200"))
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
@@ -725,6 +726,147 @@ def test_counters_on_verilator_serial_and_parallel(tmp_path):
 
 
 # --------------------------------------------------------------------------------------
+# Symbols: --symbols FILE (STEP 7's .asc, .sdf, .seq exports), "quoted" in the source
+# --------------------------------------------------------------------------------------
+
+SYMBOLS = [("Start", "E 0.0", "BOOL"), ("Stop", "E 0.1", "BOOL"),
+           ("Motor", "A 0.0", "BOOL"), ("Run time", "T 1", "TIMER"),
+           ("Parts", "Z 2", "COUNTER"), ("Speed", "EW 2", "INT"),
+           ("Setpoint", "MW 10", "INT"), ("lamp", "A 0.1", "BOOL"),
+           ("Main", "OB 1", "OB 1")]
+
+SYMBOL_PROGRAM = """
+        U     "Start"
+        O     "Motor"
+        U     "Stop"
+        =     "Motor"
+        U     "START"
+        ZV    "Parts"
+        L     "Speed"
+        L     "Parts"
+        +I
+        T     "Setpoint"
+        L     "Speed"
+        L     100
+        >I
+        =     "Lamp"
+        """
+
+
+def english_symbols():
+    swap = {"E": "I", "A": "Q", "EW": "IW", "Z": "C"}
+    return [(n, " ".join([swap.get(a.split()[0], a.split()[0])] + a.split()[1:]), t)
+            for n, a, t in SYMBOLS]
+
+
+@pytest.mark.parametrize("fmt", ["asc", "sdf", "seq"])
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_symbol_tables_against_awlsim(tmp_path, lang, fmt):
+    """The same program with each export format, German and English: awlsim (which
+    reads .asc) and bitbyte give the same scans; names are matched without case."""
+    rows = SYMBOLS if lang == "de" else english_symbols()
+    body = SYMBOL_PROGRAM if lang == "de" else to_english(SYMBOL_PROGRAM.replace("ZV",
+                                                                                "CU"))
+    path = write(tmp_path, f"sym_{lang}.awl", body)
+    asc = tmp_path / f"sym_{lang}.asc"
+    asc.write_bytes(symbol_table(rows, "asc").encode())
+    table = tmp_path / f"sym_{lang}.{fmt}"
+    table.write_bytes(symbol_table(rows, fmt).encode())
+    inputs = [{0: k % 4, 2: 0, 3: (k * 37) % 256} for k in range(24)]
+    words = ("MW10",)
+    expected = awlsim_scans(path, inputs, mnemonics=lang, words=words, symbols=asc)
+    got = bitbyte_scans(path, inputs, tmp_path, words=words, in_words=(2,),
+                        symbols=table)
+    assert first_difference(expected, got) is None
+    assert [r["Q0.0"] for r in got][:8] == [0, 0, 0, 1, 0, 0, 0, 1]   # the seal-in
+
+
+def test_symbols_in_the_other_language(tmp_path):
+    """A German table for an English source: the addresses are read in the table's
+    language (E 0.0 is I0.0)."""
+    path = write(tmp_path, "sym_en.awl", to_english(SYMBOL_PROGRAM.replace("ZV", "CU")))
+    de, en = tmp_path / "de.sdf", tmp_path / "en.sdf"
+    de.write_text(symbol_table(SYMBOLS, "sdf"))
+    en.write_text(symbol_table(english_symbols(), "sdf"))
+    inputs = [{0: k % 4, 3: k} for k in range(10)]
+    assert bitbyte_scans(path, inputs, tmp_path, symbols=de, in_words=(2,)) == \
+        bitbyte_scans(path, inputs, tmp_path, symbols=en, in_words=(2,))
+
+
+def test_symbols_cli_watch_and_stimulus(tmp_path, capsys):
+    path = write(tmp_path, "sym.awl", SYMBOL_PROGRAM)
+    table = tmp_path / "sym.seq"
+    table.write_text(symbol_table(SYMBOLS, "seq"))
+    stim = tmp_path / "sym.stim.csv"
+    stim.write_text("scan,Start,Stop,Speed\n0,1,1,150\n1,0,1,150\n3,0,0,7\n")
+    trace = tmp_path / "trace.csv"
+    code, _, err = run_cli(["run", str(path), "--symbols", str(table), "--stimulus",
+                            str(stim), "--scans", "5", "--watch", "Setpoint,Parts",
+                            "--trace", str(trace)], capsys)
+    assert code == 0, err
+    rows = [line.split(",") for line in trace.read_text().splitlines()]
+    assert rows[0] == ["scan", "t_us", "cycles", "Q0.0", "Q0.1", "Setpoint", "Parts"]
+    assert [r[3] for r in rows[1:]] == ["1", "1", "1", "0", "0"]
+    assert rows[1][5:] == ["151", "1"]
+
+
+def test_symbols_on_verilator_serial_and_parallel(tmp_path):
+    path = write(tmp_path, "sym.awl", SYMBOL_PROGRAM)
+    asc = tmp_path / "sym.asc"
+    asc.write_text(symbol_table(SYMBOLS, "asc"))
+    inputs = [{0: k % 4, 2: 0, 3: (k * 37) % 256} for k in range(12)]
+    expected = awlsim_scans(path, inputs, mnemonics="de", words=("MW10",), symbols=asc)
+    for mode in ("serial", "parallel"):
+        got = bitbyte_scans(path, inputs, tmp_path, words=("MW10",), in_words=(2,),
+                            symbols=asc, sim="verilator", mode=mode)
+        assert first_difference(expected, got) is None, mode
+
+
+@pytest.mark.parametrize("body,table,line,col,message", [
+    ('U     "Nope"', "asc", 8, 7, 'undeclared symbol `"Nope"` (not in the symbol table'),
+    ('U     "Start"', None, 8, 7, 'undeclared symbol `"Start"` (no symbol table'),
+    ('U     "Main"', "asc", 8, 7, 'unsupported: symbol `"Main"` is `OB 1`'),
+    ('U     "Setpoint"', "sdf", 8, 7, 'unsupported: byte/word operand `"Setpoint" = '
+     'MW 10`'),
+    ('L     "Start"', "seq", 8, 7, 'operand of the wrong kind: `L` needs a word, not '
+     '`"Start" = E 0.0`'),
+])
+def test_symbol_errors(tmp_path, capsys, body, table, line, col, message):
+    path = write(tmp_path, "bad.awl", body)
+    argv = ["asm", str(path), "-o", str(tmp_path)]
+    if table:
+        (tmp_path / f"s.{table}").write_text(symbol_table(SYMBOLS, table))
+        argv += ["--symbols", str(tmp_path / f"s.{table}")]
+    code, _, err = run_cli(argv, capsys)
+    assert code == 1 and err.startswith(f"{path}:{line}:{col}: {message}"), err
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("text,message", [
+    ('"A","E 0.0","BOOL",""\n"a","E 0.1","BOOL",""\n', "2:1: duplicate symbol `a`"),
+    ('"A","","BOOL",""\n', "1:1: symbol table (.sdf): symbol `A` has no address"),
+    ("just text\n", "1:1: not a STEP 7 symbol table"),
+    ('"A","E 0.0","BOOL",""\n"B","I 0.1","BOOL",""\n', "2:1: mixed mnemonics"),
+])
+def test_symbol_table_errors(tmp_path, capsys, text, message):
+    path = write(tmp_path, "p.awl", 'U     "A"\n=     A 0.0')
+    table = tmp_path / "t.sdf"
+    table.write_text(text)
+    code, _, err = run_cli(["asm", str(path), "--symbols", str(table), "-o",
+                            str(tmp_path)], capsys)
+    assert code == 1 and err.startswith(f"{table}:{message}"), err
+
+
+def test_symbols_need_an_s7_source(tmp_path, capsys):
+    il = tmp_path / "p.il"
+    il.write_text("LD I0.0\n= Q0.0\n")
+    table = tmp_path / "t.sdf"
+    table.write_text('"A","E 0.0","BOOL",""\n')
+    code, _, err = run_cli(["asm", str(il), "--symbols", str(table)], capsys)
+    assert code == 1 and "goes with an S7 source" in err
+
+
+# --------------------------------------------------------------------------------------
 # The command line and its errors
 # --------------------------------------------------------------------------------------
 
@@ -815,7 +957,6 @@ ERRORS = [
     ("L     1\nL     2\nTAK", 10, 1, "unsupported: `TAK`"),
     ("L     1\n+     1", 9, 1, "unsupported: `+`"),
     ("L     MW 256", 8, 7, "operand out of range: `MW 256`"),
-    ("U     \"Start\"\n=     A 0.0", 8, 7, "unsupported: symbol `\"Start\"`"),
     ("U     E 0.0\nU     I 0.1\n=     A 0.0", 9, 7, "mixed mnemonics: `I` is English"),
     ("U     E 0.0\nA     I 0.1", 9, 1, "mixed mnemonics: `A` is English"),
     ("UX    E 0.0", 8, 1, "unknown mnemonic `UX`"),
@@ -934,6 +1075,43 @@ def test_random_timer_programs_against_awlsim(tmp_path):
         assert need <= seen, need - seen
     print(f"{compared} random STL timer programs make awlsim's transitions, each "
           f"within one scan; {rejected} rejected as unsupported")
+
+
+SYMBOL_PROGRAMS = int(os.environ.get("BITBYTE_STL_SYMBOL_PROGRAMS", "100"))
+
+
+def test_random_programs_with_symbols_against_awlsim(tmp_path):
+    """Random programs with half of their operands as quoted symbols of a STEP 7
+    symbol table (stlgen.with_symbols): awlsim reads the .asc export, bitbyte each of
+    .asc, .sdf and .seq; equal scan for scan."""
+    compared = 0
+    for index in range(SYMBOL_PROGRAMS):
+        seed = BASE_SEED * 10_000 + 30_000 + index
+        text, lang = random_program(seed)
+        text, rows = with_symbols(text, lang, seed)
+        path = tmp_path / f"sym{seed}.awl"
+        path.write_text(text)
+        tables = {}
+        for fmt in ("asc", "sdf", "seq"):
+            tables[fmt] = tmp_path / f"sym{seed}.{fmt}"
+            tables[fmt].write_bytes(symbol_table(rows, fmt).encode("cp1252"))
+        inputs = random_inputs(seed, 12)
+        try:
+            got = bitbyte_scans(path, inputs, tmp_path, words=WORDS, in_words=IN_WORDS,
+                                symbols=tables["asc"])
+        except SourceError as e:
+            assert e.message.startswith("unsupported:"), (seed, str(e))
+            continue
+        expected = awlsim_scans(path, inputs, mnemonics=lang, words=WORDS,
+                                symbols=tables["asc"])
+        assert first_difference(expected, got) is None, (seed, path)
+        if index % 10 == 0:
+            for fmt in ("sdf", "seq"):
+                assert got == bitbyte_scans(path, inputs, tmp_path, words=WORDS,
+                                            in_words=IN_WORDS, symbols=tables[fmt])
+        compared += 1
+    assert compared >= SYMBOL_PROGRAMS * 0.8
+    print(f"{compared} random STL programs with symbol tables equal awlsim's")
 
 
 def test_random_programs_on_verilator_serial_and_parallel(tmp_path):

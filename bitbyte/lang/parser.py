@@ -956,10 +956,11 @@ def source_language(path: str, lang: str | None = None) -> str:
 
 
 def parse_file(path: str, config: Config = DEFAULT, *, lang: str | None = None,
-               mnemonics: str | None = None) -> Program:
+               mnemonics: str | None = None, symbols: str | None = None) -> Program:
     """Read and parse `path`.  A file that cannot be read is a SourceError too.
     S7 sources (`.awl` or lang="stl") go through bitbyte.lang.stl, with mnemonics
-    "de" / "en" forced or (None) detected from the source."""
+    "de" / "en" forced or (None) detected from the source, and the STEP 7 symbol
+    table `symbols` (a path) if given; for an IL source a symbol table is an error."""
     try:
         with open(path, "rb") as f:
             data = f.read()
@@ -967,5 +968,9 @@ def parse_file(path: str, config: Config = DEFAULT, *, lang: str | None = None,
         raise SourceError(path, 0, 0, f"cannot read: {exc.strerror or exc}") from None
     if source_language(path, lang) == "stl":
         from bitbyte.lang.stl import parse_stl
-        return parse_stl(path, data, config, mnemonics)
+        return parse_stl(path, data, config, mnemonics, symbols)
+    if symbols is not None:
+        raise SourceError(symbols, 0, 0, "--symbols: a STEP 7 symbol table goes with an "
+                          "S7 source (.awl or --lang stl); an IL source declares its "
+                          "symbols in VAR … END_VAR")
     return parse(path, data, config)

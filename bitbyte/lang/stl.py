@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Instr, Operand, Program
+from bitbyte.lang.s7symbols import Symbol, read_symbol_table
 
 # --------------------------------------------------------------------------------------
 # Vocabulary: mnemonic as written -> {language: canonical (English S7) mnemonic}
@@ -108,6 +109,7 @@ END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
 class Word:
     text: str
     col: int            # 1-based
+    shown: str = ""     # how messages name it (a symbol: `"Motor"` for `A4.0`)
 
 
 @dataclass
@@ -212,7 +214,7 @@ class _State:
 
 class StlFrontEnd:
     def __init__(self, path: str, text: str, config: Config = DEFAULT,
-                 mnemonics: str | None = None):
+                 mnemonics: str | None = None, symbols: str | None = None):
         self.path = path
         self.config = config
         self.lines = text.split("\n")
@@ -220,6 +222,8 @@ class StlFrontEnd:
         self.lang = mnemonics or "de"
         self.stmts: list[Stmt] = []
         self.temps: dict[str, int] = {}
+        self.symbol_path = symbols
+        self.symbol_table: dict[str, Symbol] = {}
 
     # -- errors --------------------------------------------------------------------
 
@@ -235,10 +239,94 @@ class StlFrontEnd:
     def parse(self) -> Program:
         self.read_blocks()
         self.detect_language()
+        self.resolve_symbols()
         for stmt in self.stmts:
             self.canonical(stmt)
         self.prepare_timers()
-        return self.translate()
+        program = self.translate()
+        program.symbols = self.symbol_operands()
+        return program
+
+    # -- symbols -------------------------------------------------------------------
+
+    def resolve_symbols(self) -> None:
+        """`"Motor"` -> the address of the symbol table (--symbols), in the source's
+        language; the operand keeps the symbol's name for messages."""
+        if self.symbol_path is not None:
+            self.symbol_table = read_symbol_table(self.symbol_path)
+            self.table_lang = self.symbol_language()
+        for stmt in self.stmts:
+            if not stmt.operands or not stmt.operands[0].text.startswith('"'):
+                continue
+            word = stmt.operands[0]
+            name = word.text.strip('"')
+            sym = self.symbol_table.get(name.upper())
+            if sym is None:
+                where = (f"not in the symbol table {self.symbol_path}" if
+                         self.symbol_path else "no symbol table: --symbols FILE")
+                raise self.error(stmt.line, word.col,
+                                 f"undeclared symbol `{word.text}` ({where})")
+            address = self.symbol_address(sym)
+            if address is None:
+                raise self.unsupported(stmt, f"symbol `{word.text}` is `{sym.address}` "
+                                       f"({self.symbol_path}:{sym.line}), not an "
+                                       "address of this slice", word.col)
+            stmt.operands[0] = Word(address, word.col, f"{word.text} = {sym.address}")
+
+    def symbol_language(self) -> str:
+        """The table's mnemonics: from its German-only or English-only areas (a table
+        with neither means the same in both: the source's)."""
+        first = None
+        for sym in self.symbol_table.values():
+            area = _split_area(sym.address.replace(" ", ""))[0]
+            langs = AREA_TABLE.get(area, {})
+            if len(langs) != 1:
+                continue
+            lang = next(iter(langs))
+            if first is None:
+                first = (lang, sym)
+            elif lang != first[0]:
+                raise SourceError(self.symbol_path, sym.line, 1,
+                                  f"mixed mnemonics: `{sym.address}` is "
+                                  f"{LANGUAGE_NAME[lang]}, but this symbol table is "
+                                  f"{LANGUAGE_NAME[first[0]]} (`{first[1].address}` at "
+                                  f"line {first[1].line})")
+        return first[0] if first else self.lang
+
+    def symbol_address(self, sym: Symbol) -> str | None:
+        """The symbol's address spelt in the source's language ("E0.0"), or None
+        for what is not an address (FC 1, DB 1, VAT 1 ...)."""
+        area, rest = _split_area(sym.address.replace(" ", ""))
+        canon = AREA_TABLE.get(area, {}).get(self.table_lang)
+        if canon is None or not rest:
+            return None
+        spelt = {c: a for a, c in _AREAS_DE.items()}.get(canon, canon) \
+            if self.lang == "de" else canon
+        return spelt + rest
+
+    def symbol_operands(self) -> dict[str, Operand]:
+        """The table's symbols that name an address this CPU has, for --watch and
+        stimuli: {upper-case name: Operand}."""
+        out = {}
+        for key, sym in self.symbol_table.items():
+            area, rest = _split_area(sym.address.replace(" ", ""))
+            canon = AREA_TABLE.get(area, {}).get(self.table_lang)
+            try:
+                if canon in BIT_AREAS:
+                    byte, bit = (int(x) for x in rest.split("."))
+                    if bit > 7 or byte >= self.config.area_size(canon):
+                        continue
+                    op = Operand("bit", area=canon, byte=byte, bit=bit, text=sym.name)
+                elif canon in ("IW", "QW", "MW", "T", "C"):
+                    if int(rest) >= self.config.area_size(canon):
+                        continue
+                    op = Operand("index", area=canon, index=int(rest), text=sym.name)
+                else:
+                    continue
+            except ValueError:
+                continue
+            out[key] = op
+        return out
 
     # -- timers --------------------------------------------------------------------
 
@@ -477,16 +565,13 @@ class StlFrontEnd:
                              f"missing operand: `{stmt.mnemonic.text}` needs a {kind}")
         first = ops[0]
         text = first.text
-        if text.startswith('"'):
-            raise self.unsupported(stmt, f"symbol `{text}` (symbols come in a later "
-                                   "slice)", first.col)
         if text.startswith("#"):
             raise self.unsupported(stmt, f"local variable `{text}`", first.col)
         area, rest = _split_area(text)
         used = 1
         if area and rest == "" and len(ops) > 1:
             rest, used = ops[1].text, 2
-        written = " ".join(w.text for w in ops[:used])
+        written = first.shown or " ".join(w.text for w in ops[:used])
         if len(ops) > used:
             raise self.error(stmt.line, ops[used].col,
                              f"extra operand `{ops[used].text}`")
@@ -1319,7 +1404,8 @@ def decode(data: bytes) -> str:
 
 
 def parse_stl(path: str, data: bytes | str, config: Config = DEFAULT,
-              mnemonics: str | None = None) -> Program:
-    """Check and translate one .awl source.  Raises only SourceError."""
+              mnemonics: str | None = None, symbols: str | None = None) -> Program:
+    """Check and translate one .awl source, with the STEP 7 symbol table at the path
+    `symbols` if given.  Raises only SourceError."""
     text = data if isinstance(data, str) else decode(data)
-    return StlFrontEnd(path, text, config, mnemonics).parse()
+    return StlFrontEnd(path, text, config, mnemonics, symbols).parse()

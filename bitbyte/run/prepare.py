@@ -55,7 +55,8 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                 watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
                 mode: str = "serial", exchange: str | None = None,
                 channels: int | None = None, lang: str | None = None,
-                mnemonics: str | None = None, profile: str | None = None):
+                mnemonics: str | None = None, profile: str | None = None,
+                symbols: str | None = None):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
@@ -82,7 +83,8 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
     if costs not in COST_TABLES:
         raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
     exchange = check_mode(mode, exchange)
-    program = parse_file(program_path, config, lang=lang, mnemonics=mnemonics)
+    program = parse_file(program_path, config, lang=lang, mnemonics=mnemonics,
+                         symbols=symbols)
     byte_words: list[int] = []
     if mode in ("parallel", "free"):
         # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
