@@ -1208,3 +1208,61 @@ M1:     U     E 0.1
     monkeypatch.setattr(stl.StlFrontEnd, "jump", keep_rlo)
     assert first_difference(awlsim_scans(path, inputs, mnemonics="de"),
                             bitbyte_scans(path, inputs, tmp_path)) is not None
+
+
+def test_oracle_catches_timers_without_the_scan_start_update(tmp_path, monkeypatch):
+    """Without the scan-start update a timer read before its instruction changes a
+    scan late, and one that a jump skips does not run out: caught."""
+    monkeypatch.setattr(stl.StlFrontEnd, "prepend_timer_update", lambda self: None)
+    path = write(tmp_path, "skipped.awl", TIMER_PROGRAM["skipped"])
+    expected, got, _ = timer_scans(path, timer_inputs(), tmp_path, mnemonics="de",
+                                   timers=(1, 2, 3, 4, 5), quiet=False,
+                                   clock_mhz="0.05")
+    assert transition_difference(expected, got) is not None
+
+
+def test_oracle_catches_a_pulse_on_the_ils_pulse_timer(tmp_path, monkeypatch):
+    """S7's SI on the IL's SP (IEC TP: it does not stop when the input falls) with
+    the IL's status: caught."""
+    real = stl.StlFrontEnd.timer
+
+    def tp(self, stmt, st, m):
+        if m == "SP":
+            self.emit("L", stl.Operand("const", area="TIME", value=70, text="70ms"))
+            self.emit("SP", self.timer_operand(stmt))
+            self.scratch_bits.pop(("view", self.timer_operand(stmt).index), None)
+            st.ner = 0
+            return
+        real(self, stmt, st, m)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "timer", tp)
+    monkeypatch.setattr(stl.StlFrontEnd, "prepend_timer_update", lambda self: None)
+    path = write(tmp_path, "si.awl", """
+        U     E 0.1
+        L     S5T#70MS
+        SI    T 2
+        U     T 2
+        =     A 0.1
+        """)
+    expected, got, _ = timer_scans(path, timer_inputs(), tmp_path, mnemonics="de",
+                                   timers=(2,), quiet=False, clock_mhz="0.05")
+    assert transition_difference(expected, got) is not None
+
+
+def test_oracle_catches_counters_past_999(tmp_path, monkeypatch):
+    """ZV as the IL's CU alone (it counts on to 32767): caught."""
+    real = stl.StlFrontEnd.counter
+
+    def plain(self, stmt, st, m):
+        if m == "CU":
+            self.emit("CU", self.counter_operand(stmt))
+            st.ner = 0
+            return
+        real(self, stmt, st, m)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "counter", plain)
+    path = write(tmp_path, "counters.awl", COUNTER_PROGRAM)
+    assert first_difference(awlsim_scans(path, counter_inputs(), mnemonics="de",
+                                         words=("MW10",)),
+                            bitbyte_scans(path, counter_inputs(), tmp_path,
+                                          words=("MW10",))) is not None
