@@ -12,7 +12,7 @@ compares ==I <>I >I <I >=I <=I (also after a logic string and after `O`, and wit
 string going on after them), L/T in the middle of a string; counter networks: ZV ZR
 (CU CD), S Z with C# and W#16# BCD values (near 999 too), R Z, `L Z n`, and `U Z n` in
 strings.  With timers=True (time-keyed programs, no words, no counters, no jumps):
-the S7 timers SI SE SS SA (SP SD SS SF) with S5T# and W#16# presets, R T, and their
+the S7 timers SI SV SE SS SA (SP SE SD SS SF) with S5T# and W#16# presets, R T, and their
 status read in strings.  A few programs contain what the front end rejects
 (NOT after `O` in a string, a jump target reached with different /FC): the test
 expects `unsupported:` for those, never a silent difference.
@@ -36,9 +36,9 @@ IN_WORDS = (2, 4)
 WORDS = ("QW2", "QW4", "MW10", "MW12", "MW14")
 WORD_AREA = {"de": {"IW": "EW", "QW": "AW", "MW": "MW"},
              "en": {"IW": "IW", "QW": "QW", "MW": "MW"}}
-# Timers: German SI SE SS SA = English SP SD SS SF (S7's pulse, on-delay, retentive
-# on-delay, off-delay); the extended pulse (SV / English SE) is not in the set.
-TIMER_KINDS = {"de": ["SI", "SE", "SS", "SA"], "en": ["SP", "SD", "SS", "SF"]}
+# Timers: German SI SV SE SS SA = English SP SE SD SS SF (S7's pulse, extended pulse,
+# on-delay, retentive on-delay, off-delay).
+TIMER_KINDS = {"de": ["SI", "SV", "SE", "SS", "SA"], "en": ["SP", "SE", "SD", "SS", "SF"]}
 PRESETS_MS = (0, 50, 70, 100, 150, 200)   # 0, or five scans and more (below)
 COUNTER = {"de": "Z", "en": "C"}
 UP_DOWN = {"de": ("ZV", "ZR"), "en": ("CU", "CD")}

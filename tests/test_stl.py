@@ -496,9 +496,17 @@ TIMER_PROGRAM = {
         UN    T 2
         U     T 3
         =     A 0.5
+        U     E 0.5
+        O     E 0.1
+        L     S5T#60MS
+        SV    T 5
+        U     T 5
+        =     A 0.6
+        U     E 0.6
+        R     T 5
         """,
     # R T while the input is still 1 (S7 keeps the edge memory: no restart), on
-    # SE, SI and SS; preset 0
+    # SE, SI and SS; preset 0 (and reset)
     "resets": """
         U     E 0.0
         L     S5T#60MS
@@ -519,6 +527,8 @@ TIMER_PROGRAM = {
         SE    T 3
         U     T 3
         =     A 0.2
+        U     E 0.6
+        R     T 3
         U     E 0.3
         L     S5T#0MS
         SI    T 4
@@ -602,7 +612,7 @@ def test_timers_against_awlsim(tmp_path, name, lang):
     body = TIMER_PROGRAM[name]
     if lang == "en":
         body = to_english(body)
-        for de, en in (("SE ", "SD "), ("SI ", "SP "), ("SA ", "SF ")):
+        for de, en in (("SE ", "SD "), ("SI ", "SP "), ("SA ", "SF "), ("SV ", "SE ")):
             body = body.replace(de, en)
     expected, _ = same_transitions(write(tmp_path, f"{name}_{lang}.awl", body), lang,
                                    tmp_path)
@@ -904,7 +914,6 @@ def test_lang_option_for_another_suffix(tmp_path, capsys):
 
 ERRORS = [
     # (body, line within the file, column, message start); the body starts at line 8
-    ("U     E 0.0\nL     S5T#5S\nSV    T 1", 10, 1, "unsupported: `SV` (extended pulse"),
     ("U     E 0.0\nL     MW 0\nSE    T 1", 10, 1, "unsupported: `SE` with a preset the "
      "compiler does not know"),
     ("U     E 0.0\nL     W#16#00AA\nSE    T 1", 10, 1, "unsupported: `SE` with a preset"),
@@ -1071,7 +1080,7 @@ def test_random_timer_programs_against_awlsim(tmp_path):
         seen |= {"R T" for line in text.splitlines() if line.startswith("\tR\tT")}
     assert rejected <= TIMER_PROGRAMS * 0.2
     if TIMER_PROGRAMS >= 100:
-        need = {"SI", "SE", "SS", "SA", "SP", "SD", "SF", "R T"}
+        need = {"SI", "SV", "SE", "SS", "SA", "SP", "SD", "SF", "R T"}
         assert need <= seen, need - seen
     print(f"{compared} random STL timer programs make awlsim's transitions, each "
           f"within one scan; {rejected} rejected as unsupported")

@@ -82,7 +82,8 @@ AREA_NAME = {"de": {"C": "Z"}, "en": {"C": "C"}}     # an English area as writte
 
 # Canonical mnemonics this slice translates.
 STATUS_AREAS = ("T", "C")   # status bits a combine reads (timers, counters)
-TIMER_STARTS = ("SP", "SD", "SS", "SF")      # canonical: S7 SI, SE, SS, SA
+TIMER_STARTS = ("SP", "SE", "SD", "SS", "SF")  # canonical: S7 SI, SV, SE, SS, SA
+IL_TIMER = {"SP": "SD", "SE": "SS", "SD": "SD", "SS": "SS", "SF": "SF"}
 COMBINE = {"A": ("A", 0), "AN": ("A", 1), "O": ("O", 0), "ON": ("O", 1),
            "X": ("X", 0), "XN": ("X", 1)}
 OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),
@@ -375,11 +376,7 @@ class StlFrontEnd:
         self.timer_kinds: dict[int, tuple[str, Stmt]] = {}
         resets: dict[int, Stmt] = {}
         for stmt in self.stmts:
-            if stmt.canon in TIMER_STARTS or stmt.canon == "SE":
-                if stmt.canon == "SE":
-                    raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` (extended "
-                                           "pulse, English SE / German SV: the IL has "
-                                           "no retriggered pulse)")
+            if stmt.canon in TIMER_STARTS:
                 n = self.timer_operand(stmt).index
                 kind = self.timer_kinds.setdefault(n, (stmt.canon, stmt))
                 if kind[0] != stmt.canon:
@@ -398,8 +395,9 @@ class StlFrontEnd:
                                        "off-delay timer "
                                        "(S7 keeps its edge memory, this CPU clears it)")
         for n in sorted(self.timer_kinds):
-            for purpose in ("view", "enable", "previous") + (
-                    ("blocked",) if n in self.timer_resets else ()):
+            extra = ("pulse",) if self.timer_kinds[n][0] == "SE" else \
+                ("blocked",) if n in self.timer_resets else ()
+            for purpose in ("view", "enable", "previous") + extra:
                 self.scratch((purpose, n))
         up = sorted({self.counter_operand(stmt).index for stmt in self.stmts
                      if stmt.canon == "CU"})
@@ -859,7 +857,10 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit("R", op)
             if op.index in self.timer_kinds:
-                self.emit("S", self.scratch(("blocked", op.index)))
+                if self.timer_kinds[op.index][0] != "SE":
+                    self.emit("S", self.scratch(("blocked", op.index)))
+                else:                           # (the scan-start update: no edge)
+                    self.emit("R", self.scratch(("pulse", op.index)))
                 self.emit("R", self.scratch(("view", op.index)))
             st.ner = 0
         elif m in ("CU", "CD") or m in ("S", "R") and stmt.operands and _split_area(
@@ -920,13 +921,17 @@ class StlFrontEnd:
             where = (stmt.line, stmt.col, stmt.source)
             timer = Operand("index", area="T", index=n, text=f"T {n}")
             view = self.scratch(("view", n))
-            code = [("LD", self.scratch(("previous", n)))]
-            if n in self.timer_resets:
-                code.append(("AN", self.scratch(("blocked", n))))
+            if kind == "SE":                    # SV runs on its rising edges
+                code = [("LD", self.scratch(("pulse", n)))]
+            else:
+                code = [("LD", self.scratch(("previous", n)))]
+                if n in self.timer_resets:
+                    code.append(("AN", self.scratch(("blocked", n))))
             code += [("L", Operand("const", area="TIME", value=ms, text=f"{ms}ms")),
-                     ("SD" if kind == "SP" else kind, timer)]
-            # SI runs on the IL's on-delay: S7's pulse is on while that is not
-            code += [("LD", view), ("AN", timer)] if kind == "SP" else [("LD", timer)]
+                     (IL_TIMER[kind], timer)]
+            # SI and SV run on the IL's on-delays: S7's pulse is on while that is not
+            code += [("LD", view), ("AN", timer)] if kind in ("SP", "SE") else \
+                [("LD", timer)]
             code.append(("=", view))
             block += [Instr(mnem, op, *where) for mnem, op in code]
         if not block:
@@ -946,11 +951,13 @@ class StlFrontEnd:
     # once.  IL code, leaving the result in V.
     VIEW_UPDATE = {
         ("SD", False): [("LD", "E"), ("A", "V")],             # SE: stops at E = 0
-        ("SD", True): [("LD", "E")],                          # (runs out at once)
+        ("SD", True): [("LD", "V"), ("ON", "P"), ("A", "E")],  # (at once, if started)
         ("SS", False): [],                                    # SS: only at run-out
         ("SS", True): [("LD", "E"), ("AN", "P"), ("O", "V")],  # a start runs out
         ("SP", False): [("LD", "V"), ("ON", "P"), ("A", "E")],  # SI: on at a rising
         ("SP", True): [("CLR", None)],                        # edge, off at E = 0
+        ("SE", False): [("LD", "V"), ("O", "R")],             # SV: on at a rising
+        ("SE", True): [("CLR", None)],                        # edge, whatever E
         ("SF", False): [("LD", "V"), ("O", "E"), ("O", "P")],  # SA: on at E = 1 and
         ("SF", True): [("LD", "E")],                          # at its falling edge
     }
@@ -1053,7 +1060,14 @@ class StlFrontEnd:
         bits = {"E": self.scratch(("enable", n)), "P": self.scratch(("previous", n)),
                 "V": self.scratch(("view", n))}
         self.emit("=", bits["E"])
-        if n in self.timer_resets:
+        if m == "SE":
+            # SV (the extended pulse) on the IL's retentive on-delay: at S7's rising
+            # edge R T n and a start, which runs out whatever the input does
+            bits["R"] = self.scratch(("pulse", n))
+            self.emit("AN", bits["P"])
+            self.emit("=", bits["R"])
+            self.emit("R", op)
+        elif n in self.timer_resets:
             # S7 keeps the edge memory across `R T n`, this CPU clears it: after a
             # reset the IL timer's enable is held at 0 until S7's input falls
             blocked = self.scratch(("blocked", n))
@@ -1062,7 +1076,7 @@ class StlFrontEnd:
             self.emit("=", blocked)
             self.emit("LD", bits["E"])
             self.emit("AN", blocked)
-        self.with_acc1(st, known, ms, in_place, "TIME", ("SD" if m == "SP" else m, op))
+        self.with_acc1(st, known, ms, in_place, "TIME", (IL_TIMER[m], op))
         code = self.VIEW_UPDATE[(m, ms == 0)]
         for mnem, name in code:
             self.emit(mnem, bits[name] if name else None)
