@@ -41,7 +41,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 import gen_wrapper  # noqa: E402
 
-sys.path.insert(0, str(HERE.parent))
+sys.path.insert(0, str(ROOT))
 from bitbyte.lang.definition import DEF  # noqa: E402  (build profiles)
 
 TOP_CORE = "bitbyte_cpu"

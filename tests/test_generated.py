@@ -109,6 +109,9 @@ def _set_register(name, **values):
     (lambda raw: raw["settings"]["exchange"].append(["extra", "EXTRA", "a fifth code"]),
      "do not fit 2 bits"),
     (lambda raw: raw["settings"]["protection"][2].__setitem__(0, "pingpong"), "given twice"),
+    # a build profile only shrinks [sizes] keys (issue 20, the hx8k profile)
+    (lambda raw: raw["profiles"]["hx8k"].update(in_words=99), r"profiles.hx8k\] in_words"),
+    (lambda raw: raw["profiles"]["hx8k"].update(no_such_size=1), "not a \\[sizes\\] key"),
 ])
 def test_definition_rejects_contradictions(mutate, message):
     with pytest.raises(DefinitionError, match=message):

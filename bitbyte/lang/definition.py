@@ -154,7 +154,7 @@ class Definition:
                                                     for top, params in raw["rtl"].items()}
         self.rtl_defaults: dict[str, dict[str, int]] = {
             top: {param: {**self.sizes, **self.plant}[key] for param, key in params.items()}
-            for top, params in raw["rtl"].items()}
+            for top, params in self.rtl_keys.items()}
         self.firmware: dict = dict(raw["firmware"])
         # run-time settings: names in code order (code = index), their RTL/C names
         self.settings: dict[str, tuple[tuple[str, str, str], ...]] = {

@@ -972,12 +972,9 @@ class StlFrontEnd:
         if st.parens:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
         if m == "S":
-            known = self.known_acc1(stmt, st)
-            count = _bcd_decode(known.value) if known is not None else None
-            if count is None:
-                raise self.unsupported(stmt, f"`{stmt.mnemonic.text} {op.text}` with a "
-                                       "value the compiler does not know: load a C# "
-                                       "constant (or a W#16# BCD) in this scan")
+            known, count = self.known_constant(
+                stmt, st, _bcd_decode, f"`{stmt.mnemonic.text} {op.text}` with a value",
+                "a C# constant (or a W#16# BCD)")
             in_place = bool(self.out) and self.out[-1] is self.last_load
             self.close_term(st)
             self.with_acc1(st, known, count, in_place, "INT", ("S", op))
@@ -1009,6 +1006,16 @@ class StlFrontEnd:
         if not (isinstance(known, Known) and known.il_value is not None):
             self.read_acc(stmt, st, 1)
         return known if isinstance(known, Known) else None
+
+    def known_constant(self, stmt: Stmt, st: _State, decode, what: str, load: str):
+        """ACCU1 known to the compiler and decoded (a counter's BCD value, a timer's
+        S5TIME preset): (known, decoded), or `unsupported:` naming what to load."""
+        known = self.known_acc1(stmt, st)
+        value = decode(known.value) if known is not None else None
+        if value is None:
+            raise self.unsupported(stmt, f"{what} the compiler does not know: load {load} "
+                                   "in this scan")
+        return known, value
 
     def with_acc1(self, st: _State, known: Known, il_value: int, in_place: bool,
                   area: str, instr: tuple[str, Operand]) -> None:
@@ -1044,12 +1051,9 @@ class StlFrontEnd:
         n = op.index
         if st.parens:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
-        known = self.known_acc1(stmt, st)
-        ms = _s5t_decode(known.value) if known is not None else None
-        if ms is None:
-            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` with a preset the "
-                                   "compiler does not know: load an S5T# constant "
-                                   "(or a W#16# S5TIME) in this scan")
+        known, ms = self.known_constant(
+            stmt, st, _s5t_decode, f"`{stmt.mnemonic.text}` with a preset",
+            "an S5T# constant (or a W#16# S5TIME)")
         if self.presets.setdefault(n, ms) != ms:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` with another preset "
                                    f"than the first start of `{op.text}` "
