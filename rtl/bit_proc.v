@@ -713,7 +713,7 @@ module bit_proc #(
   wire [StatusBits-1:0] f_tst, f_cst, f_tupd, f_cupd;
   // verilator lint_off PINCONNECTEMPTY
   input_unit #(.InBits(InBits)) f_in (
-    .clk_i(clk_i), .rst_ni(rst_ni), .pins_i(pins_i), .latch_i(latch_i || refresh_o),
+    .clk_i(clk_i), .rst_ni(rst_ni), .pins_i(pins_i), .latch_i(latch_i), .refresh_i(refresh_o),
     .pii_o(f_pii), .rise_o(f_rise), .fall_o(f_fall),
     .rise_pend_o(f_rpend), .fall_pend_o(f_fpend));
   output_unit #(.OutBits(OutBits)) f_out (
@@ -1075,6 +1075,9 @@ module bit_proc #(
     cover (e_done && latch_i && f_area == `AREA_IR && f_x);
     // REFRESH, then an I read of the new image; a copy-port write read by a scan
     cover (e_done && f_isref && f_x);
+    // REFRESH as a scan's first instruction (a second latch in the latch clock), then
+    // an I read of the image it took
+    cover (e_done && f_area == `AREA_I && f_x && $past(latch_i && refresh_o));
     cover (e_done && latch_i && f_rd_m && $past(copy_we, 2));
     // a scan starting as early as it may after a program write while stopped
     cover (e_done && latch_i && $past(f_since_wr) == 2'd2 && $past(prog_we_i, 4) && $past(rst_ni, 4));

@@ -6,6 +6,12 @@
 // edge accumulators keep every rising and falling edge, so a pulse shorter than a
 // scan still shows up in IR/IF. Direct reads (PI) take pins_i as it is.
 //
+// A REFRESH that is a scan's first instruction executes in the scan's latch clock:
+// that clock holds two latches, the scan start's and the REFRESH's. The second finds
+// no edge since the first (spec §4: "after the previous latch up to and including
+// this one"), so IR/IF come out 0, exactly as with any instruction (a NOP) in front
+// of the REFRESH when the pins do not move in between.
+//
 // pins_i must already be synchronous to clk_i (an FPGA top puts a synchroniser in
 // front); one pin sample per clock.
 module input_unit #(
@@ -14,12 +20,13 @@ module input_unit #(
   input  wire              clk_i,
   input  wire              rst_ni,
   input  wire [InBits-1:0] pins_i,
-  input  wire              latch_i,  // take the image in this clock
+  input  wire              latch_i,  // scan start: take the image in this clock
+  input  wire              refresh_i,// REFRESH: take the image in this clock
   output reg  [InBits-1:0] pii_o,    // I b.n (the image register)
   output reg  [InBits-1:0] rise_o,   // IR b.n: rose since the previous latch
   output reg  [InBits-1:0] fall_o,   // IF b.n: fell since the previous latch
-  // The edges since the previous latch, this clock's included: what a latch in this
-  // clock takes into IR/IF (the bit processor's operand stage reads them).
+  // The edges since the previous latch, this clock's included: what the (last) latch
+  // in this clock takes into IR/IF (the bit processor's operand stage reads them).
   output wire [InBits-1:0] rise_pend_o,
   output wire [InBits-1:0] fall_pend_o
 );
@@ -32,8 +39,10 @@ module input_unit #(
   wire [InBits-1:0] rise_now = pins_i & ~pins_prev_q;
   wire [InBits-1:0] fall_now = ~pins_i & pins_prev_q;
 
-  assign rise_pend_o = rise_acc_q | rise_now;
-  assign fall_pend_o = fall_acc_q | fall_now;
+  wire latch  = latch_i || refresh_i;
+  wire twice  = latch_i && refresh_i;  // the REFRESH sees no edge since the scan start
+  assign rise_pend_o = (rise_acc_q | rise_now) & {InBits{!twice}};
+  assign fall_pend_o = (fall_acc_q | fall_now) & {InBits{!twice}};
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -45,7 +54,7 @@ module input_unit #(
       fall_o      <= {InBits{1'b0}};
     end else begin
       pins_prev_q <= pins_i;
-      if (latch_i) begin
+      if (latch) begin
         // The latch clock's own edge belongs to this latch ("up to and including").
         pii_o      <= pins_i;
         rise_o     <= rise_pend_o;

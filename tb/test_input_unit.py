@@ -1,4 +1,5 @@
-"""Input unit (paper Fig. 1): PII latch, edge capture between latches."""
+"""Input unit (paper Fig. 1): PII latch, edge capture between latches, REFRESH in the
+scan start's own clock (two latches in one clock)."""
 from __future__ import annotations
 
 import random
@@ -14,13 +15,14 @@ IN_BITS = 16
 
 
 async def reset(dut):
-    await start_in_reset(dut, dut.pins_i, dut.latch_i)
+    await start_in_reset(dut, dut.pins_i, dut.latch_i, dut.refresh_i)
 
 
-async def clock(dut, pins: int, latch: bool = False):
+async def clock(dut, pins: int, latch: bool = False, refresh: bool = False):
     """Drive one clock: inputs set on the falling edge, sampled on the rising one."""
     dut.pins_i.value = pins
     dut.latch_i.value = int(latch)
+    dut.refresh_i.value = int(refresh)
     await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
 
@@ -65,6 +67,38 @@ async def edge_in_latch_clock_counts(dut):
 
 
 @cocotb.test()
+async def refresh_latches_alone(dut):
+    """A REFRESH between scan starts is a latch of its own."""
+    await reset(dut)
+    await clock(dut, 0, latch=True)
+    await clock(dut, 1)
+    await clock(dut, 1, refresh=True)
+    assert outputs(dut) == (1, 1, 0)
+    await clock(dut, 1, latch=True)
+    assert outputs(dut) == (1, 0, 0)
+
+
+@cocotb.test()
+async def refresh_in_the_latch_clock_is_a_second_latch(dut):
+    """REFRESH as a scan's first instruction: the scan start's latch and the REFRESH's
+    in one clock; the second finds no edge since the first, so IR = IF = 0 (the same as
+    a NOP in front of the REFRESH), the image takes the pins."""
+    await reset(dut)
+    await clock(dut, 0, latch=True)
+    await clock(dut, 0b11)
+    assert int(dut.rise_pend_o.value) == 0b11
+    dut.pins_i.value = 0b01
+    dut.latch_i.value = 1
+    dut.refresh_i.value = 1
+    await RisingEdge(dut.clk_i)               # what the operand stage reads: no edges
+    assert int(dut.rise_pend_o.value) == 0 and int(dut.fall_pend_o.value) == 0
+    await FallingEdge(dut.clk_i)
+    assert outputs(dut) == (0b01, 0, 0)
+    await clock(dut, 0b01, latch=True)        # the pulse on bit 1 was consumed
+    assert outputs(dut) == (0b01, 0, 0)
+
+
+@cocotb.test()
 async def random_against_model(dut):
     """Random pins and latches against a per-clock model of the same rule."""
     rng = random.Random(1234)
@@ -75,15 +109,19 @@ async def random_against_model(dut):
     for _ in range(400):
         pins = rng.getrandbits(IN_BITS) if rng.random() < 0.3 else prev
         latch = rng.random() < 0.2
+        refresh = rng.random() < 0.15
         now_r, now_f = pins & ~prev, ~pins & prev & 0xFFFF
-        if latch:
+        if latch and refresh:                 # two latches: the second sees no edge
+            pii, rise, fall = pins, 0, 0
+            rise_acc = fall_acc = 0
+        elif latch or refresh:
             pii, rise, fall = pins, rise_acc | now_r, fall_acc | now_f
             rise_acc = fall_acc = 0
         else:
             rise_acc |= now_r
             fall_acc |= now_f
         prev = pins
-        await clock(dut, pins, latch)
+        await clock(dut, pins, latch, refresh)
         assert outputs(dut) == (pii, rise, fall)
 
 

@@ -54,6 +54,13 @@ CASES = [
     ("status_bits_zero", "LDN T5\nAN C63\n= Q0.0\n", "", 1, ["1"]),
     ("refresh", "LD I0.0\n= Q0.0\nNOP\nNOP\nNOP\nNOP\nREFRESH\nLD I0.0\n= Q0.1\n",
      "t_us,I0.0\n0.04,1\n", 1, ["01"]),
+    # REFRESH as the scan's first instruction, in the latch clock: a second latch that
+    # finds no edge since the scan start's, so IR0.0 is 0 as with a NOP in front
+    # (issue 15, defect 1); I0.0 keeps the latched 1
+    ("refresh_first", "REFRESH\nLD IR0.0\n= Q0.0\nLD I0.0\n= Q0.1\n", "scan,I0.0\n0,1\n", 2,
+     ["01", "01"]),
+    ("refresh_after_nop", "NOP\nREFRESH\nLD IR0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
+     "scan,I0.0\n0,1\n", 2, ["01", "01"]),
     ("direct_input", "NOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
      "t_us,I0.0\n0.03,1\n", 1, ["10"]),
     ("end_mid_program", "SET\n= Q0.0\nEND\nCLR\n= Q0.0\n", "", 1, ["1"]),

@@ -378,17 +378,25 @@ def test_refresh_sees_a_change_in_its_own_clock_only():
     assert column(later, "Q0.2") == [0, 0]   # ... so its REFRESH sees no new edge
 
 
-def test_refresh_in_the_latch_clock_is_the_same_single_latch():
+def test_refresh_in_the_latch_clock_is_a_second_latch():
     # REFRESH@L (the latch clock itself) LD IR0.0@L+1 =@L+2 LD I0.0@L+3 =@L+4 END@L+5:
     # 6 cycles, latches 0, 6, 12.  The pin rises in clock 6 (0.06 us) / in scan 1: scan
-    # 1's latch takes the rise; its REFRESH, in that same clock, must not re-latch
-    # (a second latch would find no edge since clock 6 and clear IR).
+    # 1's latch takes the rise, its REFRESH in that same clock is a second latch that
+    # finds no edge since the first (spec §4), so IR0.0 is 0 in every scan.
     src = "REFRESH\nLD IR0.0\n= Q0.0\nLD I0.0\n= Q0.1"
     for s in (stim("t_us,I0.0\n0.06,1\n"), stim("scan,I0.0\n1,1\n")):
         recs = run(src, s, scans=3)
-        assert column(recs, "Q0.0") == [0, 1, 0]
+        assert column(recs, "Q0.0") == [0, 0, 0]
         assert column(recs, "Q0.1") == [0, 1, 1]
         assert [r.cycles for r in recs] == [6, 6, 6]
+
+
+@pytest.mark.parametrize("front", ["", "NOP\n"])
+def test_a_nop_in_front_of_refresh_changes_nothing(front):
+    # issue 15, defect 1: with I0.0 rising at scan 0, `REFRESH / LD IR0.0 / = Q0.0` gave
+    # 1 (the REFRESH merged with the scan start's latch), with a NOP in front 0
+    recs = run(front + "REFRESH\nLD IR0.0\n= Q0.0", stim("scan,I0.0\n0,1\n"), scans=2)
+    assert column(recs, "Q0.0") == [0, 0]
 
 
 def test_refresh_with_scan_stimulus_sees_no_new_edge():

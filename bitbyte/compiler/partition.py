@@ -87,10 +87,10 @@ Rules (source instruction -> rows):
     read included.
   `status_sync=False` drops both (the paper's Fig. 2 timers: the bit side never
   waits); that gives the paper's Fig. 13 exactly but is not serial-equivalent.
-* REFRESH: one that would be the bit part's first instruction although it is not the
-  program's first gets a NOP before it: the first bit instruction executes in the PII
-  latch clock, where REFRESH is one with the latch, whereas serially it comes later
-  and re-latches (clearing IR/IF).
+* REFRESH: one that becomes the bit part's first instruction executes in the PII
+  latch clock; there it is a second latch that finds no edge since the scan start's
+  (IR/IF := 0, input_unit.v), as serially after the byte work before it (with pins
+  that do not move in between), so it needs no NOP in front.
 * END anywhere: bit END and byte END_B in one row; the parts end with END / END_B.
 * Channels: transfers are numbered round-robin per direction over `channels`
   (FBY 0, 1, 2, ... ; FBI 0, 1, ...), so a writer can run up to `channels` conditions

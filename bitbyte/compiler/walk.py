@@ -33,7 +33,6 @@ class _Builder:
         self.count = {TO_BYTE: 0, TO_BIT: 0}
         self.jump_rows: dict[int, int] = {}
         self.label_rows: dict[str, int] = {}
-        self.bit_emitted = 0
         self.dead = False                    # fall-through after JU / END
         self.cur = 0                          # source index being compiled
         self.reach = _Reach(program)
@@ -59,8 +58,6 @@ class _Builder:
     def row(self, kind: str, bit: PartInstr | None = None, byte: PartInstr | None = None,
             channel: int | None = None) -> int:
         self.rows.append(Row(kind, self.cur, bit, byte, channel=channel))
-        if bit is not None:
-            self.bit_emitted += 1
         if kind == TO_BIT:          # the bit side passes it only after every byte row before
             self.unsynced_updates = set()
         elif kind == TO_BYTE:       # the byte side passes it only after every bit row before
@@ -117,10 +114,6 @@ class _Builder:
         targets = {ins.operand.label for ins in instrs if ins.mnemonic in JUMPS}
         for i, ins in enumerate(instrs):
             self.cur = i
-            if ins.mnemonic == "REFRESH" and self.bit_emitted == 0 and i > 0:
-                self.row(BIT, bit=self.synth("NOP", None, "REFRESH must not execute in "
-                                                          "the PII latch clock: serially "
-                                                          "it comes after byte work"))
             joined = [name for name in ins.labels if name.upper() in targets]
             if joined:
                 if not self.dead:

@@ -12,8 +12,8 @@ with the RLO swapped in and out: F_b for the bit side, F_B for the byte side); i
 the channels, the byte program's JU_B / JC_B / JCN_B / END_B and the scheduler.
 
 Not a timing model: `cycles` in its records count interleaved steps, and the clock an
-instruction sees is its own side's count of clocks (bit: 1 per instruction, as the
-hardware's latch-clock rule for REFRESH needs; byte: the cost table).  Time-dependent
+instruction sees is its own side's count of clocks (bit: 1 per instruction; byte:
+the cost table).  Time-dependent
 inputs (t_us stimuli, PI) and timers therefore differ from serial mode, as they do on
 the hardware; `ms_per_scan` makes timers see now = scan * ms_per_scan in both this
 and ScanTimeRefSim, so that programs with timers can be compared too.

@@ -337,8 +337,9 @@ class RefSim:
         elif m == "NOP":
             pass
         elif m == "REFRESH":
-            if clock != self.last_latch:       # in the latch clock itself: one latch
-                self._latch(clock)
+            # also in the scan's latch clock (a scan's first instruction): a second
+            # latch there finds no edge since the first, IR/IF become 0 (spec §4)
+            self._latch(clock)
         else:
             return False
         return True
