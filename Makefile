@@ -99,6 +99,22 @@ generate: $(VENV_STAMP)  ## rewrite the files generated from bitbyte/lang/defini
 clean:          ## remove build products (keeps .venv)
 	rm -rf sim/build tb/build build sim/waves .pytest_cache
 
+# ------------------------------------------------------------------ soak (soak/)
+# N random programs (tests/randprog.py's generators) on the Verilator harness in serial
+# and parallel (handshake, queue) mode against the reference interpreter, spread over
+# JOBS cores; mismatches saved under build/soak/cases/; docs/soak.md gets the seed, the
+# time, the mismatches and the coverage table. Not part of `make test` (N=10000: about
+# 15 min on 2 cores). BITBYTE_SEED=<n> repeats a run.
+.PHONY: soak
+N ?= 10000
+soak: $(HARNESS)  ## N random programs, every mode, against the reference -> docs/soak.md
+	@rm -rf build/soak; mkdir -p build/soak
+	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; t0=$$(date +%s); \
+	echo "soak: BITBYTE_SEED=$$seed N=$(N)"; \
+	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider soak/; rc=$$?; \
+	$(VENV)/bin/python soak/report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
+	exit $$rc
+
 # ------------------------------------------------------------------ synthesis (synth/)
 # Feasibility reports: Yosys + nextpnr for iCE40 HX8K/UP5K and ECP5-25 (speed 8), Yosys
 # cell counts for Xilinx 7-series and generic gates, a parameter sweep. Writes

@@ -11,6 +11,8 @@ import os
 import random
 import re
 
+from bitbyte.lang.config import DEFAULT
+
 READ_AREAS = ["I", "I", "I", "PI", "IR", "IF", "Q", "PQ", "M", "M", "M", "T", "C"]
 WRITE_AREAS = ["Q", "Q", "PQ", "M", "M"]
 COMBINE = ["A", "AN", "O", "ON", "X", "XN"]
@@ -68,14 +70,16 @@ class Gen:
             return f'"{name}"' if rng.random() < 0.5 else name
         return addr
 
-    def chain(self, depth: int) -> None:
+    def chain(self, depth: int, full: bool = False) -> None:
+        """A rung's logic; `full` nests parentheses to the maximum depth
+        (DEFAULT.nest_depth levels), which random nesting practically never reaches."""
         rng = self.rng
         self.lines.append(f"  {rng.choice(['LD', 'LDN'])} {self.operand()}")
-        for _ in range(rng.randrange(0, 5)):
-            r = rng.random()
-            if r < 0.15 and depth < 7:
+        for step in range(rng.randrange(1 if full else 0, 5)):
+            r = -1.0 if full and step == 0 else rng.random()
+            if r < 0.15 and depth < DEFAULT.nest_depth:
                 self.lines.append(f"  {rng.choice(OPENS)}")
-                self.chain(depth + 1)
+                self.chain(depth + 1, full)
                 self.lines.append("  )")
             elif r < 0.22:
                 self.lines.append(f"  {rng.choice(['NOT', 'SET', 'CLR', 'NOP'])}")
@@ -89,7 +93,7 @@ class Gen:
             self.pending.remove((target, label))
         r = rng.random()
         if r < 0.55:
-            self.chain(0)
+            self.chain(0, full=rng.random() < 0.04)
             for _ in range(rng.randrange(1, 3)):
                 op = rng.choice(["=", "=", "S", "R"])
                 self.lines.append(f"  {op} {self.operand(WRITE_AREAS)}")

@@ -1,0 +1,84 @@
+"""Functional coverage of the soak: instruction x operand area x mode x exchange.
+
+A bin is (mnemonic, operand kind, mode, exchange); beside them, the parenthesis depth
+reached, ("(", depth, mode, exchange) for every depth from 1 to the build's
+NestDepth (an opening parenthesis executed at that depth).  The operand kind is the operand's
+area (`I`, `M`, `T`, ...), `INT` / `TIME` for a constant, `LABEL` for a jump target and
+`-` for none.  A bin counts the instructions the reference interpreter *executed* in
+the run that a hardware run was compared with (dead code does not count), under every
+mode and exchange that hardware run used.
+
+The legal bins come from the parser's instruction signatures (bitbyte.lang.parser
+SIGNATURES, spec §3's operand table), not from what the generator happens to emit:
+every mnemonic with every area it accepts, in every mode.  Left out, and said so in
+docs/soak.md: the channel operands (`FBI k`, `FBY k`, `READ`, `WRITE`), which only the
+partitioning compiler or hand-partitioned sections write.
+"""
+from __future__ import annotations
+
+from collections import Counter
+from contextlib import contextmanager
+
+from bitbyte.lang.config import DEFAULT
+from bitbyte.lang.parser import SIGNATURES
+from bitbyte.lang.program import OPENS
+from bitbyte.ref.refsim import RefSim
+
+MODES = (("serial", "-"), ("parallel", "handshake"), ("parallel", "queue"))
+CHANNEL_AREAS = ("FBI", "FBY")
+CHANNEL_MNEMONICS = ("READ", "WRITE")
+
+
+def operand_kind(ins) -> str:
+    op = ins.operand
+    if op is None:
+        return "-"
+    if op.kind == "label":
+        return "LABEL"
+    return op.area
+
+
+def legal_bins() -> set[tuple[str, str, str, str]]:
+    bins = set()
+    for mnemonic, sig in SIGNATURES.items():
+        if mnemonic in CHANNEL_MNEMONICS:
+            continue
+        kinds = [a for a in sig.accepts if a not in CHANNEL_AREAS] or ["-"]
+        bins |= {(mnemonic, kind, mode, ex) for kind in kinds for mode, ex in MODES}
+    bins |= {("(", str(d), mode, ex) for d in range(1, DEFAULT.nest_depth + 1)
+             for mode, ex in MODES}
+    return bins
+
+
+class Coverage:
+    def __init__(self):
+        self.counts: Counter = Counter()
+
+    @contextmanager
+    def counting(self, *modes: tuple[str, str]):
+        """Count what RefSim executes inside the block under each of `modes`."""
+        step, end_scan = RefSim._step, RefSim._end_scan
+        counts = self.counts
+
+        def counted_step(sim, ins, pc, clock):
+            key = (ins.mnemonic, operand_kind(ins))
+            result = step(sim, ins, pc, clock)
+            keys = [key] + ([("(", str(len(sim.stack)))] if ins.mnemonic in OPENS else [])
+            for k in keys:
+                for mode, ex in modes:
+                    counts[k + (mode, ex)] += 1
+            return result
+
+        def counted_end(sim, end, cycles):
+            for mode, ex in modes:
+                counts[("END", "-", mode, ex)] += 1
+            return end_scan(sim, end, cycles)
+
+        RefSim._step, RefSim._end_scan = counted_step, counted_end
+        try:
+            yield
+        finally:
+            RefSim._step, RefSim._end_scan = step, end_scan
+
+    def to_json(self) -> list:
+        return [list(k) + [v] for k, v in sorted(self.counts.items())]

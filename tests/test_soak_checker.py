@@ -1,0 +1,88 @@
+"""The soak (soak/, `make soak`) can fail: its comparisons catch a broken reference in
+serial and in parallel mode and save the case, its timer transformation does what it
+says, and its report fails on a mismatch, a missing chunk or a missed coverage bin.
+A few programs through the real comparisons here; the N-program run is `make soak`."""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+SOAK = Path(__file__).resolve().parents[1] / "soak"
+sys.path.insert(0, str(SOAK))
+
+import coverage_count  # noqa: E402
+import report  # noqa: E402
+import test_soak as soak  # noqa: E402
+
+
+def test_long_timers_by_hand():
+    src = "  LD I0.0\n  L T#5ms\nx: SD T3\n  L T3\n  T MW0\n  R T3\n  SF T9\n  L T 9\n"
+    assert soak.long_timers(src).split("\n")[:-1] == [
+        "  LD I0.0", "  L T#5ms", "x:", "  L T#9000s", "  SD T3", "  L T8", "  T MW0",
+        "  R T3", "  L T#9000s", "  SF T9", "  L T8"]
+
+
+def test_the_programs_agree_and_are_counted(tmp_path, monkeypatch):
+    monkeypatch.setattr(soak, "OUT", tmp_path / "out")
+    cov = coverage_count.Coverage()
+    for index in range(4):
+        family = soak.FAMILIES[index]
+        assert soak.serial_check(tmp_path, index, family, cov) is None
+        assert soak.parallel_check(tmp_path, index, family, cov) == []
+    modes = {(mo, ex) for (_, _, mo, ex) in cov.counts}
+    assert modes == set(coverage_count.MODES)
+    assert set(cov.counts) <= coverage_count.legal_bins()
+
+
+def test_a_broken_reference_is_caught_and_saved(tmp_path, monkeypatch):
+    """XOR computed as OR in the reference: the hardware's traces now differ, in
+    serial and in parallel mode, and each case is saved with what repeats it."""
+    import bitbyte.ref.refsim as refsim
+    good = refsim.combine
+    monkeypatch.setattr(refsim, "combine",
+                        lambda func, rlo, x: good("O" if func == "X" else func, rlo, x))
+    monkeypatch.setattr(soak, "OUT", tmp_path / "out")
+    monkeypatch.setattr(soak, "SEED", 1)      # fixed programs: this one must not be luck
+    cov = coverage_count.Coverage()
+    serial, parallel = [], []
+    for index in range(8):
+        family = soak.FAMILIES[index % len(soak.FAMILIES)]
+        problem = soak.serial_check(tmp_path, index, family, cov)
+        serial += [problem] if problem else []
+        parallel += soak.parallel_check(tmp_path, index, family, cov)
+    assert serial and parallel, (serial, parallel)
+    saved = sorted((tmp_path / "out" / "cases").iterdir())
+    assert len(saved) == len(serial) + len(parallel)
+    for case in saved:
+        assert {p.name for p in case.iterdir()} == {
+            "program.il", "stimulus.csv", "expected.txt", "got.txt", "repeat.sh"}
+        assert (case / "expected.txt").read_text() != (case / "got.txt").read_text()
+
+
+def _chunk(build: Path, n: int, mismatches=(), coverage=None):
+    build.mkdir(parents=True, exist_ok=True)
+    if coverage is None:
+        coverage = [list(b) + [1] for b in sorted(coverage_count.legal_bins())]
+    (build / f"chunk{n:05d}.json").write_text(json.dumps({
+        "seed": 1, "chunk": n, "programs": 25, "mismatches": list(mismatches),
+        "seconds": 1.0, "coverage": coverage}))
+
+
+@pytest.mark.parametrize("broken", ["none", "mismatch", "bin missed", "chunk missing"])
+def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
+    build = tmp_path / "b"
+    bins = [list(b) + [1] for b in sorted(coverage_count.legal_bins())]
+    bins = bins[1:] if broken == "bin missed" else bins
+    _chunk(build, 0, ["p: differs"] if broken == "mismatch" else (), bins)
+    _chunk(build, 1, (), bins)
+    n = 75 if broken == "chunk missing" else 50
+    out = tmp_path / "soak.md"
+    rc = report.main(["--build", str(build), "--out", str(out), "--n", str(n),
+                      "--seconds", "60"])
+    assert rc == (0 if broken == "none" else 1)
+    text = out.read_text()
+    assert ("**missed: 0**." in text) == (broken != "bin missed")
+    assert ("**Mismatches: 1.**" in text) == (broken == "mismatch")
