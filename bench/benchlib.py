@@ -87,6 +87,23 @@ class Run:
         m = re.search(r"stalls\s+bit side (\d+), byte side (\d+)", self.stdout)
         return (int(m.group(1)), int(m.group(2))) if m else None
 
+    def free_running(self) -> dict | None:
+        """Free-running mode's own figures from the summary (None in other modes): the
+        byte side's scans and its mean scan in clocks (simulated clocks / its scans),
+        and the queue losses, overflows / underflows per direction ((0, 0, 0, 0) with
+        the marker exchange, which loses nothing)."""
+        m = re.search(r"byte side\s+(\d+) scans \(free-running\)", self.stdout)
+        if not m:
+            return None
+        scans = int(m.group(1))
+        c = re.search(r"simulated\s+[0-9.]+ us, (\d+) clocks", self.stdout)
+        clocks = int(c.group(1)) if c else None
+        q = re.search(r"queue losses\s+overflows to-byte (\d+) to-bit (\d+), underflows "
+                      r"to-byte (\d+) to-bit (\d+)", self.stdout)
+        losses = [int(x) for x in q.groups()] if q else [0, 0, 0, 0]
+        return dict(byte_scans=scans, clocks=clocks, losses=losses,
+                    byte_scan=clocks / scans if clocks and scans else None)
+
     def mclocks_per_s(self) -> float | None:
         m = re.search(r"([0-9.]+) M clocks/s", self.stdout)
         return float(m.group(1)) if m else None

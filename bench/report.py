@@ -35,6 +35,17 @@ PLOTS = ("perf_scan.png", "perf_table1.png", "perf_word_share.png", "perf_baseli
          "perf_response.png")
 
 
+
+def free_note(fr: dict | None) -> str:
+    """A free-running run's other half (issue 15: no free-running figure without it):
+    the byte side's scan and the queue losses."""
+    if not fr:
+        return ""
+    ovf_b, ovf_i, unf_b, unf_i = fr["losses"]
+    scan = f"mean {fr['byte_scan']:.0f} clocks" if fr.get("byte_scan") else "mean –"
+    return (f"byte side {fr['byte_scans']} scans, {scan}; losses: overflows "
+            f"to-byte {ovf_b} / to-bit {ovf_i}, underflows to-byte {unf_b} / to-bit {unf_i}")
+
 def fmt(x, nd=1):
     if x is None:
         return "–"
@@ -412,7 +423,9 @@ def markdown(res, d) -> str:
             f"case **{drc['max']:.0f} clocks = {drc['max'] / f:.1f} µs** vs bound "
             f"{drc['bound']} clocks = {drc['bound'] / f:.1f} µs "
             f"({'within' if drc['within_bound'] else 'EXCEEDS'}"
-            f"{'' if drc['exact'] else '; at scan-end resolution, an upper bound'}).")
+            f"{'' if drc['exact'] else '; at scan-end resolution, an upper bound'})."
+            + (f" Bit side's scans as above; {free_note(rr[m].get('free'))}."
+               if rr[m].get("free") else ""))
     ff = (res.get("response_fast") or {}).get("modes", {})
     free_key = next((k for k in ff if k.startswith("free")), None)
     if "image" in ff.get("serial", {}) and free_key and "image" in ff[free_key]:
@@ -420,7 +433,8 @@ def markdown(res, d) -> str:
         add(f"* **Free-running, fast bit-only logic next to slow word logic** "
             f"(`response_fast.il`, I → Q): worst case {f_w:.0f} clocks free-running vs "
             f"{s_w:.0f} serial: **{s_w / f_w:.1f}× shorter** (goal ≥ 5×: "
-            f"{'met' if s_w / f_w >= 5 else 'not met'}); see §4.")
+            f"{'met' if s_w / f_w >= 5 else 'not met'}); free-running "
+            f"{free_note(ff[free_key].get('free'))}; see §4.")
     sp = res.get("simspeed", {})
     if sp:
         parts = [f"{v['label']}: {_rate(v['mclocks_s'])} clocks/s" for k, v in sp.items()
@@ -471,11 +485,17 @@ def markdown(res, d) -> str:
             "estimate*: the straight-line scan if neither side ever waited, "
             "max(bit part + 1, byte part's cost) with 10 clocks per word instruction "
             "and 1 per READ / WRITE / jump on the byte side; the gap to the measured "
-            "scan is waiting (the stall columns, from the run summary).\n")
+            "scan is waiting (the stall columns, from the run summary). In "
+            "free-running mode the two sides scan on their own: *median* is the bit "
+            "side's scan, the last column the byte side's (simulated clocks / its "
+            "scans) and the conditions the free-running queues lost (overflows / "
+            "underflows, to-byte and to-bit; the marker exchange loses none); the "
+            "speed-up is given for the bit side's scan and for the slower side's.\n")
         add("| program | bit / word | mode | serial median [clocks] | median [clocks] | "
             "speed-up | stalls per scan bit / byte [clocks] | bit part / byte part "
-            "[instr.] | transfers bit→byte / byte→bit | no-wait estimate [clocks] |")
-        add("|---|---|---|---|---|---|---|---|---|---|")
+            "[instr.] | transfers bit→byte / byte→bit | no-wait estimate [clocks] | "
+            "free-running: byte side, losses |")
+        add("|---|---|---|---|---|---|---|---|---|---|---|")
         for k, e in res["scan"].items():
             s_ = e["runs"].get("serial/paper", {})
             p_ = e.get("partition") or {}
@@ -488,13 +508,17 @@ def markdown(res, d) -> str:
                 if p_.get("bit_part") is not None:
                     byte_cost = 10 * e["n_word"] + (p_["byte_part"] - e["n_word"])
                     est = fmt(max(p_["bit_part"] + 1, byte_cost))
+                fr = r.get("free")
+                speed = f"**{s_['median'] / r['median']:.2f}**"
+                if fr and fr.get("byte_scan"):
+                    slow = max(r["median"], fr["byte_scan"])
+                    speed += f" bit side, {s_['median'] / slow:.2f} slower side"
                 add(f"| {e['name']} | {e['n_bit']} / {e['n_word']} | {m} | "
-                    f"{fmt(s_['median'])} | {fmt(r['median'])} | "
-                    f"**{s_['median'] / r['median']:.2f}** | "
+                    f"{fmt(s_['median'])} | {fmt(r['median'])} | {speed} | "
                     + (f"{st[0]:.0f} / {st[1]:.0f}" if st else "–") + " | "
                     + (f"{p_['bit_part']} / {p_['byte_part']} | {p_['to_byte']} / "
                        f"{p_['to_bit']}" if p_.get("bit_part") is not None else "– | –")
-                    + f" | {est} |")
+                    + f" | {est} | {free_note(fr) or '–'} |")
         add("")
         sched = (t1.get("partition") or {}).get("schedule")
         par1 = t1["runs"].get("parallel/paper", {})
@@ -642,7 +666,8 @@ def markdown(res, d) -> str:
         if r and "median" in r:
             add(f"| **this CPU, {m} mode**, paper weights | {t1['n_bit']} / {t1['n_word']} "
                 f"| **{us(r['median'], f):.1f} µs** ({fmt(r['median'])} clocks at {f:g} MHz)"
-                f" | measured (median) |")
+                + (f"; the bit side's scan — {free_note(r['free'])}" if r.get("free") else "")
+                + " | measured (median) |")
             if m == "serial":
                 add(f"| this CPU, serial, paper weights at 10 MHz (exactly the S7 "
                     f"weights: 0.1 µs / 1 µs) | {t1['n_bit']} / {t1['n_word']} | "
@@ -684,6 +709,14 @@ def markdown(res, d) -> str:
         add(f"| {e['share']} % | {e['n_bit']} / {e['n_word']} |{cells} {fmt(cm)} | "
             f"{fmt(base)} | {base / cm:.2f}× |" if cm else
             f"| {e['share']} % | {e['n_bit']} / {e['n_word']} |{cells} – | {fmt(base)} | – |")
+    free_modes = [m for m in modes_ok if m.startswith("free")]
+    if free_modes:
+        add("")
+        add(f"{', '.join(free_modes)}: the bit side's scan. Each program's byte side "
+            "and queue losses: " + "; ".join(
+                f"{res['scan'][k]['share']} % {free_note(res['scan'][k]['runs'].get(f'{m}/paper', {}).get('free'))}"
+                for k in keys for m in free_modes
+                if res['scan'][k]['runs'].get(f'{m}/paper', {}).get('free')) + ".")
     if d["speedup"]:
         add("")
         add("| word share | parallel / serial speed-up |")

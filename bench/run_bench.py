@@ -128,7 +128,7 @@ def measure_scan(cases, modes, f) -> dict:
                                       mean=sum(cyc) / len(cyc), wall_s=r.wall_s,
                                       trace=str(trace.relative_to(ROOT)),
                                       stalls_per_scan=[x / len(cyc) for x in stalls]
-                                      if stalls else None)
+                                      if stalls else None, free=r.free_running())
             bl.progress(f"  {c['name']:<14} {tag:<15} {len(cyc):>6} scans  cycles "
                         f"min {lo} median {med:g} max {hi}")
         if any(bl.split_mode(m)[0] == "parallel" for m in modes):
@@ -206,6 +206,7 @@ def measure_response(modes, f, n_edges: int, out_key: str = "response",
                         f"max {hi:.1f}  bound {resp.bound}  "
                         f"({'ok' if hi < resp.bound else 'EXCEEDED'})")
         m["scans"] = len(r.rows)
+        m["free"] = r.free_running()
         m["trace"] = str(trace.relative_to(ROOT))
         m["stimulus"] = str(stim.relative_to(ROOT))
         result["modes"][mode] = m
