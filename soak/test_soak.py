@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import shlex
 import time
 from pathlib import Path
@@ -48,9 +47,9 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.run.prepare import prepare_run
 from bitbyte.sim.cocotb_runner import records_from_rows, run_jobs
 from coverage_count import Coverage
-from randprog import (random_mixed_program, random_mixed_stimulus, random_mixed_watch,
-                      random_parallel_program, random_program, random_scan_stimulus,
-                      random_stimulus, random_watch)
+from randprog import (long_timers, random_mixed_program, random_mixed_stimulus,
+                      random_mixed_watch, random_parallel_program, random_program,
+                      random_scan_stimulus, random_stimulus, random_watch)
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = Path(os.environ.get("BITBYTE_SOAK_OUT", ROOT / "build" / "soak"))
@@ -81,31 +80,6 @@ PARALLEL = Family("par", random_parallel_program,
                   lambda s: random_mixed_stimulus(s, SCANS, 3000), random_mixed_watch,
                   "0.1", 20_000)
 FAMILIES = (BIT, MIXED, PARALLEL, MIXED)
-
-TIMER_START = re.compile(r"^(\s*(?:\w+:\s*)?)(SD|SS|SP|SF)(\s+T\s*\d+.*)$", re.IGNORECASE)
-TIMER_VALUE = re.compile(r"\bL\s+T\s*(\d+)\b")
-TIMER_INDEX = re.compile(r"\b(?:SD|SS|SP|SF|R)\s+T\s*(\d+)", re.IGNORECASE)
-LONG_PRESET = "T#9000s"
-
-
-def long_timers(text: str) -> str:
-    """Every timer start gets a preset that does not run out within a run (`L T#9000s`
-    right before it), and `L T n` (the time value, which depends on the mode's timing)
-    reads a timer the program never starts instead (its value is 0 in every mode)."""
-    started = {int(m.group(1)) for m in TIMER_INDEX.finditer(text)}
-    idle = next(n for n in range(8, 64) if n not in started)
-    out = []
-    for line in text.split("\n"):
-        start = TIMER_START.match(line)
-        if start:
-            label, kind, rest = start.groups()
-            if label.strip():
-                out.append(label.rstrip())
-            out += [f"  L {LONG_PRESET}", f"  {kind}{rest}"]
-            continue
-        out.append(TIMER_VALUE.sub(f"L T{idle}", line))
-    return "\n".join(out)
-
 
 def outputs(records):
     return [(r.scan, tuple(sorted(r.values.items()))) for r in records]

@@ -380,6 +380,32 @@ def strip_timers(text: str) -> str:
     return "\n".join(out)
 
 
+TIMER_START = re.compile(r"^(\s*(?:\w+:\s*)?)(SD|SS|SP|SF)(\s+T\s*\d+.*)$", re.IGNORECASE)
+TIMER_VALUE = re.compile(r"\bL\s+T\s*(\d+)\b")
+TIMER_INDEX = re.compile(r"\b(?:SD|SS|SP|SF|R)\s+T\s*(\d+)", re.IGNORECASE)
+LONG_PRESET = "T#9000s"
+
+
+def long_timers(text: str) -> str:
+    """For comparisons across modes (parallel against serial), whose timing differs:
+    every timer start gets a preset that does not run out within a run (`L T#9000s`
+    right before it), and `L T n` (the time value, which depends on the mode's timing)
+    reads a timer the program never starts instead (its value is 0 in every mode)."""
+    started = {int(m.group(1)) for m in TIMER_INDEX.finditer(text)}
+    idle = next(n for n in range(8, 64) if n not in started)
+    out = []
+    for line in text.split("\n"):
+        start = TIMER_START.match(line)
+        if start:
+            label, kind, rest = start.groups()
+            if label.strip():
+                out.append(label.rstrip())
+            out += [f"  L {LONG_PRESET}", f"  {kind}{rest}"]
+            continue
+        out.append(TIMER_VALUE.sub(f"L T{idle}", line))
+    return "\n".join(out)
+
+
 def random_scan_stimulus(seed: int, scans: int) -> str:
     """Input bits and IW0..IW3 keyed by scan only: inputs are constant within a scan,
     so PI, IW and REFRESH read the same values in every mode."""

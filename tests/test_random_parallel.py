@@ -2,8 +2,9 @@
 (bit part on the bit processor, byte part on the firmware, with the handshake
 flip-flops or the strict queues) leaves the same trace as the reference interpreter
 in serial mode — every column but t_us and cycles, which differ by design (spec §2).
-Timers are left out (their time base differs between the modes) and inputs change
-only between scans."""
+Timers stay in with presets that do not run out within a run (randprog.long_timers:
+their status then follows the enable alone, whatever either mode's timing), and
+inputs change only between scans."""
 from __future__ import annotations
 
 import os
@@ -18,7 +19,7 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.sim.cocotb_runner import run_jobs
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import (make_cases, plant_stimulus, random_mixed_program,
+from randprog import (long_timers, make_cases, plant_stimulus, random_mixed_program,
                       random_mixed_watch, random_parallel_program, random_scan_stimulus,
                       strip_timers)
 
@@ -40,9 +41,9 @@ class Case:
         maker = random_parallel_program if index % 2 else random_mixed_program
         self.il = tmp / f"par{self.seed}.il"
         self.stim = tmp / f"par{self.seed}.csv"
-        self.il.write_text(strip_timers(maker(self.seed)))
+        self.il.write_text(long_timers(maker(self.seed)))
         self.stim.write_text(random_scan_stimulus(self.seed, SCANS))
-        self.watch = ",".join(w for w in random_mixed_watch(self.seed) if not w.startswith("T"))
+        self.watch = ",".join(random_mixed_watch(self.seed))
         kw = dict(stimulus=str(self.stim), watch=self.watch, scans=SCANS, watchdog=WATCHDOG)
         self.program, self.columns, _, _ = prepare_run(str(self.il), **kw)
         self.jobs = {ex: prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
@@ -69,6 +70,15 @@ def test_cases_exercise_the_exchange(cases):
         return any(w >> 24 < 0x80 and (w >> 12) & 0xF == 9 for w in words)
     moved = sum(crosses(c.jobs["handshake"].prog) for c in cases)
     assert moved > len(cases) // 2, f"only {moved} of {len(cases)} programs transfer"
+
+
+def test_cases_keep_timers(cases):
+    """The timers are in (issue 15: they were stripped): programs start them, and some
+    watched timer status is 1 in some scan (SP / SF follow their enable)."""
+    starts = sum(i.mnemonic in ("SD", "SS", "SP", "SF") for c in cases for i in c.program.instrs)
+    on = sum(1 for c in cases for _, values in c.expected[0]
+             for name, v in values if name.startswith("T") and v)
+    assert starts > len(cases) // 2 and on > 0, (starts, on)
 
 
 @pytest.mark.parametrize("exchange", ["handshake", "queue"])

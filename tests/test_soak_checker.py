@@ -16,11 +16,12 @@ sys.path.insert(0, str(SOAK))
 import coverage_count  # noqa: E402
 import report  # noqa: E402
 import test_soak as soak  # noqa: E402
+from randprog import long_timers  # noqa: E402
 
 
 def test_long_timers_by_hand():
     src = "  LD I0.0\n  L T#5ms\nx: SD T3\n  L T3\n  T MW0\n  R T3\n  SF T9\n  L T 9\n"
-    assert soak.long_timers(src).split("\n")[:-1] == [
+    assert long_timers(src).split("\n")[:-1] == [
         "  LD I0.0", "  L T#5ms", "x:", "  L T#9000s", "  SD T3", "  L T8", "  T MW0",
         "  R T3", "  L T#9000s", "  SF T9", "  L T8"]
 
