@@ -289,20 +289,21 @@ def program_wcet_ms(path: str, clock_mhz: Fraction, mode: str,
     return Fraction(program_clocks(path, mode)) / (clock_mhz * 1000)
 
 
-def check_fits(tasks: list[Task], p: Platform) -> None:
-    """A task that fits no empty core is an error at its line (spec §8)."""
-    for t in tasks:
-        where = t.where or Where("<tasks>", 0)
-        load = t.load_ms(p)
-        if load > t.period_ms:
-            col = "wcet" if "wcet" in where.cols else "wcet_ms"
-            raise where.error(col, f"task '{t.name}' fits no core: U = {_f(load)} / "
-                              f"{_f(t.period_ms)} ms = {float(load / t.period_ms):.3f} > 1 "
-                              f"(read {_f(p.alpha * t.read_bytes)} + execute "
-                              f"{_f(t.wcet_ms)} + write {_f(p.beta * t.write_bytes)} ms)")
-        if t.mem_bytes > p.mem:
-            raise where.error("mem", f"task '{t.name}' fits no core: {t.mem_bytes} bytes of "
-                                   f"memory > --mem {p.mem}")
+def misfit(t: Task, p: Platform) -> SourceError | None:
+    """Why `t` fits no empty core (spec §8: U > 1 on its own, or more memory than a
+    core has), as the error at its line; None when it fits one."""
+    where = t.where or Where("<tasks>", 0)
+    load = t.load_ms(p)
+    if load > t.period_ms:
+        col = "wcet" if "wcet" in where.cols else "wcet_ms"
+        return where.error(col, f"task '{t.name}' fits no core: U = {_f(load)} / "
+                           f"{_f(t.period_ms)} ms = {float(load / t.period_ms):.3f} > 1 "
+                           f"(read {_f(p.alpha * t.read_bytes)} + execute "
+                           f"{_f(t.wcet_ms)} + write {_f(p.beta * t.write_bytes)} ms)")
+    if t.mem_bytes > p.mem:
+        return where.error("mem", f"task '{t.name}' fits no core: {t.mem_bytes} bytes of "
+                                  f"memory > --mem {p.mem}")
+    return None
 
 
 def _f(x: Fraction) -> str:
@@ -459,6 +460,8 @@ class Allocation:
     unassigned: list[Task]
     lower_bound: int          # spec §8: sum over periods of ceil(sum U)
     groups: list[GroupResult]
+    # the tasks no empty core can take, each with its error (unassigned as well)
+    misfits: list[tuple[Task, SourceError]] = field(default_factory=list)
 
     @property
     def cores_used(self) -> int:
@@ -469,13 +472,16 @@ class Allocation:
         return not self.unassigned and self.cores_used <= self.platform.cores
 
     def reason(self) -> str:
-        """Why the allocation failed ('' when it did not)."""
-        if self.ok:
+        """Why the allocation failed for want of cores ('' when no task is left
+        out for that; the misfits have their own errors)."""
+        unfit = {t.name for t, _ in self.misfits}
+        short = [t for t in self.unassigned if t.name not in unfit]
+        if not short and self.cores_used <= self.platform.cores:
             return ""
         need = sum(g.bound for g in self.groups)
-        periods = sorted({t.period_ms for t in self.unassigned})
+        periods = sorted({t.period_ms for t in short})
         return (f"the tasks do not fit on {_n(self.platform.cores, 'core')}: "
-                f"{len(self.unassigned)} of {len(self.tasks)} unassigned (periods "
+                f"{len(short)} of {len(self.tasks)} unassigned (periods "
                 f"{', '.join(_f(x) + ' ms' for x in periods)}); at least {need} cores are "
                 "needed (per period: ceil(sum U), ceil(sum mem / --mem), tasks over half "
                 "a core)")
@@ -483,12 +489,16 @@ class Allocation:
 
 def allocate(tasks: list[Task], p: Platform, algorithm: str = "best",
              budget: int = DEFAULT_BUDGET) -> Allocation:
-    """Allocate `tasks` to at most p.cores cores.  The tasks must each fit an empty
-    core (check_fits).  Never raises for an allocation that does not fit: the result
-    lists the unassigned tasks."""
+    """Allocate `tasks` to at most p.cores cores.  Never raises for an allocation that
+    does not fit: the result lists the unassigned tasks.  A task that fits no empty
+    core (`misfit`) is unassigned with its error in `misfits` and the others are
+    allocated without it (spec §8: the allocation of the rest is still wanted)."""
     if algorithm not in ALGORITHMS:
         raise UsageProblem(f"--algorithm: unknown {algorithm!r} (known: ffd, best)")
-    inst = _Instance(tasks, p)
+    errors = [misfit(t, p) for t in tasks]
+    keep = [k for k, e in enumerate(errors) if e is None]    # file index of each fitting
+    fitting = [tasks[k] for k in keep]
+    inst = _Instance(fitting, p)
     bins, unassigned = _ffd(inst)
     groups = {per: GroupResult(per, 0, inst.util_bound(per), inst.group_bound(per), False,
                                len(idx)) for per, idx in inst.groups.items()}
@@ -497,13 +507,19 @@ def allocate(tasks: list[Task], p: Platform, algorithm: str = "best",
     for per, _ in bins:
         groups[per].cores += 1
     for g in groups.values():
-        if g.cores == g.bound and not any(tasks[i].period_ms == g.period
+        if g.cores == g.bound and not any(fitting[i].period_ms == g.period
                                           for i in unassigned):
             g.optimal = True
-    cores = [Core(k, per, [tasks[i] for i in sorted(members)], p)
+    cores = [Core(k, per, [fitting[i] for i in sorted(members)], p)
              for k, (per, members) in enumerate(bins)]
-    return Allocation(algorithm, p, tasks, cores, [tasks[i] for i in sorted(unassigned)],
-                      sum(g.util_bound for g in groups.values()), list(groups.values()))
+    left = sorted([keep[i] for i in unassigned]
+                  + [k for k, e in enumerate(errors) if e is not None])
+    # spec §8's lower bound is over the file's tasks, the misfits included
+    every = _Instance(tasks, p)
+    return Allocation(algorithm, p, tasks, cores, [tasks[k] for k in left],
+                      sum(every.util_bound(per) for per in every.groups),
+                      list(groups.values()),
+                      [(t, e) for t, e in zip(tasks, errors) if e is not None])
 
 
 # --- the seed's first-fit decreasing (Alg. 1 and 2, errata fixed) ----------------------
@@ -825,8 +841,10 @@ def format_table(a: Allocation) -> str:
                    f"  {c.mem_bytes:>5} / {p.mem:<4}")
         out += _wrap("      ", [t.name for t in c.tasks])
     out.append("")
+    misfits = f", the {_n(len(a.misfits), 'task')} that fit no core included" \
+        if a.misfits else ""
     out.append(f"algorithm {a.algorithm}: {a.cores_used} of {p.cores} cores used, lower "
-               f"bound {a.lower_bound} (sum per period of ceil(sum U))")
+               f"bound {a.lower_bound} (sum per period of ceil(sum U){misfits})")
     for g in a.groups:
         note = "optimal" if g.optimal else f"bound {g.bound}"
         out.append(f"  {_f(g.period):>6} ms: {_n(g.tasks, 'task'):>10} on "

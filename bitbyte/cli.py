@@ -6,7 +6,8 @@ line mistakes) and a non-zero exit status, never a traceback:
   2  command-line usage error
   3  scan watchdog (the run stopped; completed scans are still traced)
   4  simulator failure (build or run)
-  5  alloc: the tasks do not fit on the cores (the reason on stderr)
+  5  alloc: the tasks do not fit on the cores (the reason on stderr); a task that
+     fits no core at all is a bad input (1), the allocation of the others still written
 """
 from __future__ import annotations
 
@@ -134,7 +135,8 @@ def cmd_link(args) -> int:
 
 def cmd_alloc(args) -> int:
     """Spec §8: read or generate the tasks, allocate, print the table; --json is
-    written even when the tasks do not fit (exit 5), --emit only when they do."""
+    written even when the tasks do not fit (exit 5) or a task fits no core (exit 1,
+    its error at its line), --emit only when every task is placed."""
     f = parse_clock_mhz(args.clock_mhz)
     rates = {}
     for opt in ("alpha", "beta"):
@@ -167,16 +169,19 @@ def cmd_alloc(args) -> int:
         tasks = al.load_tasks(args.tasks, f, args.mode)
         cores = args.cores
     platform = al.Platform(cores, args.mem, rates["alpha"], rates["beta"])
-    al.check_fits(tasks, platform)
     try:
         result = al.allocate(tasks, platform, args.algorithm)
         print(al.format_table(result), end="")
         if args.json:
             Path(args.json).write_text(json.dumps(al.to_json(result), indent=1) + "\n")
+        for _, error in result.misfits:          # spec §8: each an error at its line
+            print(format_error(error), file=sys.stderr)
         if not result.ok:
-            print(f"bitbyte: alloc: {result.reason()}"
-                  + ("; no plant written" if args.emit else ""), file=sys.stderr)
-            return EXIT_NO_FIT
+            why = result.reason()
+            if why or args.emit:
+                print(f"bitbyte: alloc: {why or 'a task fits no core'}"
+                      + ("; no plant written" if args.emit else ""), file=sys.stderr)
+            return EXIT_SOURCE if result.misfits else EXIT_NO_FIT
         if args.emit:
             for path in al.emit_plant(result, args.emit, f):
                 print(f"wrote {path}")
