@@ -342,10 +342,12 @@ def responses(run: Run, edges: list[Fraction], f: Fraction, out_col: str, kind: 
     """Response of output `out_col` to each edge of the input (toggling 0/1/0...).
 
     The output changes at the END of the scan that saw the edge (process image), so
-    its moment is the end of that scan: end_clock / f. For a direct output (`= PQ`)
+    its moment is the end of that scan: end_clock / f (bitbyte.run.response's
+    responding_scan finds it, as for the run summary's response figures). For a direct output (`= PQ`)
     the pin changes at the end of the `= PQ` instruction's clock: latch + write_offset
     + 1 clocks, exact when the instruction's clock is static (serial mode, no jump
     before it); without the offset the scan end is used (an upper bound)."""
+    from bitbyte.run.response import responding_scan
     vals = run.column(out_col)
     ends = [r[1] for r in run.rows]
     cycles = run.cycles
@@ -353,14 +355,13 @@ def responses(run: Run, edges: list[Fraction], f: Fraction, out_col: str, kind: 
     res, phases = [], []
     local_ok = True
     span = (write_offset - read_offset + 1) if write_offset is not None else None
-    k = 0
     for i, t in enumerate(edges):
         level = (i + 1) % 2
         t_clk = t * f                                 # the edge, in clocks (fraction)
-        # the scan whose trace first shows the new level, at or after the edge
-        while k < len(vals) and not (vals[k] == level and ends[k] >= t_clk):
-            k += 1
-        if k >= len(vals):
+        # the scan whose trace first shows the new level, after the edge (the run
+        # summary's definition, bitbyte/run/response.py)
+        k = responding_scan(t_clk, ends, lambda j, level=level: vals[j] == level)
+        if k is None:
             raise RuntimeError(f"{kind}: edge {i} at {float(t)} us never reached "
                                f"{out_col} (run too short?)")
         if write_offset is not None:

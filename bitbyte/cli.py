@@ -26,7 +26,8 @@ from bitbyte.lang.firstcheck import first_check_warnings
 from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
-from bitbyte.run.prepare import parse_clock_mhz, prepare_run
+from bitbyte.run.prepare import parse_clock_mhz, prepare
+from bitbyte.run.response import response_times
 from bitbyte.run.summary import summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
 from bitbyte.sim.verilator import GTKW, run_harness
@@ -194,12 +195,13 @@ def cmd_run(args) -> int:
     if args.program.lower().endswith(".toml"):
         return cmd_run_plant(args)
 
-    program, columns, job, f = prepare_run(
+    prep = prepare(
         args.program, stimulus=args.stimulus, watch=args.watch, scans=args.scans,
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
         channels=args.channels, lang=args.lang, mnemonics=args.mnemonics,
         profile=args.profile, symbols=args.symbols)
+    program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
 
     if args.sim == "verilator":
@@ -209,7 +211,8 @@ def cmd_run(args) -> int:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, str(GTKW)) if args.waves else None
-    print(summary_text(records, f, stats, args.trace, waves), end="")
+    print(summary_text(records, f, stats, args.trace, waves,
+                       response_times(prep.changes, records, columns)), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

@@ -244,6 +244,99 @@ def case_files(tmp_path, program: str, stimulus: str):
     return src, stim, tmp_path / "t.csv"
 
 
+# Response time (spec §4: the summary's "response-time figures where inputs changed";
+# the definition in docs/toolchain.md). Six bit instructions, two word instructions
+# and END: 27 clocks a scan, scan k latches at clock 27k and ends at 27(k+1). Q0.0
+# follows I0.0 in the same scan (one scan: 27 clocks); Q0.1 follows I0.1 one scan late
+# through M0.0 (two scans: 54 clocks); I0.2 drives nothing.
+RESPONSE_PROGRAM = """\
+      LD    I0.0
+      =     Q0.0
+      LD    M0.0
+      =     Q0.1
+      LD    I0.1
+      =     M0.0
+      L     MW0
+      T     MW1
+"""
+# change (latch clock) -> the first scan end after it with an output change:
+#  scan 2 I0.0 up (54)    -> Q0.0 at the end of scan 2 (81):   27
+#  scan 4 I0.1 up (108)   -> Q0.1 at the end of scan 5 (162):  54
+#  scan 7 I0.0 down (189) -> Q0.0 at the end of scan 7 (216):  27
+#  scan 8: the same inputs, no change
+#  scan 9 I0.2 up (243)   -> no output changes before the next change (270): none
+#  scan 10 I0.1 down (270)-> Q0.1 at the end of scan 11 (324): 54
+#  scan 12 I0.0 up (324)  -> Q0.0 at the end of scan 12 (351): 27
+#  scan 13 I0.0 down (351)-> Q0.0 at the end of scan 13 (378), the run's last: 27
+#  scan 14: not run, not counted
+RESPONSE_SCAN_STIM = """\
+scan,I0.0,I0.1,I0.2
+0,0,0,0
+2,1,0,0
+4,1,1,0
+7,0,1,0
+8,0,1,0
+9,0,1,1
+10,0,0,1
+12,1,0,1
+13,0,0,1
+14,1,1,1
+"""
+# t_us rows, measured from the moment itself (a fraction of a clock at 100 MHz):
+#  0: scan 0 latches it, Q0.0 up at its end (27) -- against the reset value 0:      27
+#  1.005 us = clock 100.5: latched by scan 4 (108), Q0.0 down at its end (135):    34.5
+#  2 us = clock 200: latched by scan 8 (216), Q0.0 up at its end (243):              43
+#  2.43 us = clock 243 = scan 9's latch, Q0.0 down at its end (270):                 27
+#  2.75 us = clock 275, in scan 10: latched by scan 11 (297), Q0.0 up at 324:        49
+#  3.24 us = clock 324, the last scan's latch: I0.2 up, no output changes:        none
+#  3.3 us: after the last completed scan latched, not counted
+RESPONSE_TIME_STIM = """\
+t_us,I0.0,I0.2
+0,1,0
+1.005,0,
+2,1,
+2.43,0,
+2.75,1,
+3.24,,1
+3.3,0,
+"""
+
+
+@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+def test_response_figures_in_the_summary(tmp_path, sim):
+    src, stim, _ = case_files(tmp_path, RESPONSE_PROGRAM, RESPONSE_SCAN_STIM)
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 14, "--sim", sim)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert "cycles/scan      min 27  mean 27  max 27" in lines
+    assert ("response [clk]   min 27  median 27  max 54  (6 of 7 input changes changed "
+            "an output)") in lines, proc.stdout
+    assert "response [us]    min 0.27  median 0.27  max 0.54" in lines, proc.stdout
+    stim.write_text(RESPONSE_TIME_STIM)
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 13, "--sim", sim)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert ("response [clk]   min 27  median 34.5  max 49  (5 of 6 input changes changed "
+            "an output)") in lines, proc.stdout
+    assert "response [us]    min 0.27  median 0.345  max 0.49" in lines, proc.stdout
+    # no input change (no stimulus): no response lines
+    proc = bitbyte("run", src, "--scans", 2, "--sim", sim)
+    assert proc.returncode == 0 and "response" not in proc.stdout, proc.stdout
+
+
+
+def test_response_median_of_an_even_count():
+    """The median of an even count is the mean of the middle two; none at all: '-'."""
+    from fractions import Fraction
+    from bitbyte.run.summary import RunStats, summary_text
+    text = summary_text([], Fraction(50), RunStats(clocks=0),
+                        response=([Fraction(40), Fraction(10), Fraction(31), Fraction(20)], 5))
+    assert "response [clk]   min 10  median 25.5  max 40  (4 of 5 input changes changed " \
+           "an output)\nresponse [us]    min 0.2  median 0.51  max 0.8\n" in text
+    text = summary_text([], Fraction(50), RunStats(clocks=0), response=([], 2))
+    assert "response [clk]   -  (0 of 2 input changes changed an output)\n" \
+           "response [us]    -\n" in text
+
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])
 def test_watchdog(tmp_path, sim):
     src, stim, trace = case_files(tmp_path, "SET\n= Q0.0\nLD I0.0\nspin: JC spin\n",

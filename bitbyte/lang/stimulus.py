@@ -110,6 +110,28 @@ class Stimulus:
             return []
         return [(kind, k, r.pins) for k, r in zip(keys, rows)]
 
+    def changes(self, clock_mhz=None) -> list[tuple[str, int | Fraction]]:
+        """The moments the inputs change, as the hardware sees them: ('scan', s) for a
+        scan row (from the PII latch of scan s), ('clock', t_us * f) for a t_us row (an
+        exact Fraction of a clock, rows within one clock collapsed to the last); a row
+        that leaves every pin and word as it was is no change.  Before the first row
+        every input is 0.  (The run summary's response times, bitbyte/run/response.py.)"""
+        if self.kind == "scan":
+            moments, rows = [("scan", r.key) for r in self.rows], self.rows
+        elif self.kind == "t_us":
+            f = mhz(self.clock_mhz if clock_mhz is None else clock_mhz)
+            rows = self._clocked(f)[1]
+            moments = [("clock", r.key * f) for r in rows]
+        else:
+            return []
+        out, before = [], (0, ())
+        for moment, r in zip(moments, rows):
+            state = (r.pins, tuple((n, v) for n, v in r.words if v))
+            if state != before:
+                out.append(moment)
+            before = state
+        return out
+
     # --- internals ------------------------------------------------------------
 
     def _require(self, kind: str) -> None:

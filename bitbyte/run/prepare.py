@@ -6,6 +6,7 @@ that every simulator driver runs alike.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 
 from bitbyte.compiler.partition import partition
@@ -15,6 +16,7 @@ from bitbyte.lang.config import Config
 from bitbyte.lang.costs import COST_TABLES
 from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.lang.parser import parse_file
+from bitbyte.lang.program import Program
 from bitbyte.lang.stimulus import load_stimulus, no_stimulus
 from bitbyte.run.runjob import RunJob, hw_column
 
@@ -50,7 +52,24 @@ def check_mode(mode: str, exchange: str | None) -> str:
     return exchange
 
 
-def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = "",
+@dataclass(frozen=True)
+class Prepared:
+    """What `prepare` returns: prepare_run's four and the stimulus's input changes
+    (Stimulus.changes, for the summary's response times)."""
+    program: Program
+    columns: list
+    job: RunJob
+    f: Fraction
+    changes: list
+
+
+def prepare_run(program_path: str, **settings):
+    """prepare(...) as the tuple (program, columns, job, f) the tests unpack."""
+    p = prepare(program_path, **settings)
+    return p.program, p.columns, p.job, p.f
+
+
+def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 scans: int | None = None, until_us: str | None = None,
                 watchdog: int = 100_000, clock_mhz: str = "100", costs: str = "paper",
                 mode: str = "serial", exchange: str | None = None,
@@ -59,8 +78,8 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                 symbols: str | None = None):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
-    Returns (program, columns, job, f) with f the clock in MHz as a Fraction.
-    The differential tests call this too, so they exercise the same path."""
+    f is the clock in MHz as a Fraction.  The differential tests call this too (as
+    prepare_run), so they exercise the same path."""
 
     f = parse_clock_mhz(clock_mhz)
     config = Config.of_profile(profile, clock_mhz=float(f))
@@ -122,7 +141,7 @@ def prepare_run(program_path: str, *, stimulus: str | None = None, watch: str = 
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
                  byte_prog=byte_words)
-    return program, columns, job, f
+    return Prepared(program, columns, job, f, stim.changes(f))
 
 
 def _one_cell_per_condition(program, part, cells: int) -> None:

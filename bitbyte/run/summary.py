@@ -36,8 +36,10 @@ def _label(name: str) -> str:
 
 
 def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats,
-                 trace_path: str | None = None, waves: tuple[str, str] | None = None) -> str:
-    """waves: (the wave file, the GTKWave layout)."""
+                 trace_path: str | None = None, waves: tuple[str, str] | None = None,
+                 response: tuple[list[Fraction], int] | None = None) -> str:
+    """waves: (the wave file, the GTKWave layout); response: bitbyte.run.response's
+    (responses in clocks, input changes), printed when an input changed."""
     mhz = format_decimal(clock_mhz)
     lines = [_label("scans") + str(len(records))]
     if records:
@@ -51,6 +53,8 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     else:
         lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
     lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")
+    if response is not None and response[1]:
+        lines += _response_lines(*response, clock_mhz)
     if stats.byte_scans is not None:
         lines.append(_label("byte side") + f"{stats.byte_scans} scans (free-running)")
     if stats.queue_losses is not None:
@@ -73,6 +77,24 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     if waves:
         lines.append(_label("waves") + f"{waves[0]}   (gtkwave {waves[0]} {waves[1]})")
     return "\n".join(lines) + "\n"
+
+
+def _response_lines(clocks: list[Fraction], changes: int, clock_mhz: Fraction) -> list[str]:
+    """min / median (the mean of the middle two for an even count) / max, in clocks
+    (a t_us change may fall between clock edges: a fraction) and in µs."""
+    count = f"({len(clocks)} of {changes} input changes changed an output)"
+    if not clocks:
+        return [_label("response [clk]") + "-  " + count, _label("response [us]") + "-"]
+    s = sorted(clocks)
+    mid = len(s) // 2
+    median = s[mid] if len(s) % 2 else (s[mid - 1] + s[mid]) / 2
+    figures = (s[0], median, s[-1])
+
+    def three(xs) -> str:
+        return "  ".join(f"{name} {format_decimal(x)}"
+                         for name, x in zip(("min", "median", "max"), xs))
+    return [_label("response [clk]") + three(figures) + "  " + count,
+            _label("response [us]") + three(x / clock_mhz for x in figures)]
 
 
 def plant_summary_text(protection: str, clock_hz: int, clocks: int,
