@@ -46,6 +46,7 @@
 
 /* Field layout. */
 #define BB_CTX_RLO              0x1u   /* DISPATCH_CTX */
+#define BB_CTX_FIRST            0x2u   /* DISPATCH_CTX */
 #define BB_CTX_SCAN_SHIFT       16     /* DISPATCH_CTX */
 #define BB_DONE_RLO             0x1u   /* DONE */
 #define BB_DONE_RLO_WE          0x2u   /* DONE */

@@ -70,8 +70,6 @@ typedef struct bb_state {
   const bb_costs *costs;
   int        rlo;            /* F_B: used by bb_exec(rlo == NULL); last RLO in serial */
   int        rlo_written;    /* did the last instruction write the RLO (compare, READ) */
-  uint32_t   last_scan;      /* serial: scan number of the last dispatch ... */
-  int        scan_seen;      /* ... valid once one was seen */
   uint32_t   overruns;       /* instructions that took more clocks than their cost */
   uint64_t   executed;       /* instructions executed */
   uint32_t   last_instr;     /* the last instruction, its class and its clocks */
@@ -137,7 +135,7 @@ const char *bb_class_name(int cls);
 
 /* Serial mode, one dispatched instruction (the sequence is in README.md):
  *   hal_wait_dispatch(); t0 = hal_now();
- *   read DISPATCH_INSTR (t0), DISPATCH_CTX (t0+1); new scan number -> ACCUs := 0;
+ *   read DISPATCH_INSTR (t0), DISPATCH_CTX (t0+1); its FIRST bit -> ACCUs := 0;
  *   execute (its own bus accesses from t0+2; a timer reads DISPATCH_MS, L IW n reads
  *   DISPATCH_IW: the port's snapshot of the first clock); hal_spend(cost - used - 1)
  *   if positive;

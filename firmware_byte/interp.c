@@ -286,12 +286,10 @@ int bb_serial_step(bb_state *s) {
   const uint64_t t0 = hal_now(hal);                              /* the dispatch clock */
   const uint32_t instr = hal_bus_read(hal, BB_BUS_DISPATCH_INSTR); /* t0 */
   const uint32_t ctx = hal_bus_read(hal, BB_BUS_DISPATCH_CTX);     /* t0 + 1 */
-  const uint32_t scan = ctx >> BB_CTX_SCAN_SHIFT;
-  if (!s->scan_seen || scan != s->last_scan) {                /* a new scan: ACCUs := 0 */
-    bb_scan_start(s);
-    s->scan_seen = 1;
-    s->last_scan = scan;
-  }
+  /* the scan's first byte instruction: ACCUs := 0. The RTL's flag, not a change of the
+   * scan number: that field has 16 bits, and a program whose byte instructions are
+   * skipped for a multiple of 65 536 scans would keep its accumulators. */
+  if (ctx & BB_CTX_FIRST) bb_scan_start(s);
   int rlo = (ctx & BB_CTX_RLO) != 0;
   const int cls = exec(s, instr, &rlo, 1);
   const uint64_t cost = bb_cost(s, cls);

@@ -271,6 +271,9 @@ module bitbyte_cpu #(
   );
 
   dispatch #(.StatusBits(StatusBits)) u_dispatch (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .latch_i         (latch),
     .req_i           (byte_req),
     .instr_i         (byte_instr),
     .rlo_i           (rlo_now),

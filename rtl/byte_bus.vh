@@ -40,4 +40,16 @@
 `define BUS_ID_VALUE         32'hB17B7E01 // what ID reads
 `define BUS_TICK_DIV_RESET   32'd100000 // TICK_DIV after reset
 
+// Field layout (a SHIFT is a bit position, the others are 32-bit masks).
+`define BUS_CTX_RLO          32'h1     // DISPATCH_CTX
+`define BUS_CTX_FIRST        32'h2     // DISPATCH_CTX
+`define BUS_CTX_SCAN_SHIFT   16        // DISPATCH_CTX
+`define BUS_DONE_RLO         32'h1     // DONE
+`define BUS_DONE_RLO_WE      32'h2     // DONE
+`define BUS_TC_VALUE         32'h100   // TC_BIT
+`define BUS_TC_COUNTER       32'h40    // TC_BIT
+`define BUS_TC_INDEX_MASK    32'h3F    // TC_BIT
+`define BUS_QUEUE_TO_BYTE_MASK 32'hFFFF // QUEUE_OVERFLOWS
+`define BUS_QUEUE_TO_BIT_SHIFT 16      // QUEUE_OVERFLOWS
+
 `endif

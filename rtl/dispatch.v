@@ -1,5 +1,6 @@
 `default_nettype none
 `include "bit_isa.vh"
+`include "byte_bus.vh"
 `include "param_check.vh"
 // Serial-mode dispatch (paper Fig. 6/7, NEXT/GO). The bit processor fetches every
 // instruction; a byte instruction reaching execute holds the pipeline and is offered
@@ -8,10 +9,17 @@
 // instruction produced one (compares). One RLO is shared, as in the paper's serial
 // CPU. While a timer or counter instruction is offered, the RLO is also left in the
 // instruction's enable / count-pulse bit of the status buffer (Fig. 2).
+// DISPATCH_CTX's FIRST bit tells the byte processor that no byte instruction of this
+// scan has completed yet, i.e. that its accumulators start from 0 (spec §3). A flag,
+// not the scan number: the 16 bits of the number in the word wrap, and a program whose
+// byte instructions are skipped for a multiple of 65 536 scans would look like one scan.
 module dispatch #(
   parameter integer StatusBits = 64  // timers and counters (each)
 ) (
+  input  wire                          clk_i,
+  input  wire                          rst_ni,
   // from / to the bit processor
+  input  wire                          latch_i,      // this clock starts a scan
   input  wire                          req_i,        // byte instruction in execute
   input  wire [31:0]                   instr_i,
   input  wire                          rlo_i,
@@ -41,7 +49,18 @@ module dispatch #(
 
   assign next_o  = req_i;
   assign instr_o = instr_i;
-  assign ctx_o   = {scan_i, 15'd0, rlo_i};
+  // no DONE since the last scan latch (the latch clock itself: a DONE cannot fall in
+  // it, and the firmware reads the word a clock after the dispatch begins at the
+  // earliest, so a register is enough)
+  reg first_q;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)      first_q <= 1'b1;
+    else if (latch_i) first_q <= 1'b1;
+    else if (done_o)  first_q <= 1'b0;
+  end
+
+  assign ctx_o = ({16'd0, scan_i} << `BUS_CTX_SCAN_SHIFT)
+               | (first_q ? `BUS_CTX_FIRST : 32'd0) | (rlo_i ? `BUS_CTX_RLO : 32'd0);
 
   assign done_o        = req_i && done_we_i;
   assign done_rlo_o    = done_data_i[0];
@@ -55,5 +74,44 @@ module dispatch #(
   // verilator lint_off UNUSEDSIGNAL
   wire unused_instr = ^instr_i[23:$clog2(StatusBits)];
   // verilator lint_on UNUSEDSIGNAL
+
+`ifdef FORMAL
+  // Properties of the context word; formal/dispatch.sby proves them by k-induction.
+`include "formal_past.vh"
+
+  // The byte processor's view of a scan: every dispatched instruction ends in one DONE.
+  // Count the DONEs since the scan latched (saturating): FIRST is set exactly while
+  // there was none, whatever the scan number does (it is free here: any wrap).
+  reg [1:0] f_dones;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)                          f_dones <= 2'd0;
+    else if (latch_i)                     f_dones <= 2'd0;
+    else if (done_o && f_dones != 2'd3)   f_dones <= f_dones + 2'd1;
+  end
+  wire f_first = (ctx_o & `BUS_CTX_FIRST) != 32'd0;
+  always @(*) if (rst_ni) assert (f_first == (f_dones == 2'd0));
+  // the rest of the word: the RLO, the scan number, zeros between
+  always @(*) assert (((ctx_o & `BUS_CTX_RLO) != 32'd0) == rlo_i);
+  always @(*) assert ((ctx_o >> `BUS_CTX_SCAN_SHIFT) == {16'd0, scan_i});
+  always @(*) assert ((ctx_o & ~(`BUS_CTX_RLO | `BUS_CTX_FIRST)
+                       & ((32'd1 << `BUS_CTX_SCAN_SHIFT) - 32'd1)) == 32'd0);
+
+  // reachable: a second dispatch of a scan (FIRST clear), and a new scan's first
+  // dispatch with the very scan number of the last DONE (a wrap) that sees FIRST
+  reg [15:0] f_done_scan;
+  reg        f_done_seen;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      f_done_scan <= 16'd0;
+      f_done_seen <= 1'b0;
+    end else if (done_o) begin
+      f_done_scan <= scan_i;
+      f_done_seen <= 1'b1;
+    end
+  end
+  always @(posedge clk_i) if (rst_ni) cover (req_i && !f_first);
+  always @(posedge clk_i)
+    if (rst_ni) cover (req_i && f_first && f_done_seen && scan_i == f_done_scan);
+`endif
 endmodule
 `default_nettype wire

@@ -118,3 +118,32 @@ def test_directed_harness(prepared, tmp_path):
         assert cli.main(argv) == 0, name
         rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
         _check(name, columns, [(0, 0, 0, [int(v) for v in r[3:]]) for r in rows], expect)
+
+
+# Issue 15 defect 4: the byte processor's accumulators are 0 at every scan's start
+# (spec §3), also when its byte instructions were skipped for 65 536 scans, so that
+# the scan number's low 16 bits (in DISPATCH_CTX) are the same again. Scan 0 loads 7
+# and stores it (QW0 = 7: the load works); scans 1 .. 65535 skip both; scan 65536 stores
+# ACCU1 again, which must be 0, not scan 0's stale 7. By hand, on the C++ harness (one
+# clock per bit instruction, 2 per taken jump: some 0.5 M clocks).
+WRAP_PROGRAM = """\
+      LD    I0.0
+      JCN   skip
+      L     7
+skip: LD    I0.1
+      JCN   done
+      T     QW0
+done: NOP
+"""
+
+
+def test_accumulators_reset_after_65536_skipped_scans(tmp_path):
+    il, stim, trace = tmp_path / "wrap.il", tmp_path / "wrap.csv", tmp_path / "t.csv"
+    il.write_text(WRAP_PROGRAM)
+    stim.write_text("scan,I0.0,I0.1\n0,1,1\n1,0,0\n65536,0,1\n")
+    assert cli.main(["run", str(il), "--stimulus", str(stim), "--scans", "65537",
+                     "--trace", str(trace)]) == 0
+    lines = trace.read_text().splitlines()
+    assert lines[0].endswith(",QW0") and len(lines) == 1 + 65537
+    qw0 = {int(r.split(",")[0]): int(r.rsplit(",", 1)[1]) for r in lines[1:3] + lines[-2:]}
+    assert qw0 == {0: 7, 1: 7, 65535: 7, 65536: 0}

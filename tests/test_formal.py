@@ -62,6 +62,8 @@ MUTATIONS = [
      "end else if (locked_o && |release_i) begin"),         # anybody frees it
     ("hsem", "hsem.v", "      last_q   <= pick;",
      "      last_q   <= last_q;"),                          # fixed priority: starvation
+    ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
+     "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("byte_port", "byte_port.v",
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
      "wire byte_refused = bus_re_i && !bus_ready_o;"),     # misses refused writes

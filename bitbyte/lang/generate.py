@@ -92,6 +92,11 @@ def rtl_byte_bus(d: Definition) -> str:
     b.append(_define("BUS_ID_VALUE", f"32'h{d.bus_id_value:08X}", "what ID reads"))
     tick = d.register("TICK_DIV").reset
     b.append(_define("BUS_TICK_DIV_RESET", f"32'd{tick}", "TICK_DIV after reset"))
+    b += ["", "// Field layout (a SHIFT is a bit position, the others are 32-bit masks)."]
+    for r in d.registers:
+        for fname, v in r.fields:
+            val = f"{v}" if fname.endswith("SHIFT") else f"32'h{v:X}"
+            b.append(_define(f"BUS_{fname}", val, r.name))
     return _vh("byte_bus.vh", b, "the byte-bus register map")
 
 

@@ -103,10 +103,9 @@ static void test_serial_accesses(void) {
   for (unsigned i = 0; i < sizeof rows / sizeof rows[0]; i++) {
     const row *r = &rows[i];
     prepare(r);
-    S.scan_seen = 1;                     /* keep the prepared accumulators */
     FH.iw[r->instr & 0xFu] = 0x8001u;    /* raw 16 bits: DISPATCH_IW sign-extends */
     FH.dispatch_instr = r->instr;
-    FH.dispatch_ctx = (uint32_t)r->rlo;
+    FH.dispatch_ctx = (uint32_t)r->rlo;  /* FIRST clear: the prepared ACCUs stay */
     FH.dispatch_at = 6000;               /* TIME_MS 6 (1000 clocks per ms) */
     bb_serial_step(&S);
     CHECK(FH.nlog >= 3);

@@ -1,12 +1,19 @@
 /* test_serial.c — bb_serial_step(): the dispatch protocol, exact cost, DONE in the
- * last clock, ACCU reset on a new scan number, RLO in and out, and the inputs (time,
- * IW) taken from the port's dispatch snapshot of the instruction's first clock. */
+ * last clock, ACCU reset on a new scan (DISPATCH_CTX's FIRST), RLO in and out, and the
+ * inputs (time, IW) taken from the port's dispatch snapshot of the instruction's first
+ * clock. */
 #include "tt.h"
 
-/* Dispatch `instr` at clock `at` (or now, if later) with RLO `rlo` in scan `scan`. */
-static int dispatch(uint32_t instr, int rlo, unsigned scan, uint64_t at) {
+/* Dispatch `instr` at clock `at` (or now, if later) with RLO `rlo` in scan `scan`, a
+ * full scan number: the context word is the one rtl/dispatch.v builds, the number's
+ * low 16 bits and FIRST for the first dispatch of a scan (this one's scan differs from
+ * the last dispatch's). */
+static int dispatch(uint32_t instr, int rlo, uint64_t scan, uint64_t at) {
+  static uint64_t last_scan = UINT64_MAX;
   FH.dispatch_instr = instr;
-  FH.dispatch_ctx = ((uint32_t)scan << BB_CTX_SCAN_SHIFT) | (rlo ? 1u : 0u);
+  FH.dispatch_ctx = ((uint32_t)(scan & 0xFFFFu) << BB_CTX_SCAN_SHIFT)
+                  | (scan != last_scan ? BB_CTX_FIRST : 0u) | (rlo ? BB_CTX_RLO : 0u);
+  last_scan = scan;
   FH.dispatch_at = at;
   return bb_serial_step(&S);
 }
@@ -167,23 +174,49 @@ static void test_accu_reset_on_new_scan(void) {
   /* a compare at the start of a scan sees 0, 0 */
   dispatch(i_cmp(BB_OP_CMP, BB_CMP_EQ), 0, 2, 0);
   CHECK_EQ(DONE_RLO(), 1);
-  /* the scan number is 16 bits; a jump from 0xFFFF to 0 is a new scan */
+  /* the number field wraps from 0xFFFF to 0: a new scan */
   dispatch(i_imm(1), 0, 0xFFFF, 0);
   dispatch(i_imm(2), 0, 0xFFFF, 0);
-  dispatch(i_imm(3), 0, 0, 0);
+  dispatch(i_imm(3), 0, 0x10000, 0);
   CHECK_EQ(S.accu2, 0);
-  /* the first dispatch after init starts a scan whatever its number */
+  /* FIRST alone decides, whatever the number: set, a new scan ... */
   setup();
   S.accu1 = 11;
   S.accu2 = 12;
-  dispatch(i_op(BB_OP_ADD), 0, 5, 0);
+  FH.dispatch_instr = i_op(BB_OP_ADD);
+  FH.dispatch_ctx = (5u << BB_CTX_SCAN_SHIFT) | BB_CTX_FIRST;
+  FH.dispatch_at = 0;
+  bb_serial_step(&S);
   CHECK_EQ(S.accu1, 0);
+  /* ... clear, the same scan (even with another number: it is not looked at) */
+  S.accu1 = 11;
+  S.accu2 = 12;
+  FH.dispatch_ctx = 6u << BB_CTX_SCAN_SHIFT;
+  bb_serial_step(&S);
+  CHECK_EQ(S.accu1, 23);
   /* MW, timers, counters survive a new scan */
   setup();
   dispatch(i_imm(42), 0, 0, 0);
   dispatch(BB_INSTR(BB_OP_T_WORD, BB_AREA_MW, 3), 0, 0, 0);
   dispatch(BB_INSTR(BB_OP_L_WORD, BB_AREA_MW, 3), 0, 1, 0);
   CHECK_EQ(S.accu1, 42);
+}
+
+static void test_accu_reset_after_65536_skipped_scans(void) {
+  /* issue 15 defect 4: byte instructions in scan 5, none for 65 536 scans, then one in
+   * scan 65 541 -- the number field is 5 again, and the scan is still a new one */
+  setup();
+  dispatch(i_imm(7), 0, 5, 0);
+  dispatch(i_imm(8), 0, 5, 0);
+  dispatch(i_imm(9), 0, 5 + 65536, 0);
+  CHECK_EQ(S.accu1, 9);
+  CHECK_EQ(S.accu2, 0);
+  dispatch(i_imm(10), 0, 5 + 65536, 0);
+  CHECK_EQ(S.accu2, 9);
+  /* a compare first in a scan 2 x 65 536 later sees 0, 0 (not 10 and 9) */
+  dispatch(i_cmp(BB_OP_CMP, BB_CMP_EQ), 0, 5 + 3 * 65536, 0);
+  CHECK_EQ(DONE_RLO(), 1);
+  CHECK_EQ(S.accu1, 0);
 }
 
 static void test_timer_now_first_clock(void) {
@@ -381,6 +414,7 @@ void suite_serial(void) {
   RUN(test_fig5_serial);
   RUN(test_rlo_protocol);
   RUN(test_accu_reset_on_new_scan);
+  RUN(test_accu_reset_after_65536_skipped_scans);
   RUN(test_timer_now_first_clock);
   RUN(test_iw_first_clock);
   RUN(test_fake_snapshot);
