@@ -281,6 +281,8 @@ async def run_with_byte_side(bench, cost, tc_writes=(), fbi=None, limit=200):
     fbi = fbi or {}
     await bench.begin()
     trace, offered, tstat, cstat = [], 0, 0, 0
+    tupd = cupd = 0       # tc_status.v's updated bits: set by a write, 0 at the scan start
+    d.timer_updated_i.value = d.counter_updated_i.value = 0
     for clock in range(limit):
         if clock in fbi:
             d.fbi_rd_ready_i.value, d.fbi_rd_data_i.value = fbi[clock]
@@ -312,14 +314,17 @@ async def run_with_byte_side(bench, cost, tc_writes=(), fbi=None, limit=200):
             isc, idx, val = w8
             if isc:
                 cstat = (cstat & ~(1 << idx)) | (val << idx)
+                cupd |= 1 << idx
             else:
                 tstat = (tstat & ~(1 << idx)) | (val << idx)
+                tupd |= 1 << idx
         await FallingEdge(d.clk_i)
         d.latch_i.value = 0
         d.tc_we_i.value = 0
         d.byte_done_i.value = 0
         d.pio_i.value = bench.pio
         d.timer_status_i.value, d.counter_status_i.value = tstat, cstat
+        d.timer_updated_i.value, d.counter_updated_i.value = tupd, cupd
         if ended:
             d.exec_i.value = 0
             return trace
@@ -360,6 +365,34 @@ async def blocked_behind_a_byte_instruction_reads_what_was_written(dut):
     assert [t[2] for t in trace] == [int(pc in byte_pcs) for pc in pcs], "NEXT"
     assert all(t[1] == 0 for t in trace), "a dispatched instruction's clocks are no stall"
     assert bench.pio & 0b111111 == 0b111111, f"PIO {bench.pio:#06b}"
+
+
+AFTER_UPDATE = 1 << 16   # operand bit 16 of a T / C read: wait for this scan's update
+
+
+@cocotb.test()
+async def status_read_after_the_update(dut):
+    """A `T` / `C` read marked "after the update" (bit 16): written earlier in the scan
+    (the updated bit is set), it reads the new status at once; not yet written, it
+    waits until the byte side writes it and reads that; unmarked, it reads the status
+    as it is. (The bench plays tc_status.v: a write sets the status and its updated
+    bit at the edge; the bits are 0 from the scan start.)"""
+    prog = [w(NOP), w(NOP), w(NOP),                              # 0..2  T3 := 1 in clock 1
+            w(LD, "T", 3) | AFTER_UPDATE, w(ASSIGN, "Q", 0),     # 3, 4  updated: no wait
+            w(LDN, "C", 2), w(ASSIGN, "Q", 1),                   # 5, 6  C2 as it is: 0
+            w(LD, "C", 2) | AFTER_UPDATE, w(ASSIGN, "Q", 2),     # 7, 8  waits for C2
+            w(END)]
+    bench = Bench(dut)
+    await bench.start(prog)
+    trace = await run_with_byte_side(bench, lambda pc: 1,
+                                     tc_writes=[(1, 0, 3, 1), (12, 1, 2, 1)])
+    pcs = [t[0] for t in trace]
+    stalls = [t[1] for t in trace]
+    assert pcs[:8] == list(range(8)) and not any(stalls[:7]), (pcs, stalls)
+    last7 = max(i for i, pc in enumerate(pcs) if pc == 7)
+    assert last7 >= 12 and all(stalls[7:12]), (pcs, stalls)      # waited for the write
+    assert pcs[last7 + 1:] == [8, 9], pcs
+    assert bench.pio & 0b111 == 0b111, f"PIO {bench.pio:#05b}: a read did not see the update"
 
 
 @cocotb.test()
