@@ -11,11 +11,12 @@ What is compared:
   changing at any clock, `t_us` rows);
 * parallel, handshake and queue: every traced value per scan against the reference
   interpreter in serial mode (spec §2: the modes differ in `t_us` and `cycles` only),
-  with scan-keyed inputs.  Timers stay in with presets that clearly do not run out
-  within the run (`long_timers`): their status then follows the enable alone
-  (SP / SF on, SD / SS off), which does not depend on either mode's timing;
-  `L T n` (the time value, which does) reads a timer that the program never starts
-  (value 0 in every mode).  Counters stay as they are (by scan).
+  with scan-keyed inputs, watching every word, timer, counter and marker the
+  generators write (PARALLEL_WATCH).  Timers stay in with presets that do not depend
+  on either mode's timing (randprog.long_timers: 9000 s, which does not run out
+  within a run, or 0 ms, which runs out at once); `L T n` (the time value, which does
+  depend on it) reads a timer that the program never starts (value 0 in every mode).
+  Counters stay as they are (by scan).
 
 The first BITBYTE_SOAK_COCOTB programs (40) also run through cocotb on Icarus and on
 Verilator (test_soak_cocotb_sample), serial and parallel (handshake and queue in turn).
@@ -34,6 +35,7 @@ from __future__ import annotations
 
 import json
 import os
+import random
 import shlex
 import time
 from pathlib import Path
@@ -60,6 +62,11 @@ SCANS = 12
 PAR_SCANS = 10
 PAR_WATCHDOG = 50_000
 EXCHANGES = ("handshake", "queue")
+# Parallel mode is compared on everything the generators write: every word, timer and
+# counter they use, every marker byte they touch (randprog._bit), the output words.
+PARALLEL_WATCH = ([f"MW{n}" for n in range(8)] + [f"QW{n}" for n in range(4)] +
+                  [f"T{n}" for n in range(8)] + [f"C{n}" for n in range(8)] +
+                  [f"M{b}.{n}" for b in (0, 1, 2, 3, 255) for n in range(8)])
 
 
 class Family:
@@ -115,10 +122,10 @@ class Case:
         self.parallel = parallel
         self.name = f"{family.name}{seed}" + ("p" if parallel else "")
         self.il, self.stim = tmp / f"{self.name}.il", tmp / f"{self.name}.csv"
-        if parallel:          # scan-keyed inputs, timers that do not run out
-            self.il.write_text(long_timers(family.program(seed)))
+        if parallel:          # scan-keyed inputs, presets independent of the timing
+            self.il.write_text(long_timers(family.program(seed), random.Random(seed)))
             self.stim.write_text(random_scan_stimulus(seed, PAR_SCANS))
-            self.watch = ",".join(random_mixed_watch(seed))
+            self.watch = ",".join(PARALLEL_WATCH)
             self.scans, self.watchdog, clock = PAR_SCANS, PAR_WATCHDOG, None
         else:
             self.il.write_text(family.program(seed))

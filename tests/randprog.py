@@ -386,11 +386,15 @@ TIMER_INDEX = re.compile(r"\b(?:SD|SS|SP|SF|R)\s+T\s*(\d+)", re.IGNORECASE)
 LONG_PRESET = "T#9000s"
 
 
-def long_timers(text: str) -> str:
+def long_timers(text: str, rng: random.Random | None = None) -> str:
     """For comparisons across modes (parallel against serial), whose timing differs:
-    every timer start gets a preset that does not run out within a run (`L T#9000s`
-    right before it), and `L T n` (the time value, which depends on the mode's timing)
-    reads a timer the program never starts instead (its value is 0 in every mode)."""
+    every timer start gets a preset that does not depend on it, right before the
+    start: `L T#9000s`, which does not run out within a run (SD / SS stay off, SP / SF
+    are on from their start until they are reset or their enable ends them), or, with
+    `rng`, half of the time `L T#0ms`, which runs out at once (SD follows its enable,
+    SS is on from its start). `L T n` (the time value, which depends on the mode's
+    timing) reads a timer the program never starts instead (its value is 0 in every
+    mode)."""
     started = {int(m.group(1)) for m in TIMER_INDEX.finditer(text)}
     idle = next(n for n in range(8, 64) if n not in started)
     out = []
@@ -400,7 +404,8 @@ def long_timers(text: str) -> str:
             label, kind, rest = start.groups()
             if label.strip():
                 out.append(label.rstrip())
-            out += [f"  L {LONG_PRESET}", f"  {kind}{rest}"]
+            preset = "T#0ms" if rng is not None and rng.random() < 0.5 else LONG_PRESET
+            out += [f"  L {preset}", f"  {kind}{rest}"]
             continue
         out.append(TIMER_VALUE.sub(f"L T{idle}", line))
     return "\n".join(out)
