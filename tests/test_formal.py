@@ -164,6 +164,87 @@ def test_make_formal_runs_prove_and_cover_and_can_fail(tmp_path):
     assert bad.returncode != 0 and "DONE (FAIL" in bad.stdout, bad.stdout + bad.stderr
 
 
+def _toy_sby(directory: Path, name: str, prove_holds: bool, cover_reachable: bool) -> None:
+    """A self-contained .sby (prove and cover task) over a one-flip-flop circuit whose
+    flip-flop `q_q` never rises: the proof holds iff it asserts that, the cover is
+    reachable iff it asks for the state the flip-flop starts in."""
+    (directory / f"{name}.sby").write_text(f"""[tasks]
+prove
+cover
+[options]
+prove: mode prove
+cover: mode cover
+cover: depth 4
+[engines]
+smtbmc yices
+[script]
+read -formal {name}.v
+prep -top {name}
+[file {name}.v]
+module {name} (input wire clk_i, input wire a_i);
+  reg q_q = 1'b0;
+  always @(posedge clk_i) q_q <= q_q & a_i;
+  always @(*) assert (q_q == 1'b{0 if prove_holds else 1});
+  always @(*) cover (q_q == 1'b{0 if cover_reachable else 1});
+endmodule
+""")
+
+
+def _failures(stdout: str) -> str:
+    """The failure report at the end of `make formal`'s output."""
+    assert "make formal: FAILED" in stdout, stdout
+    return stdout.split("make formal: FAILED", 1)[1]
+
+
+def test_make_formal_names_a_failing_proof_and_runs_the_rest(tmp_path):
+    """A deliberately failing .sby in the middle of the list: `make formal` exits
+    non-zero, names it (file and task) and still runs the files after it."""
+    _toy_sby(tmp_path, "a_holds", prove_holds=True, cover_reachable=True)
+    _toy_sby(tmp_path, "b_broken", prove_holds=False, cover_reachable=True)
+    _toy_sby(tmp_path, "c_holds", prove_holds=True, cover_reachable=True)
+    proc = _make_formal(tmp_path, "*.sby")
+    assert proc.returncode != 0, proc.stdout + proc.stderr
+    assert "[c_holds_prove] DONE (PASS" in proc.stdout      # ran after the failure
+    assert "[c_holds_cover] DONE (PASS" in proc.stdout
+    failures = _failures(proc.stdout)
+    assert "b_broken.sby: b_broken_prove" in failures
+    assert "a_holds" not in failures and "c_holds" not in failures
+    assert "b_broken_cover" not in failures                 # its cover is reached
+
+
+def test_make_formal_fails_on_an_unreached_cover(tmp_path):
+    """A cover that no run reaches (a vacuous proof's symptom) fails `make formal`, and
+    the report names the cover task, not the proof that passed."""
+    _toy_sby(tmp_path, "vacuous", prove_holds=True, cover_reachable=False)
+    proc = _make_formal(tmp_path, "*.sby")
+    assert proc.returncode != 0, proc.stdout + proc.stderr
+    assert "[vacuous_prove] DONE (PASS" in proc.stdout
+    failures = _failures(proc.stdout)
+    assert "vacuous.sby: vacuous_cover" in failures and "vacuous_prove" not in failures
+
+
+def _missing_tasks(sby_file: Path) -> set[str]:
+    """The tasks of spec §6 (prove, cover) that `make formal` (sby's default tasks) would
+    not run for this file."""
+    out = subprocess.run(["yowasp-sby", "--dumpdefaults", sby_file.name], capture_output=True,
+                         text=True, check=True, cwd=sby_file.parent).stdout.split()
+    return {"prove", "cover"} - set(out)
+
+
+@pytest.mark.parametrize("sby_file", sorted(FORMAL.glob("*.sby")), ids=lambda p: p.stem)
+def test_make_formal_runs_prove_and_cover_of(sby_file):
+    assert _missing_tasks(sby_file) == set()
+
+
+def test_missing_cover_task_is_seen(tmp_path):
+    """The check above on a .sby whose cover task is not a default one."""
+    _toy_sby(tmp_path, "hidden", prove_holds=True, cover_reachable=True)
+    sby_file = tmp_path / "hidden.sby"
+    sby_file.write_text(sby_file.read_text().replace("[tasks]\nprove\ncover\n",
+                                                     "[tasks]\nprove: default\ncover\n"))
+    assert _missing_tasks(sby_file) == {"cover"}
+
+
 @pytest.mark.parametrize("sby_file", sorted(FORMAL.glob("*.sby")), ids=lambda p: p.stem)
 def test_cover_passes(sby_file, tmp_path):
     """The cover task of every .sby reaches its cover statements (a vacuous proof, one
