@@ -67,68 +67,103 @@ module hsem #(
   end
 
 `ifdef FORMAL
-  // formal/hsem.sby: mutual exclusion and granting after release, by k-induction.
+  // formal/hsem.sby, by k-induction. The properties are stated against a shadow of the
+  // lock built from the ports alone (grants seen, releases by the core that holds it),
+  // not against locked_o or the grant logic above.
 `include "formal_past.vh"
 
-  // mutual exclusion: at most one grant, and never while the lock is held
+  // ---- shadow of the lock: taken by a grant (owned from the next clock), given back
+  // by its holder's release; anybody else's release does nothing
+  reg           f_held;
+  reg [IdW-1:0] f_holder;
+  reg [IdW-1:0] f_granted;               // the index of this clock's grant, if any
+  integer       f_i;
   always @(*) begin
-    assert ($onehot0(grant_o));
-    if (locked_o) assert (grant_o == {Cores{1'b0}});
-    assert (owner_o < Cores);
-  end
-  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    // the owner keeps the lock until it releases it; nobody else can take or free it
-    if ($past(locked_o) && !$past(release_i[owner_o]))
-      assert (locked_o && owner_o == $past(owner_o));
-    // a grant makes the granted core the owner
-    if ($past(grant_o) != {Cores{1'b0}})
-      assert (locked_o && grant_o == {Cores{1'b0}} &&
-              $past(grant_o) == ({{(Cores-1){1'b0}}, 1'b1} << owner_o));
-    // a released lock goes to a waiting core in the very next clock
-    if ($past(locked_o) && $past(release_i[owner_o]) && lock_req_i != {Cores{1'b0}})
-      assert (grant_o != {Cores{1'b0}});
-  end
-
-  // Bounded waiting, for any one core f_core that keeps asking whenever the lock is
-  // free (a spinning core): from its first request on, at most Cores - 1 grants go to
-  // other cores before it gets the lock. Each such grant goes to a core ahead of it in
-  // the round-robin order after last_q, so the distance from last_q to f_core shrinks
-  // with every grant: f_others + distance <= Cores is the inductive invariant.
-  (* anyconst *) reg [IdW-1:0] f_core;
-  reg         f_waiting;                  // f_core asked (not owning it) and waits
-  reg [IdW:0] f_others;                   // grants to other cores while it waits
-  wire [31:0] f_dist = ({{(32-IdW){1'b0}}, f_core} + Cores - {{(32-IdW){1'b0}}, last_q} - 1)
-                       % Cores + 1;       // 1 .. Cores: how far f_core is after last_q
-  always @(*) begin
-    assume (f_core < Cores);
-    if (rst_ni && f_waiting && !locked_o) assume (lock_req_i[f_core]);
+    f_granted = {IdW{1'b0}};
+    for (f_i = 0; f_i < Cores; f_i = f_i + 1)
+      if (grant_o[f_i]) f_granted = f_i[IdW-1:0];
   end
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) begin
-      f_waiting <= 1'b0;
-      f_others  <= {(IdW+1){1'b0}};
+      f_held   <= 1'b0;
+      f_holder <= {IdW{1'b0}};
+    end else if (grant_o != {Cores{1'b0}}) begin
+      f_held   <= 1'b1;
+      f_holder <= f_granted;
+    end else if (f_held && release_i[f_holder]) begin
+      f_held   <= 1'b0;
+    end
+
+  always @(*) if (rst_ni) begin
+    // mutual exclusion: one grant at most, only to a core that asks, never while a
+    // core holds the lock
+    assert ($onehot0(grant_o));
+    assert ((grant_o & ~lock_req_i) == {Cores{1'b0}});
+    if (f_held) assert (grant_o == {Cores{1'b0}});
+    // no grant is withheld: a request while nobody holds the lock is granted at once
+    // (so a released lock goes to a waiting core in the very next clock)
+    if (!f_held && lock_req_i != {Cores{1'b0}}) assert (grant_o != {Cores{1'b0}});
+    // the outputs tell who holds it (the owner keeps it until it releases it)
+    assert (locked_o == f_held);
+    if (f_held) assert (owner_o == f_holder);
+    f_inv_holder: assert (f_holder < Cores);
+  end
+
+  // ---- bounded waiting, in grants: take any core f_core that keeps asking whenever the
+  // lock is free (a spinning core). From its first request on, until it is granted, at
+  // most Cores - 1 grants go to other cores (f_others), and no other core f_rival (any)
+  // is granted twice (f_rival_grants).
+  (* anyconst *) reg [IdW-1:0] f_core;
+  (* anyconst *) reg [IdW-1:0] f_rival;
+  reg         f_waiting;                  // f_core asked (not holding it) and waits
+  reg [IdW:0] f_others;                   // grants to other cores while it waits
+  reg [1:0]   f_rival_grants;             // ... of them to f_rival
+  always @(*) begin
+    assume (f_core < Cores && f_rival < Cores && f_rival != f_core);
+    if (rst_ni && f_waiting && !f_held) assume (lock_req_i[f_core]);
+  end
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_waiting      <= 1'b0;
+      f_others       <= {(IdW+1){1'b0}};
+      f_rival_grants <= 2'd0;
     end else if (grant_o[f_core]) begin
-      f_waiting <= 1'b0;
-      f_others  <= {(IdW+1){1'b0}};
-    end else if (f_waiting || (lock_req_i[f_core] && !(locked_o && owner_o == f_core))) begin
+      f_waiting      <= 1'b0;
+      f_others       <= {(IdW+1){1'b0}};
+      f_rival_grants <= 2'd0;
+    end else if (f_waiting || (lock_req_i[f_core] && !(f_held && f_holder == f_core))) begin
       f_waiting <= 1'b1;
-      if (grant_o != {Cores{1'b0}}) f_others <= f_others + 1'b1;
+      if (grant_o != {Cores{1'b0}} && f_others != {(IdW+1){1'b1}}) f_others <= f_others + 1'b1;
+      if (grant_o[f_rival] && f_rival_grants != 2'd3) f_rival_grants <= f_rival_grants + 2'd1;
     end
   always @(*) if (rst_ni) begin
-    assert (last_q < Cores);
-    if (locked_o) assert (last_q == owner_o);        // the last grant went to the owner
-    if (f_waiting && locked_o) assert (owner_o != f_core);
-  end
-  always @(*) if (rst_ni && !f_waiting) assert (f_others == 0);
-  always @(*) if (rst_ni && f_waiting) begin
-    assert ({{(31-IdW){1'b0}}, f_others} + f_dist <= Cores);
     assert (f_others <= Cores - 1);
+    assert (f_rival_grants <= 2'd1);
+    if (!f_waiting) assert (f_others == 0 && f_rival_grants == 2'd0);
   end
-  // no grant is ever withheld from a request while the lock is free
-  always @(*) if (rst_ni && !locked_o && lock_req_i != {Cores{1'b0}})
-    assert (grant_o != {Cores{1'b0}});
+
+  // Invariants the induction needs (labelled f_inv_*: of the round-robin state, not
+  // claims; the bmc task drops them, so a mutant must break a claim): every grant to
+  // another core while f_core waits goes to a core ahead of it after last_q, so its
+  // distance from last_q shrinks with each: f_others + distance <= Cores; f_rival, once
+  // granted, is last_q or behind f_core.
+  wire [31:0] f_dist = ({{(32-IdW){1'b0}}, f_core} + Cores - {{(32-IdW){1'b0}}, last_q} - 1)
+                       % Cores + 1;       // 1 .. Cores: how far f_core is after last_q
+  wire [31:0] f_rdist = ({{(32-IdW){1'b0}}, f_rival} + Cores - {{(32-IdW){1'b0}}, last_q} - 1)
+                        % Cores + 1;      // ... f_rival
+  always @(*) if (rst_ni) begin
+    f_inv_last: assert (last_q < Cores);
+    if (f_held) f_inv_last_held: assert (last_q == f_holder);
+    if (f_waiting && f_held) f_inv_not_own: assert (f_holder != f_core);
+    if (f_waiting) f_inv_dist: assert ({{(31-IdW){1'b0}}, f_others} + f_dist <= Cores);
+    if (f_waiting && f_rival_grants != 2'd0)
+      f_inv_rival: assert (f_rdist > f_dist || f_rdist == Cores);
+    if (f_rival_grants != 2'd0) f_inv_rival_other: assert (f_others != 0);
+  end
   always @(posedge clk_i) if (rst_ni) cover (f_past_valid && $past(grant_o[1]) && grant_o == 0 &&
                                              lock_req_i[0]);
+  // a core waits through Cores - 1 other grants and is granted
+  always @(posedge clk_i) if (rst_ni) cover (f_waiting && f_others == Cores - 1 && grant_o[f_core]);
 `endif
 endmodule
 `default_nettype wire

@@ -5,6 +5,7 @@ fail its proof, or the proof would be proving nothing."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -56,12 +57,13 @@ MUTATIONS = [
      "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
     ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
      "byte_pub_q <= byte_work_d;"),                         # publishes half a scan
+    # hsem: against the shadow of the lock (f_held, f_holder) and the grants counted
     ("hsem", "hsem.v", "wire grant_any = !locked_o && any_req;",
-     "wire grant_any = any_req;"),                          # grant while held
+     "wire grant_any = any_req;", "if (f_held) assert (grant_o"),   # grant while held
     ("hsem", "hsem.v", "end else if (locked_o && release_i[owner_o]) begin",
-     "end else if (locked_o && |release_i) begin"),         # anybody frees it
+     "end else if (locked_o && |release_i) begin", "locked_o == f_held"),  # anybody frees it
     ("hsem", "hsem.v", "      last_q   <= pick;",
-     "      last_q   <= last_q;"),                          # fixed priority: starvation
+     "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("byte_port", "byte_port.v",
@@ -123,8 +125,19 @@ MUTATIONS = [
 ]
 
 
-@pytest.mark.parametrize("name, rtl, original, mutated", MUTATIONS)
-def test_mutation_is_caught(name, rtl, original, mutated, tmp_path):
+def _failed_assertions(stdout: str, rtl_dir: Path) -> list[str]:
+    """The source text of the assertions sby reports as failed ("failed assertion ... at
+    cond_ff.v:55.5-55.40"), read from the (mutated) RTL."""
+    lines = []
+    for name, line in re.findall(r"failed assertion \S+ at (\S+?):(\d+)\.", stdout):
+        lines.append((rtl_dir / Path(name).name).read_text().splitlines()[int(line) - 1])
+    return lines
+
+
+# a mutant with a fifth element must break the assertion whose source line contains it
+@pytest.mark.parametrize("name, rtl, original, mutated, claim",
+                         [m if len(m) == 5 else (*m, None) for m in MUTATIONS])
+def test_mutation_is_caught(name, rtl, original, mutated, claim, tmp_path):
     work = tmp_path / "formal"
     shutil.copytree(FORMAL, work)
     shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
@@ -133,14 +146,24 @@ def test_mutation_is_caught(name, rtl, original, mutated, tmp_path):
     assert original in text, "the mutation no longer applies: update MUTATIONS"
     source.write_text(text.replace(original, mutated))
     sby_file = work / f"{name}.sby"
-    if "\nbmc\n" in sby_file.read_text():
-        # a .sby with a bmc task (bit_proc): the mutant must have a real counterexample
-        # from reset, not only break the induction step
-        proc = sby(sby_file, tmp_path, "bmc")
-        assert proc.returncode != 0 and "DONE (FAIL" in proc.stdout, proc.stdout[-2000:]
-        return
-    proc = sby(sby_file, tmp_path)
-    assert proc.returncode != 0 and "FAIL" in proc.stdout, proc.stdout[-2000:]
+    # The mutant must have a real counterexample from reset (DONE (FAIL): an induction
+    # step that fails alone ends UNKNOWN). A .sby with a bmc task runs that: it drops the
+    # helper invariants the induction needs (f_inv_*), so the mutant breaks a claim.
+    task = "bmc" if re.search(r"^bmc$", sby_file.read_text(), re.M) else "prove"
+    proc = sby(sby_file, tmp_path, task)
+    assert proc.returncode != 0 and "DONE (FAIL" in proc.stdout, proc.stdout[-2000:]
+    if claim is not None:
+        failed = _failed_assertions(proc.stdout, tmp_path / "rtl")
+        assert any(claim in line for line in failed), failed
+
+
+@pytest.mark.parametrize("sby_file", [p for p in sorted(FORMAL.glob("*.sby"))
+                                      if re.search(r"^bmc$", p.read_text(), re.M)],
+                         ids=lambda p: p.stem)
+def test_bmc_passes(sby_file, tmp_path):
+    """The mutation check's bmc task passes on the tree (or every mutant would 'fail')."""
+    proc = sby(sby_file, tmp_path, "bmc")
+    assert proc.returncode == 0 and "DONE (PASS" in proc.stdout, proc.stdout[-3000:]
 
 
 def _make_formal(formal_dir: Path, sby: str) -> subprocess.CompletedProcess:
