@@ -258,11 +258,21 @@ module byte_port #(
     assert (!done_we_o || (bus_we_i && bus_addr_i == `BUS_DONE));
     assert (!tc_we_o || (bus_we_i && bus_addr_i == `BUS_TC_BIT));
   end
+  // Stall counting, against the byte processor's view rather than the refusal logic:
+  // every clock with an access either completes it or is a stall (it is repeated), so
+  // the stalls are the access clocks minus the completed accesses (each count wraps
+  // at 32 bits, like the counter).
+  reg [31:0] f_access_clocks, f_completed;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_access_clocks <= 32'd0;
+      f_completed     <= 32'd0;
+    end else begin
+      if (bus_re_i || bus_we_i)                f_access_clocks <= f_access_clocks + 32'd1;
+      if ((bus_re_i || bus_we_i) && bus_ready_o) f_completed   <= f_completed + 32'd1;
+    end
+  always @(*) if (rst_ni) assert (stalls_byte_o == f_access_clocks - f_completed);
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    // every clock an access is refused is one byte-side stall, and no other clock is
-    if (stalls_byte_o != 32'd0 || $past(stalls_byte_o) != 32'hFFFF_FFFF)
-      assert (stalls_byte_o == $past(stalls_byte_o) +
-              {31'd0, ($past(bus_re_i) || $past(bus_we_i)) && !$past(bus_ready_o)});
     // SCAN_DONE: set by its write, cleared by the next latch, held otherwise
     if ($past(bus_we_i) && $past(bus_addr_i) == `BUS_SCAN_DONE) assert (byte_scan_done_o);
     else if ($past(latch_i)) assert (!byte_scan_done_o);

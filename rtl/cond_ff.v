@@ -37,11 +37,13 @@ module cond_ff (
   end
 
 `ifdef FORMAL
-  // Properties of the mailbox; formal/cond_ff.sby proves them by k-induction.
+  // Properties of the mailbox (formal/cond_ff.sby, k-induction), stated against a
+  // shadow kept from the ports alone: the conditions taken from the writer and given
+  // to the reader, and the value of the last one taken — not against full_q.
 `include "formal_past.vh"
 
-  // Count conditions written and read since reset: the difference is the fill level.
-  reg [3:0] f_written, f_read;
+  reg [3:0] f_written, f_read;          // handshakes since reset (wrapping)
+  reg       f_data;                     // the last condition taken from the writer
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       f_written <= 4'd0;
@@ -51,19 +53,24 @@ module cond_ff (
       if (rd_req_i && rd_ready_o) f_read    <= f_read + 4'd1;
     end
   end
-  // full is exact: one condition held iff one more was written than read
-  always @(*) if (rst_ni) assert (full_q == ((f_written - f_read) == 4'd1));
-  always @(*) if (rst_ni) assert ((f_written - f_read) <= 4'd1);
-  // never both in one clock; a side is refused exactly when it must be
-  always @(*) assert (!(wr_ready_o && rd_ready_o));
-  always @(*) assert (wr_ready_o == !full_q && rd_ready_o == full_q);
-  // what is read is what was written (no loss, no change)
-  reg f_data;
   always @(posedge clk_i) if (wr_req_i && wr_ready_o) f_data <= wr_data_i;
-  always @(*) if (rst_ni && full_q) assert (data_q == f_data);
+  wire [3:0] f_held = f_written - f_read;   // conditions inside
+
+  always @(*) if (rst_ni) begin
+    // one place: a condition is never taken while one is held (none lost), and none is
+    // given that was not taken (none duplicated)
+    assert (f_held <= 4'd1);
+    // a side waits exactly when it must: the writer while one is held, the reader
+    // while none is; full_o says which
+    assert (wr_ready_o == (f_held == 4'd0));
+    assert (rd_ready_o == (f_held == 4'd1));
+    assert (full_o == (f_held == 4'd1));
+    // what is read is what was written (no change)
+    if (rd_ready_o) assert (rd_data_o == f_data);
+  end
   // interesting states are reachable
   always @(posedge clk_i) if (rst_ni) cover (f_read == 4'd2);
-  always @(posedge clk_i) if (rst_ni) cover (full_q && wr_req_i);
+  always @(posedge clk_i) if (rst_ni) cover (full_o && wr_req_i);
 `endif
 endmodule
 `default_nettype wire

@@ -41,10 +41,19 @@ def test_bit_proc_wide_proof_passes(tmp_path):
 
 # (sby file, rtl file, original text, mutated text): each breaks one guarantee
 MUTATIONS = [
+    # cond_ff: against the shadow of conditions taken and given (f_held, f_data)
     ("cond_ff", "cond_ff.v", "end else if (wr_req_i && !full_q) begin",
-     "end else if (wr_req_i) begin"),                     # overwrite a full flip-flop
+     "end else if (wr_req_i) begin", "f_held"),            # a write beats a read when full
+    ("cond_ff", "cond_ff.v", "    end else if (rd_req_i && full_q) begin\n      full_q <= 1'b0;\n",
+     "    end else if (rd_req_i && full_q) begin\n      full_q <= 1'b0;\n"
+     "    end else if (wr_req_i) begin\n      data_q <= wr_data_i;\n",
+     "rd_data_o == f_data"),                               # a refused write overwrites
     ("cond_ff", "cond_ff.v", "assign rd_ready_o = full_q;",
-     "assign rd_ready_o = 1'b1;"),                          # read an empty one
+     "assign rd_ready_o = 1'b1;", "rd_ready_o == (f_held"),  # read an empty one
+    ("cond_ff", "cond_ff.v", "assign wr_ready_o = !full_q;",
+     "assign wr_ready_o = 1'b1;", "wr_ready_o == (f_held"),  # write a full one
+    ("cond_ff", "cond_ff.v", "assign full_o     = full_q;",
+     "assign full_o     = 1'b0;", "full_o == (f_held"),      # full never reported
     ("cond_queue", "cond_queue.v", "assign wr_ready_o = free_i || !strict_full;",
      "assign wr_ready_o = 1'b1;"),                          # write into a full queue
     ("cond_queue", "cond_queue.v", "strict_full  <= wr_ptr_d == (rd_ptr_d ^ {1'b1, {PtrW{1'b0}}});",
@@ -68,7 +77,8 @@ MUTATIONS = [
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("byte_port", "byte_port.v",
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
-     "wire byte_refused = bus_re_i && !bus_ready_o;"),     # misses refused writes
+     "wire byte_refused = bus_re_i && !bus_ready_o;",
+     "f_access_clocks - f_completed"),                     # misses refused writes
     ("core_seq", "copy_engine.v",
      "assign done_o  = run_i && (issued_q == len_q) && !f_valid_q && !c_valid_q;",
      "assign done_o  = run_i && (issued_q == len_q);"),   # done (lock freed) mid-copy
