@@ -322,28 +322,69 @@ module core_seq #(
     // ---- (d) no lock across a scan: the CPU starts and runs without the lock
     if (cpu_run_o || state_q == StScan || state_q == StWait) assert (!f_owned);
 
-    // ---- inductive invariants of the state machine and the engine's list
-    assert (state_q <= StPostCopy);
-    if (f_prest)  assert (!post);
-    if (f_postst) assert (post);
-    if (f_lockst) assert (!f_started && !list_empty);
-    if (f_sem && copying && !list_empty && !copy_done) assert (f_owned);
+    // ---- inductive invariants of the state machine and the engine's list (labelled
+    // f_inv_*: the bmc task drops them, so a mutant must break a claim)
+    f_inv_state: assert (state_q <= StPostCopy);
+    if (f_prest)  f_inv_pre: assert (!post);
+    if (f_postst) f_inv_post: assert (post);
+    if (f_lockst) f_inv_lock: assert (!f_started && !list_empty);
+    if (f_sem && copying && !list_empty && !copy_done) f_inv_owned: assert (f_owned);
+  end
+
+  // ---- (g) Fig. 8's decision, both ways: a precycle waiting for the lock skips its
+  // copy exactly when waiting longer could no longer let the scan end within its period
+  // (docs/multicore.md: now + pre entries + post entries + the last scan's cycles + 6
+  // > nominal start + period, with period 0 never). The property keeps its own nominal
+  // start: scan 0's at its start, every later one a period after the one before
+  // (scan k at k * period, however late it began).
+  reg        f_sched;                    // scan 0 has begun
+  reg [63:0] f_nom;                      // this scan's nominal start, 1/1000 clock
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_sched <= 1'b0;
+      f_nom   <= 64'd0;
+    end else if (begin_pre) begin
+      f_sched <= 1'b1;
+      f_nom   <= f_sched ? f_nom + period_i : time_i * 64'd1000;
+    end
+  wire [63:0] f_rest = {{(63-PaW){1'b0}}, pre_len_i} + {{(63-PaW){1'b0}}, post_len_i} +
+                       {32'd0, cpu_scan_cycles_i} + 64'd6;   // clocks the scan still needs
+  wire f_too_late = (period_i != 64'd0) && ((time_i + f_rest) * 64'd1000 > f_nom + period_i);
+  wire f_pre_waits = (state_q == StPreLock) && !grant_i;   // asks, the lock is busy
+
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    // give-up => skip: the CPU starts on its old local copies, copy_fail and the skip
+    // counted; no copy was made (nothing read from shared memory)
+    if ($past(f_pre_waits && f_too_late))
+      assert (cpu_run_o && !lock_req_o && copy_fail_o && skips_o == $past(skips_o) + 32'd1);
+    // still in time => it keeps asking (no skip, no start)
+    if ($past(f_pre_waits && !f_too_late))
+      assert (lock_req_o && !cpu_run_o && skips_o == $past(skips_o));
+    // skip => give-up: a precycle that asked and starts the CPU without its copy did so
+    // only because the lock was busy and it was too late
+    if ($past(state_q == StPreLock) && cpu_run_o) assert ($past(f_pre_waits && f_too_late));
+    // skips are counted only there
+    if (skips_o != $past(skips_o)) assert ($past(f_pre_waits && f_too_late));
+  end
+  // the shadow's nominal start is the sequencer's (with a period; without, nothing is
+  // ever late)
+  always @(*) if (rst_ni && period_i != 64'd0) begin
+    if (!f_sched) f_inv_unsched: assert (state_q == StWait && !started_q);
+    if (f_sched)  f_inv_sched: assert (started_q);
+    if (f_sched && state_q != StWait) f_inv_nom: assert (nominal_q == f_nom);
+    if (f_sched && state_q == StWait) f_inv_next: assert (nominal_q == f_nom + period_i);
   end
 
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    // ---- (e) copy_fail is sticky and set only by a skipped precycle or, with
+    // ---- (e) copy_fail is sticky and set only by a skipped precycle (g) or, with
     // ping-pong, by a precycle read that its writer overtook
     if ($past(copy_fail_o)) assert (copy_fail_o);
     if (!$past(copy_fail_o) && copy_fail_o)
-      assert (($past(state_q) == StPreLock && !$past(grant_i) && $past(give_up) &&
-               state_q == StRunStart && skips_o == $past(skips_o) + 32'd1) ||
+      assert (($past(f_pre_waits && f_too_late) && cpu_run_o) ||
               ($past(overtaken) && $past(state_q) == StPreCopy && protect_i == ProtPing));
     // ---- (f) a postcycle never gives up: it leaves StPostLock only with the grant
     if ($past(state_q) == StPostLock)
       assert (state_q == ($past(grant_i) ? StPostCopy : StPostLock));
-    // a precycle leaves StPreLock only with the grant (copy) or by giving up (skip)
-    if ($past(state_q) == StPreLock && state_q == StRunStart)
-      assert (!$past(grant_i) && $past(give_up) && copy_fail_o);
     // a grant is followed by the copy that needs it
     if ($past(grant_i)) assert (f_owned && copying);
   end
@@ -353,6 +394,11 @@ module core_seq #(
   always @(posedge clk_i) if (rst_ni) begin
     cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
     cover (f_sem && copy_fail_o && state_q == StScan);
+    // a precycle that waited for the lock, still in time, and is granted; one of a
+    // later scan (a scan has completed: its nominal start is a period on) that gives up
+    cover (f_past_valid && $past(f_pre_waits && !f_too_late) && grant_i);
+    cover (f_past_valid && $past(f_pre_waits && f_too_late) && cpu_run_o &&
+           pre_clocks_o != 32'd0);
   end
 `endif
 endmodule

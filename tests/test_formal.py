@@ -87,6 +87,19 @@ MUTATIONS = [
      "assign release_o  = lock_wanted && copying && !list_empty;"),  # frees mid-copy
     ("core_seq", "core_seq.v", "StPostLock: if (grant_i) state_q <= StPostCopy;",
      "StPostLock: if (grant_i || give_up) state_q <= StPostCopy;"),  # postcycle gives up
+    # Fig. 8 both ways, against the property's own deadline (f_too_late)
+    ("core_seq", "core_seq.v", "wire give_up = (period_i != 64'd0) &&",
+     "wire give_up = 1'b0 && (period_i != 64'd0) &&",
+     "assert (cpu_run_o && !lock_req_o && copy_fail_o"),  # never skips a precycle
+    ("core_seq", "core_seq.v", "((time_i + need) * 64'd1000 > nominal_q + period_i)",
+     "((time_i + need + 64'd1) * 64'd1000 > nominal_q + period_i)",
+     "cpu_run_o) assert ($past(f_pre_waits && f_too_late))"),  # skips a clock early
+    ("core_seq", "core_seq.v",
+     "need = {{(63-PaW){1'b0}}, pre_len_i} + {{(63-PaW){1'b0}}, post_len_i} +",
+     "need = {{(63-PaW){1'b0}}, pre_len_i} +",
+     "assert (cpu_run_o && !lock_req_o && copy_fail_o"),  # forgets the postcycle: late
+    ("core_seq", "core_seq.v", "if (!started_q || period_i == 64'd0) nominal_q <= now_m;",
+     "nominal_q <= now_m;", "assert (lock_req_o && !cpu_run_o"),  # a late scan shifts the plan
     # bit_proc (issue 20 item 5): the pipeline against the ISA reference model
     ("bit_proc", "bit_proc.v", "wire          m_hit_now  = m_we && (m_waddr == o_mi);",
      "wire          m_hit_now  = (m_we && !m_target_we) && (m_waddr == o_mi);"),
@@ -153,7 +166,8 @@ def test_mutation_is_caught(name, rtl, original, mutated, claim, tmp_path):
     shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
     source = tmp_path / "rtl" / rtl
     text = source.read_text()
-    assert original in text, "the mutation no longer applies: update MUTATIONS"
+    # exactly one place: a text that also occurs in the properties would mutate them too
+    assert text.count(original) == 1, "the mutation must apply to one place: update MUTATIONS"
     source.write_text(text.replace(original, mutated))
     sby_file = work / f"{name}.sby"
     # The mutant must have a real counterexample from reset (DONE (FAIL): an induction
