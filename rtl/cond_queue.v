@@ -95,20 +95,23 @@ module cond_queue #(
   end
 
 `ifdef FORMAL
-  // Strict setting (formal/cond_queue.sby): a lossless FIFO, proved by k-induction.
+  // formal/cond_queue.sby, by k-induction: both settings (free_i constant while
+  // running). Invariants only the induction needs are labelled f_inv_* (the bmc task
+  // drops them, so a mutant must break a claim).
 `include "formal_past.vh"
-  always @(*) assume (!free_i);
+  always @(posedge clk_i) if (f_past_valid && rst_ni) assume ($stable(free_i));
 
+  // ================================================================ strict: a lossless FIFO
   wire [PtrW:0] f_fill = wr_ptr_q - rd_ptr_q;
   // the fill level is exact: never more than Depth; full/empty say so
-  always @(*) if (rst_ni) begin
+  always @(*) if (rst_ni && !free_i) begin
     assert (f_fill <= Depth);
     assert (full_o  == (f_fill == Depth));
     assert (empty_o == (f_fill == 0));
     assert (wr_ready_o == !full_o && rd_ready_o == !empty_o);
   end
   // a side stalls exactly when it must: it advances iff it asks and may
-  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !free_i) begin
     assert (wr_ptr_q == $past(wr_ptr_q) + {{PtrW{1'b0}}, $past(wr_req_i && !full_o)});
     assert (rd_ptr_q == $past(rd_ptr_q) + {{PtrW{1'b0}}, $past(rd_req_i && !empty_o)});
   end
@@ -131,7 +134,7 @@ module cond_queue #(
       end
     end
   end
-  always @(*) if (rst_ni) begin
+  always @(*) if (rst_ni && !free_i) begin
     assume (f_writes != 8'hFF);                      // a bounded run (256 conditions)
     // the pointers count the conditions that went in and out
     assert (wr_ptr_q == f_writes[PtrW:0] && rd_ptr_q == f_reads[PtrW:0]);
@@ -140,12 +143,118 @@ module cond_queue #(
     // while it is inside, the followed condition sits in its slot, unchanged
     if (f_written && f_reads <= f_nth) assert (data_q[f_nth[PtrW-1:0]] == f_value);
   end
-  always @(*) if (rst_ni && do_rd && f_reads == f_nth) begin
+  always @(*) if (rst_ni && !free_i && do_rd && f_reads == f_nth) begin
     assert (f_written);
     assert (rd_data_o == f_value);
   end
-  always @(posedge clk_i) if (rst_ni) cover (f_reads == 8'd3 && full_o == 1'b0);
-  always @(posedge clk_i) if (rst_ni) cover (full_o && wr_req_i);
+
+  // ================================================================ free-running
+  // A shadow of the paper's queue kept from the ports: slot i takes the i-th condition
+  // of the writer's scan and gives the reader its i-th read of its scan (positions
+  // counted from each side's scan start, mod Depth); a slot holds an item from its write
+  // until it is read. An item written into a slot that still holds one drops that one
+  // (unless the reader takes it in the same clock): a loss, one overflow; a read of a
+  // slot that holds none gets no item: one underflow.
+  reg [PtrW-1:0]  f_wpos_q, f_rpos_q;      // next position of the scan, each side
+  reg [Depth-1:0] f_holds;                 // slot holds an item not yet read
+  wire [PtrW-1:0] f_wpos = wr_start_i ? {PtrW{1'b0}} : f_wpos_q;
+  wire [PtrW-1:0] f_rpos = rd_start_i ? {PtrW{1'b0}} : f_rpos_q;
+  wire f_taken = rd_req_i && f_holds[f_rpos];                  // an item goes out
+  wire f_drop  = wr_req_i && f_holds[f_wpos] && !(f_taken && f_rpos == f_wpos);
+  wire f_stale = rd_req_i && !f_holds[f_rpos];                 // a read without one
+  // counts of items in, out and dropped (wrapping): each is one of them or inside
+  reg [7:0] f_in, f_out, f_dropped;
+  integer f_k;
+  reg [7:0] f_inside;
+  always @(*) begin
+    f_inside = 8'd0;
+    for (f_k = 0; f_k < Depth; f_k = f_k + 1) f_inside = f_inside + {7'd0, f_holds[f_k]};
+  end
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_wpos_q  <= {PtrW{1'b0}};
+      f_rpos_q  <= {PtrW{1'b0}};
+      f_holds   <= {Depth{1'b0}};
+      f_in      <= 8'd0;
+      f_out     <= 8'd0;
+      f_dropped <= 8'd0;
+    end else begin
+      f_wpos_q <= f_wpos + {{(PtrW-1){1'b0}}, wr_req_i};
+      f_rpos_q <= f_rpos + {{(PtrW-1){1'b0}}, rd_req_i};
+      if (f_taken) f_holds[f_rpos] <= 1'b0;
+      if (wr_req_i) f_holds[f_wpos] <= 1'b1;
+      f_in      <= f_in + {7'd0, wr_req_i};
+      f_out     <= f_out + {7'd0, f_taken};
+      f_dropped <= f_dropped + {7'd0, f_drop};
+    end
+
+  // Follow one item (any: the write in the first clock f_pick is high): it is delivered
+  // once, to the read at its position, with its value, or dropped and counted.
+  (* anyseq *) reg f_pick;
+  reg           f_tracked, f_n_in;         // an item was picked; it is inside
+  reg [PtrW-1:0] f_n_slot;
+  reg           f_n_val;
+  wire          f_n_start = free_i && !f_tracked && f_pick && wr_req_i;
+  reg f_restarted;                         // the reader's scan started since the pick
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni)                        f_restarted <= 1'b0;
+    else if (f_n_start)                 f_restarted <= 1'b0;
+    else if (f_tracked && rd_start_i)   f_restarted <= 1'b1;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_tracked <= 1'b0;
+      f_n_in    <= 1'b0;
+      f_n_slot  <= {PtrW{1'b0}};
+      f_n_val   <= 1'b0;
+    end else if (f_n_start) begin
+      f_tracked <= 1'b1;
+      f_n_in    <= 1'b1;
+      f_n_slot  <= f_wpos;
+      f_n_val   <= wr_data_i;
+    end else if (f_n_in && ((rd_req_i && f_rpos == f_n_slot) ||
+                            (wr_req_i && f_wpos == f_n_slot))) begin
+      f_n_in    <= 1'b0;                   // delivered, or dropped by the next write
+    end
+
+  always @(*) if (rst_ni && free_i) begin
+    // nobody waits
+    assert (wr_ready_o && rd_ready_o);
+    // full / empty: the writer's next slot holds an item, the reader's holds none
+    assert (full_o == f_holds[f_wpos]);
+    assert (empty_o == !f_holds[f_rpos]);
+    // the followed item: read at its position, it comes out with its value (and that
+    // read is no underflow); a write over it before that is a loss
+    if (f_n_in && rd_req_i && f_rpos == f_n_slot) assert (rd_data_o == f_n_val && !f_stale);
+    if (f_n_in && wr_req_i && f_wpos == f_n_slot && !(rd_req_i && f_rpos == f_n_slot))
+      assert (f_drop);
+    // every item went out once, was dropped, or is inside
+    assert (f_in == f_out + f_dropped + f_inside);
+  end
+  // losses counted exactly: each clock's overflow / underflow count grows by the drop /
+  // the read without an item of that clock (saturating at 65535)
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && free_i) begin
+    assert (overflows_o == (($past(overflows_o) == 16'hFFFF) ? 16'hFFFF :
+                            $past(overflows_o) + {15'd0, $past(f_drop)}));
+    assert (underflows_o == (($past(underflows_o) == 16'hFFFF) ? 16'hFFFF :
+                             $past(underflows_o) + {15'd0, $past(f_stale)}));
+  end
+  // the RTL's state is the shadow's
+  always @(*) if (rst_ni && free_i) begin
+    f_inv_wpos: assert (wr_ptr_q[PtrW-1:0] == f_wpos_q);
+    f_inv_rpos: assert (rd_ptr_q[PtrW-1:0] == f_rpos_q);
+    f_inv_holds: assert (fresh_q == f_holds);
+    if (f_n_in) f_inv_n_in: assert (f_holds[f_n_slot] && data_q[f_n_slot] == f_n_val);
+  end
+
+  always @(posedge clk_i) if (rst_ni) begin
+    cover (!free_i && f_reads == 8'd3 && full_o == 1'b0);
+    cover (!free_i && full_o && wr_req_i);
+    // free-running: a loss and a read without an item counted; the followed item (a 1)
+    // delivered from a slot past 0, by a reader whose scan restarted after the write
+    cover (free_i && overflows_o == 16'd1 && underflows_o == 16'd1);
+    cover (free_i && f_n_in && rd_req_i && f_rpos == f_n_slot && f_n_slot != 0 && f_n_val &&
+           f_restarted);
+  end
 `endif
 endmodule
 `default_nettype wire

@@ -62,6 +62,27 @@ MUTATIONS = [
      "wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd};",
      "wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd && !wr_req_i};"),
                                                             # a read lost: read twice
+    # cond_queue free-running: against the shadow queue (f_holds, the followed item f_n_*)
+    ("cond_queue", "cond_queue.v", "fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot) &&",
+     "fresh_q[wr_slot] && !do_rd &&", "assert (overflows_o =="),  # a loss not counted
+    ("cond_queue", "cond_queue.v", "        data_q[wr_slot]  <= wr_data_i;",
+     "        if (!free_i || !fresh_q[wr_slot]) data_q[wr_slot]  <= wr_data_i;",
+     "rd_data_o == f_n_val"),                  # a dropped write that still advances
+    ("cond_queue", "cond_queue.v",
+     "if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)",
+     "if (free_i && do_rd && !fresh_q[rd_slot] && !do_wr && underflows_o != 16'hFFFF)",
+     "assert (underflows_o =="),               # a stale read (old value again) not counted
+    ("cond_queue", "cond_queue.v", "      if (do_rd) fresh_q[rd_slot] <= 1'b0;",
+     "      if (do_rd && !free_i) fresh_q[rd_slot] <= 1'b0;",
+     "f_holds[f_wpos]"),                       # a read keeps its item: delivered twice
+    ("cond_queue", "cond_queue.v",
+     "wire [PtrW-1:0] wr_slot = wr_restart ? {PtrW{1'b0}} : wr_ptr_q[PtrW-1:0];",
+     "wire [PtrW-1:0] wr_slot = wr_ptr_q[PtrW-1:0];",
+     "f_holds[f_wpos]"),                       # a scan's first write in the old position
+    ("cond_queue", "cond_queue.v",
+     "wire [PtrW-1:0] rd_slot = rd_restart ? {PtrW{1'b0}} : rd_ptr_q[PtrW-1:0];",
+     "wire [PtrW-1:0] rd_slot = rd_ptr_q[PtrW-1:0];",
+     "rd_data_o == f_n_val"),                  # ... its first read: out of order
     ("marker_area", "marker_area.v", "if (bit_start_i)  bit_snap_q  <= byte_visible;",
      "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
     ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
