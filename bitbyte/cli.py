@@ -212,7 +212,7 @@ def cmd_run(args) -> int:
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, str(GTKW)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
-                       response_times(prep.changes, records, columns)), end="")
+                       response_times(prep, records)), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

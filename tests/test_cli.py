@@ -325,15 +325,106 @@ def test_response_figures_in_the_summary(tmp_path, sim):
 
 
 
+# Causal attribution (issue 15 review): a change is answered by the first scan, ending
+# after it, whose outputs differ from the reference run with that change withheld.
+# RESPONSE_PROGRAM at 100 MHz: scan k latches at 27k, ends at 27(k+1).
+#  0.54 us = clock 54 = scan 2's latch, I0.0 up: Q0.0 up at the end of scan 2 (81):  27
+#    (scan 1 latched at 27, before it: it cannot answer it)
+#  0.60 us = clock 60, in scan 2, I0.1 up: latched by scan 3 (81), M0.0 in scan 3,
+#    Q0.1 up at the end of scan 4 (135), later than any other change:               75
+RESPONSE_OVERLAP_STIM = "t_us,I0.0,I0.1\n0.54,1,0\n0.60,1,1\n"
+#  I0.1 toggles every scan 0..5: each toggle reaches Q0.1 at the end of the scan after
+#  the one that latched it, 54 clocks, although the next toggle comes 27 clocks later
+#  and Q0.1 changes every scan (8 scans: the last toggle, scan 5's, shows in scan 6)
+RESPONSE_TOGGLE_STIM = "scan,I0.1\n0,1\n1,0\n2,1\n3,0\n4,1\n5,0\n"
+# A direct read answers in the scan that holds the change: NOP NOP LD PI0.0 = Q0.0 END,
+# 5 clocks a scan (latch 5k, the PI read at 5k+2, end 5k+5).
+#  0.06 us = clock 6, before scan 1's read (7): Q0.0 up at its end (10):              4
+#  0.18 us = clock 18, after scan 3's read (17): scan 4 reads it (22), ends at 25:    7
+DIRECT_PROGRAM = "NOP\nNOP\nLD PI0.0\n= Q0.0\n"
+DIRECT_STIM = "t_us,I0.0\n0.06,1\n0.18,0\n"
+# A word read every other scan: M0.0 toggles, a taken JCN skips L IW0 / T QW0 in odd
+# scans (3 + 3 + NOP + END = 8 clocks; even scans 1+1+1+1+10+10+1+1 = 26).  IW0 changes
+# at scan 1 (latch 26), which skips it; scan 2 (34..60) copies it to QW0: 60 - 26 = 34
+# (scan 1 leaves the same state with or without the change: not yet a verdict).
+SKIPPED_READ_PROGRAM = "LD M0.0\nNOT\n= M0.0\nJCN skip\nL IW0\nT QW0\nskip: NOP\n"
+SKIPPED_READ_STIM = "scan,IW0\n1,5\n"
+
+
+# In parallel mode (22 clocks a scan, the run's own figure) both RESPONSE_OVERLAP_STIM
+# changes fall in scan 2 (44..66) and scan 3 latches both: I0.0 reaches Q0.0 at its
+# end (88): 34; I0.1 reaches Q0.1 at the end of scan 4 (110): 50.  (Withheld, I0.0
+# stays 0 although the next row, which scan 3 latches too, holds it at 1.)
+PARALLEL_CYCLES = "cycles/scan      min 22  mean 22  max 22"
+
+
+@pytest.mark.parametrize("program,stimulus,scans,clk,us,more", [
+    (RESPONSE_PROGRAM, RESPONSE_OVERLAP_STIM, 8,
+     "min 27  median 51  max 75  (2 of 2", "min 0.27  median 0.51  max 0.75", ()),
+    (RESPONSE_PROGRAM, RESPONSE_TOGGLE_STIM, 8,
+     "min 54  median 54  max 54  (6 of 6", "min 0.54  median 0.54  max 0.54", ()),
+    (DIRECT_PROGRAM, DIRECT_STIM, 6,
+     "min 4  median 5.5  max 7  (2 of 2", "min 0.04  median 0.055  max 0.07", ()),
+    (SKIPPED_READ_PROGRAM, SKIPPED_READ_STIM, 4,
+     "min 34  median 34  max 34  (1 of 1", "min 0.34  median 0.34  max 0.34", ()),
+    (RESPONSE_PROGRAM, RESPONSE_OVERLAP_STIM, 8,
+     "min 34  median 42  max 50  (2 of 2", "min 0.34  median 0.42  max 0.5",
+     ("--mode", "parallel"))])
+def test_response_is_the_scan_the_change_caused(tmp_path, program, stimulus, scans, clk, us,
+                                                more):
+    src, stim, _ = case_files(tmp_path, program, stimulus)
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", scans, *more)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    if more:
+        assert PARALLEL_CYCLES in lines, proc.stdout
+    assert f"response [clk]   {clk} input changes changed an output)" in lines, proc.stdout
+    assert f"response [us]    {us}" in lines, proc.stdout
+
+
+def test_response_not_measured_in_free_running_mode(tmp_path):
+    """The byte side's scans are not the reference's: no figure rather than a wrong one."""
+    src, stim, _ = case_files(tmp_path, RESPONSE_PROGRAM, RESPONSE_TOGGLE_STIM)
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 8, "--mode", "free")
+    assert proc.returncode == 0, proc.stderr
+    assert ("response [clk]   not measured in free-running mode (6 input changes)"
+            in proc.stdout.splitlines()), proc.stdout
+    assert "response [us]" not in proc.stdout, proc.stdout
+
+
+def test_response_measuring_stops_at_its_budget(tmp_path):
+    """The reference replay is bounded: the summary says how many changes it measured
+    and why no more.  RESPONSE_TOGGLE_STIM's first change is answered in scan 1 (54);
+    the reference replays scans 0 and 1 (54 clocks) and the counterfactual the same
+    (108) before the second change's first scan: a 100-clock budget ends there.  The
+    reference's own records stand for the hardware's (serial mode: the same clocks)."""
+    from bitbyte.ref.refsim import refsim_trace
+    from bitbyte.run.prepare import prepare
+    from bitbyte.run.response import response_times
+    from bitbyte.run.summary import RunStats, summary_text
+    src, stim, _ = case_files(tmp_path, RESPONSE_PROGRAM, RESPONSE_TOGGLE_STIM)
+    prep = prepare(str(src), stimulus=str(stim), scans=8)
+    _, records, _ = refsim_trace(prep.program, prep.config, prep.stimulus, scans=8)
+    for kwargs, count in (
+            (dict(replay_clocks=100), "(1 of the first 1 of 6 input changes changed an "
+             "output; the reference replays at most 100 clocks)"),
+            (dict(max_changes=3), "(3 of the first 3 of 6 input changes changed an "
+             "output; at most 3 changes are measured)")):
+        text = summary_text(records, prep.f, RunStats(clocks=216),
+                            response=response_times(prep, records, **kwargs))
+        assert f"response [clk]   min 54  median 54  max 54  {count}\n" in text, text
+
+
 def test_response_median_of_an_even_count():
     """The median of an even count is the mean of the middle two; none at all: '-'."""
     from fractions import Fraction
+    from bitbyte.run.response import Responses
     from bitbyte.run.summary import RunStats, summary_text
-    text = summary_text([], Fraction(50), RunStats(clocks=0),
-                        response=([Fraction(40), Fraction(10), Fraction(31), Fraction(20)], 5))
+    text = summary_text([], Fraction(50), RunStats(clocks=0), response=Responses(
+        [Fraction(40), Fraction(10), Fraction(31), Fraction(20)], 5))
     assert "response [clk]   min 10  median 25.5  max 40  (4 of 5 input changes changed " \
            "an output)\nresponse [us]    min 0.2  median 0.51  max 0.8\n" in text
-    text = summary_text([], Fraction(50), RunStats(clocks=0), response=([], 2))
+    text = summary_text([], Fraction(50), RunStats(clocks=0), response=Responses([], 2))
     assert "response [clk]   -  (0 of 2 input changes changed an output)\n" \
            "response [us]    -\n" in text
 

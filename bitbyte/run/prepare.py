@@ -17,7 +17,7 @@ from bitbyte.lang.costs import COST_TABLES
 from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.lang.parser import parse_file
 from bitbyte.lang.program import Program
-from bitbyte.lang.stimulus import load_stimulus, no_stimulus
+from bitbyte.lang.stimulus import Stimulus, load_stimulus, no_stimulus
 from bitbyte.run.runjob import RunJob, hw_column
 
 DEFAULT_SCANS = 10
@@ -54,13 +54,16 @@ def check_mode(mode: str, exchange: str | None) -> str:
 
 @dataclass(frozen=True)
 class Prepared:
-    """What `prepare` returns: prepare_run's four and the stimulus's input changes
-    (Stimulus.changes, for the summary's response times)."""
+    """What `prepare` returns: prepare_run's four, the stimulus's input changes
+    (Stimulus.changes) and what the summary's response times replay the run with
+    (bitbyte.run.response): the stimulus and the configuration."""
     program: Program
     columns: list
     job: RunJob
     f: Fraction
     changes: list
+    stimulus: Stimulus
+    config: Config
 
 
 def prepare_run(program_path: str, **settings):
@@ -141,7 +144,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
                  byte_prog=byte_words)
-    return Prepared(program, columns, job, f, stim.changes(f))
+    return Prepared(program, columns, job, f, stim.changes(f), stim, config)
 
 
 def _one_cell_per_condition(program, part, cells: int) -> None:

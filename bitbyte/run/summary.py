@@ -8,6 +8,7 @@ from fractions import Fraction
 
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.trace import ScanRecord, format_decimal, format_t_us
+from bitbyte.run.response import Responses
 
 
 @dataclass(frozen=True)
@@ -37,9 +38,9 @@ def _label(name: str) -> str:
 
 def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats,
                  trace_path: str | None = None, waves: tuple[str, str] | None = None,
-                 response: tuple[list[Fraction], int] | None = None) -> str:
+                 response: Responses | None = None) -> str:
     """waves: (the wave file, the GTKWave layout); response: bitbyte.run.response's
-    (responses in clocks, input changes), printed when an input changed."""
+    figures, printed when an input changed."""
     mhz = format_decimal(clock_mhz)
     lines = [_label("scans") + str(len(records))]
     if records:
@@ -53,8 +54,8 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     else:
         lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
     lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")
-    if response is not None and response[1]:
-        lines += _response_lines(*response, clock_mhz)
+    if response is not None and response.changes:
+        lines += _response_lines(response, clock_mhz)
     if stats.byte_scans is not None:
         lines.append(_label("byte side") + f"{stats.byte_scans} scans (free-running)")
     if stats.queue_losses is not None:
@@ -79,10 +80,18 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     return "\n".join(lines) + "\n"
 
 
-def _response_lines(clocks: list[Fraction], changes: int, clock_mhz: Fraction) -> list[str]:
+def _response_lines(response: Responses, clock_mhz: Fraction) -> list[str]:
     """min / median (the mean of the middle two for an even count) / max, in clocks
-    (a t_us change may fall between clock edges: a fraction) and in µs."""
-    count = f"({len(clocks)} of {changes} input changes changed an output)"
+    (a t_us change may fall between clock edges: a fraction) and in µs; where only
+    the first changes were measured, how many and why; none: why."""
+    clocks, changes = response.clocks, response.changes
+    if response.not_measured:
+        return [_label("response [clk]") + f"{response.not_measured} ({changes} input "
+                f"change{'s' if changes != 1 else ''})"]
+    of = (f"the first {response.measured} of {changes}" if response.measured is not None
+          else str(changes))
+    count = (f"({len(clocks)} of {of} input changes changed an output"
+             + (f"; {response.stopped})" if response.measured is not None else ")"))
     if not clocks:
         return [_label("response [clk]") + "-  " + count, _label("response [us]") + "-"]
     s = sorted(clocks)
