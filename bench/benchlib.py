@@ -69,6 +69,7 @@ class Run:
     header: list[str] = field(default_factory=list)
     rows: list[list[int]] = field(default_factory=list)   # scan, end_clock, cycles, values...
     wall_s: float = 0.0
+    exchange: str | None = None      # the run's exchange (bitbyte.run.prepare.check_mode)
 
     @property
     def ok(self) -> bool:
@@ -90,8 +91,9 @@ class Run:
     def free_running(self) -> dict | None:
         """Free-running mode's own figures from the summary (None in other modes): the
         byte side's scans and its mean scan in clocks (simulated clocks / its scans),
-        and the queue losses, overflows / underflows per direction ((0, 0, 0, 0) with
-        the marker exchange, which loses nothing)."""
+        the exchange, and the queue losses as the summary states them, overflows /
+        underflows per direction (None without the line: the marker exchange has no
+        queue; a queue-free run without it is an error)."""
         m = re.search(r"byte side\s+(\d+) scans \(free-running\)", self.stdout)
         if not m:
             return None
@@ -100,8 +102,11 @@ class Run:
         clocks = int(c.group(1)) if c else None
         q = re.search(r"queue losses\s+overflows to-byte (\d+) to-bit (\d+), underflows "
                       r"to-byte (\d+) to-bit (\d+)", self.stdout)
-        losses = [int(x) for x in q.groups()] if q else [0, 0, 0, 0]
-        return dict(byte_scans=scans, clocks=clocks, losses=losses,
+        if not q and self.exchange == "queue-free":
+            raise RuntimeError("a queue-free run's summary has no 'queue losses' line:\n"
+                               + self.stdout)
+        losses = [int(x) for x in q.groups()] if q else None
+        return dict(byte_scans=scans, clocks=clocks, losses=losses, exchange=self.exchange,
                     byte_scan=clocks / scans if clocks and scans else None)
 
     def mclocks_per_s(self) -> float | None:
@@ -121,6 +126,7 @@ def run_bitbyte(program: Path | str, *, mode: str = "serial", clock_mhz: Fractio
                 until_us: str | None = None, costs: str = "paper", sim: str = "verilator",
                 trace: Path | None = None, watch: str = "", extra: list[str] = ()) -> Run:
     """`bitbyte run ...`; reads the trace back with end clocks (cumulative cycles)."""
+    from bitbyte.run.prepare import check_mode
     mode, exchange = split_mode(mode)
     cmd = bitbyte_cmd() + ["run", str(program), "--mode", mode, "--sim", sim,
                            "--clock-mhz", str(clock_mhz_text(clock_mhz)),
@@ -143,7 +149,8 @@ def run_bitbyte(program: Path | str, *, mode: str = "serial", clock_mhz: Fractio
     cmd += list(extra)
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
-    run = Run(proc.returncode, proc.stdout, proc.stderr, wall_s=time.perf_counter() - t0)
+    run = Run(proc.returncode, proc.stdout, proc.stderr, wall_s=time.perf_counter() - t0,
+              exchange=check_mode(mode, exchange))
     if trace is not None and trace.exists():
         run.header, run.rows = read_trace(trace)
     return run

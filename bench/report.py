@@ -41,10 +41,19 @@ def free_note(fr: dict | None) -> str:
     the byte side's scan and the queue losses."""
     if not fr:
         return ""
-    ovf_b, ovf_i, unf_b, unf_i = fr["losses"]
     scan = f"mean {fr['byte_scan']:.0f} clocks" if fr.get("byte_scan") else "mean –"
-    return (f"byte side {fr['byte_scans']} scans, {scan}; losses: overflows "
-            f"to-byte {ovf_b} / to-bit {ovf_i}, underflows to-byte {unf_b} / to-bit {unf_i}")
+    from bitbyte.lang.definition import DEF
+    if fr["losses"] is None:
+        losses = ("none (marker exchange)" if fr.get("exchange") == "marker"
+                  else "not stated")
+    else:
+        # each counter saturates at its field's all-ones value (rtl/cond_queue.v)
+        full = dict(DEF.register("QUEUE_OVERFLOWS").fields)["QUEUE_TO_BYTE_MASK"]
+        ovf_b, ovf_i, unf_b, unf_i = (f">= {n}" if n == full else str(n)
+                                      for n in fr["losses"])
+        losses = (f"overflows to-byte {ovf_b} / to-bit {ovf_i}, underflows to-byte "
+                  f"{unf_b} / to-bit {unf_i}")
+    return f"byte side {fr['byte_scans']} scans, {scan}; losses: {losses}"
 
 def fmt(x, nd=1):
     if x is None:

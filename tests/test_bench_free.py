@@ -6,6 +6,8 @@ import sys
 from fractions import Fraction
 from pathlib import Path
 
+import pytest
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 import benchlib as bl  # noqa: E402
 import report  # noqa: E402
@@ -42,6 +44,29 @@ def test_free_running_figures_from_the_summary(tmp_path):
 
 
 def test_marker_exchange_loses_nothing(tmp_path):
+    """The marker exchange has no queue: its summary states no losses, and the report
+    says so from the exchange, not from a default count."""
     r = _run(tmp_path, "marker")
     assert r.ok, r.stderr
-    assert r.free_running()["losses"] == [0, 0, 0, 0]
+    assert "queue losses" not in r.stdout, r.stdout
+    fr = r.free_running()
+    assert fr["losses"] is None and fr["exchange"] == "marker"
+    assert "losses: none (marker exchange)" in report.free_note(fr)
+
+
+def test_losses_only_as_the_summary_states_them():
+    """No `queue losses` line: no loss count.  A queue-free run must have the line."""
+    summary = "scans 3\nbyte side        2 scans (free-running)\nsimulated  1 us, 90 clocks\n"
+    fr = bl.Run(0, summary, "", exchange="marker").free_running()
+    assert fr["losses"] is None
+    with pytest.raises(RuntimeError, match="queue losses"):
+        bl.Run(0, summary, "", exchange="queue-free").free_running()
+
+
+def test_saturated_loss_counters_are_a_lower_bound():
+    """rtl/cond_queue.v stops each counter at 0xFFFF: that many or more were lost."""
+    fr = dict(byte_scans=2, clocks=90, byte_scan=45.0, exchange="queue-free",
+              losses=[65535, 3, 0, 65535])
+    assert report.free_note(fr) == ("byte side 2 scans, mean 45 clocks; losses: overflows "
+                                    "to-byte >= 65535 / to-bit 3, underflows to-byte 0 / "
+                                    "to-bit >= 65535")
