@@ -80,13 +80,16 @@ module dispatch #(
 `include "formal_past.vh"
 
   // The byte processor's view of a scan: every dispatched instruction ends in one DONE.
-  // Count the DONEs since the scan latched (saturating): FIRST is set exactly while
-  // there was none, whatever the scan number does (it is free here: any wrap).
+  // The shadow model counts the DONEs since the scan latched (saturating) from the
+  // inputs -- a DONE written while an instruction is offered -- not from done_o, so a
+  // done_o that fires without a request breaks it. FIRST is set exactly while there
+  // was none, whatever the scan number does (scan_i is a free input here).
+  wire f_done = req_i && done_we_i;
   reg [1:0] f_dones;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni)                          f_dones <= 2'd0;
     else if (latch_i)                     f_dones <= 2'd0;
-    else if (done_o && f_dones != 2'd3)   f_dones <= f_dones + 2'd1;
+    else if (f_done && f_dones != 2'd3)   f_dones <= f_dones + 2'd1;
   end
   wire f_first = (ctx_o & `BUS_CTX_FIRST) != 32'd0;
   always @(*) if (rst_ni) assert (f_first == (f_dones == 2'd0));
@@ -96,15 +99,17 @@ module dispatch #(
   always @(*) assert ((ctx_o & ~(`BUS_CTX_RLO | `BUS_CTX_FIRST)
                        & ((32'd1 << `BUS_CTX_SCAN_SHIFT) - 32'd1)) == 32'd0);
 
-  // reachable: a second dispatch of a scan (FIRST clear), and a new scan's first
-  // dispatch with the very scan number of the last DONE (a wrap) that sees FIRST
+  // reachable: a second dispatch of a scan (FIRST clear), and a later scan's first
+  // dispatch (FIRST set again after a DONE) carrying the scan number of that DONE --
+  // the case a 16-bit scan number cannot tell from the same scan. No wrap is modelled
+  // (in the CPU it takes 65 536 scans); scan_i being free covers every sequence.
   reg [15:0] f_done_scan;
   reg        f_done_seen;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       f_done_scan <= 16'd0;
       f_done_seen <= 1'b0;
-    end else if (done_o) begin
+    end else if (f_done) begin
       f_done_scan <= scan_i;
       f_done_seen <= 1'b1;
     end

@@ -96,6 +96,8 @@ MUTATIONS = [
      "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
+    ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",
+     "assign done_o        = done_we_i;"),                 # DONE without a request
     ("byte_port", "byte_port.v",
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
      "wire byte_refused = bus_re_i && !bus_ready_o;",
