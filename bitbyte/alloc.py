@@ -841,8 +841,10 @@ def format_table(a: Allocation) -> str:
                    f"  {c.mem_bytes:>5} / {p.mem:<4}")
         out += _wrap("      ", [t.name for t in c.tasks])
     out.append("")
-    misfits = f", the {_n(len(a.misfits), 'task')} that fit no core included" \
-        if a.misfits else ""
+    # the cores used place only the tasks that fit: their own bound is the one to
+    # hold them against (the groups are theirs)
+    misfits = (f", the {_n(len(a.misfits), 'task')} that fit no core included; "
+               f"{sum(g.util_bound for g in a.groups)} without them") if a.misfits else ""
     out.append(f"algorithm {a.algorithm}: {a.cores_used} of {p.cores} cores used, lower "
                f"bound {a.lower_bound} (sum per period of ceil(sum U){misfits})")
     for g in a.groups:

@@ -394,6 +394,10 @@ def test_cli_task_fitting_no_core_still_writes_the_json(tmp_path):
     assert sorted(sorted(c["tasks"]) for c in result["cores"]) == [["a", "b"], ["c"]]
     # the table still goes to stdout, and no plant is emitted
     assert "unassigned (2):" in proc.stdout
+    # the bound with the misfits, 10 ms: ceil(0.7046 + 1.1) = 2, 20 ms: ceil(0.1 + 0.05)
+    # = 1; without them (what the cores used hold): 1 + 1
+    assert ("algorithm best: 2 of 4 cores used, lower bound 3 (sum per period of ceil(sum U), "
+            "the 2 tasks that fit no core included; 2 without them)") in proc.stdout, proc.stdout
     proc = bitbyte("alloc", path, "--cores", 4, "--emit", tmp_path / "p" / "plant.toml")
     assert proc.returncode == 1 and not (tmp_path / "p").exists()
     # one core: c is left out for want of cores as well, and the reason says so
