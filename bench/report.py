@@ -55,6 +55,7 @@ def free_note(fr: dict | None) -> str:
                   f"{unf_b} / to-bit {unf_i}")
     return f"byte side {fr['byte_scans']} scans, {scan}; losses: {losses}"
 
+
 def fmt(x, nd=1):
     if x is None:
         return "–"
