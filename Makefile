@@ -122,7 +122,7 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; t0=$$(date +%s); \
 	echo "soak: BITBYTE_SEED=$$seed N=$(N)"; \
 	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider soak/; rc=$$?; \
-	$(VENV)/bin/python soak/report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
+	$(VENV)/bin/python soak/soak_report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
 	exit $$rc
 
 # ------------------------------------------------------------------ synthesis (synth/)

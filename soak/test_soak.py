@@ -28,7 +28,7 @@ mixed again.  Programs are checked in chunks of CHUNK, one pytest item each, so
 pytest-xdist spreads them over the cores.  A mismatch is saved under
 build/soak/cases/<name>/ (program, stimulus, both traces, the command that repeats it)
 and the chunk goes on with its other programs before it fails.  Each chunk writes
-what its programs executed (soak/coverage.py) to build/soak/; soak/report.py
+what its programs executed (soak/coverage_count.py) to build/soak/; soak/soak_report.py
 adds them up into docs/soak.md.
 """
 from __future__ import annotations

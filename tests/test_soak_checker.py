@@ -14,7 +14,7 @@ SOAK = Path(__file__).resolve().parents[1] / "soak"
 sys.path.insert(0, str(SOAK))
 
 import coverage_count  # noqa: E402
-import report  # noqa: E402
+import soak_report as report  # noqa: E402
 import test_soak as soak  # noqa: E402
 from randprog import long_timers  # noqa: E402
 
