@@ -236,9 +236,14 @@ static RunFile read_run_file(const char* path) {
 }
 
 int main(int argc, char** argv) {
-  if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }
+  // +name=value after the run file: plusargs for the model ($value$plusargs), e.g. the
+  // +mutsel=<id> of a mutant netlist (mutation/run_mutate.py).
+  bool usage = argc < 2;
+  for (int i = 2; i < argc; ++i) usage = usage || argv[i][0] != '+';
+  if (usage) { std::fprintf(stderr, "usage: %s RUNFILE [+PLUSARG...]\n", argv[0]); return 2; }
   const RunFile rf = read_run_file(argv[1]);
   Dut d;
+  d.ctx->commandArgs(argc, argv);
   if (!rf.waves.empty()) d.ctx->traceEverOn(true);  // before the model is built
   d.top.reset(new Vbitbyte_cpu{d.ctx.get(), "TOP"});
   Vbitbyte_cpu& top = *d.top;

@@ -25,8 +25,10 @@ RTL = ROOT / "rtl"
 def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
                    parameters: dict | None = None, extra_env: dict | None = None,
                    testcase: str | None = None, waves: bool = False,
-                   quiet: bool = False) -> Path:
-    """Build `toplevel` from rtl/*.v on `sim` and run cocotb `test_module`.
+                   quiet: bool = False, sources: list[Path] | None = None,
+                   plusargs: list[str] | None = None) -> Path:
+    """Build `toplevel` from rtl/*.v (or `sources`) on `sim` and run cocotb
+    `test_module` (with the simulator's `plusargs`).
 
     Returns the results XML path; raises SystemExit/RuntimeError on failure."""
     from cocotb_tools.runner import get_runner  # heavy import, only when simulating
@@ -38,7 +40,7 @@ def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
     if sim == "verilator" and waves:
         build_args += ["--trace-fst", "--trace-structs"]
     runner.build(
-        sources=sorted(RTL.glob("*.v")),
+        sources=sources or sorted(RTL.glob("*.v")),
         includes=[RTL],
         hdl_toplevel=toplevel,
         parameters=parameters or {},
@@ -60,6 +62,7 @@ def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
         testcase=testcase,
         waves=waves,
         log_file=build_dir / "sim.log" if quiet else None,
+        plusargs=plusargs or [],
     )
 
 

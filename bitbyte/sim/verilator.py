@@ -5,6 +5,7 @@ figures as `stat NAME VALUE` lines; the summary text is bitbyte/run/summary.py's
 from __future__ import annotations
 
 import fcntl
+import os
 import subprocess
 import tempfile
 from pathlib import Path
@@ -20,7 +21,10 @@ GTKW = ROOT / "sim" / "bitbyte.gtkw"   # the waveform layout beside its waves
 
 
 def ensure_harness() -> Path:
-    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale."""
+    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale;
+    BITBYTE_HARNESS names another, built already (mutation/run_mutate.py's mutants)."""
+    if os.environ.get("BITBYTE_HARNESS"):
+        return Path(os.environ["BITBYTE_HARNESS"])
     HARNESS.parent.mkdir(parents=True, exist_ok=True)
     with open(HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -50,7 +54,9 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,
                                    str(byte_path) if byte_path else None)
         run_file.write_text(text)
-        proc = subprocess.run([str(harness), str(run_file)], capture_output=True, text=True)
+        plusargs = os.environ.get("BITBYTE_HARNESS_ARGS", "").split()   # +name=value
+        proc = subprocess.run([str(harness), str(run_file), *plusargs],
+                              capture_output=True, text=True)
         if proc.returncode not in (0, HARNESS_WATCHDOG):
             raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
         records = read_trace_rows(trace_path, columns)
