@@ -163,3 +163,17 @@ bench-multicore: $(VENV_STAMP)  ## seed 000 Table 4 in clocks, protections compa
 .PHONY: bench-alloc
 bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocation.md
 	$(VENV)/bin/python bench/alloc_bench.py
+
+# ------------------------------------------------------------------ mutation testing (mutation/)
+# Issue 15: seeded mutants of every module (Yosys `mutate`, mcy's engine) against the
+# module's cocotb bench (Icarus), the proofs that read it, and for the CPU modules the
+# directed and random differential tests on a Verilator harness built once from the
+# mutant netlist; survivors checked for equivalence (miter + SymbiYosys). Writes
+# docs/mutation.md; work files in build/mutation/. Not part of `make test` (its fixed
+# sample is tests/test_mutation.py). MUTATE_ONLY=cond_ff,cpu runs some campaigns.
+.PHONY: mutate
+MUTATE_SEED  ?= 1
+MUTATE_COUNT ?= 30
+mutate: $(VENV_STAMP)  ## mutation testing (Yosys mutate): kill rate per module -> docs/mutation.md
+	$(VENV)/bin/python mutation/run_mutate.py --seed $(MUTATE_SEED) --count $(MUTATE_COUNT) \
+	  $(if $(MUTATE_ONLY),--only $(MUTATE_ONLY))

@@ -1,0 +1,313 @@
+"""make mutate: mutation testing of rtl/ with Yosys's `mutate` (issue 15, Build item 2).
+
+For each campaign below (a test top and the RTL modules it is the home of), a seeded
+sample of mutations per module is built into one netlist behind mutsel
+(mutation/mutlib.py) and the campaign's tests run once per mutant in one pytest
+session (mutation/plugin.py). A mutant no test kills then meets every proof in
+formal/ that reads its module (the mutation applied in the proof's own elaboration),
+and one no proof kills either is checked for equivalence with the original (a Yosys
+miter from reset, k-induction in SymbiYosys). What is left is a gap: a test to add.
+Writes build/mutation/<campaign>/summary.json and docs/mutation.md.
+
+    python mutation/run_mutate.py [--seed S] [--count N] [--only a,b] [--jobs J]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import mutlib  # noqa: E402
+
+ROOT = mutlib.ROOT
+BUILD = ROOT / "build" / "mutation"
+DOC = ROOT / "docs" / "mutation.md"
+
+
+@dataclass
+class Campaign:
+    name: str
+    tests: list            # pytest arguments (files or node ids)
+    modules: list          # the RTL modules sampled here (each module has one home)
+    keyword: str = ""      # pytest -k (the benches: Icarus only, the faster build)
+    harness: bool = False  # the tests run the Verilator harness (bitbyte_cpu)
+    env: dict = field(default_factory=dict)
+    equivalence: bool = True   # the miter is small enough (not the whole CPU)
+
+
+def bench(module: str, *more: str) -> Campaign:
+    return Campaign(module, [f"tb/test_{module}.py"], [module, *more], keyword="icarus")
+
+
+# The random programs per family in the CPU campaign: a mutant that survives the
+# directed tests meets this many programs (the regression's 200 each take longer
+# per mutant than the whole directed set; the seed is the campaign's).
+CPU_PROGRAMS = 60
+
+CAMPAIGNS = [
+    bench("cond_ff"), bench("cond_queue"), bench("hsem"), bench("marker_area"),
+    bench("dispatch"), bench("input_unit"), bench("output_unit"), bench("scan_ctrl"),
+    bench("tc_status"), bench("shared_mem"),
+    bench("byte_port", "time_base", "bus_stats"),
+    bench("core_seq", "copy_engine"),
+    Campaign("cpu", ["tests/test_cpu_directed.py::test_directed_harness",
+                     "tests/test_random_programs.py::test_verilator_harness",
+                     "tests/test_random_programs.py::test_mixed_verilator_harness",
+                     "tests/test_random_parallel.py::test_parallel_on_harness"],
+             ["bit_proc", "bitbyte_cpu", "cond_exchange", "sync_ram"], harness=True,
+             env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
+                  "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},
+             equivalence=False),
+]
+
+
+def proofs_of(module: str) -> list[mutlib.Sby]:
+    """The formal/*.sby files that read `module`."""
+    return [s for s in (mutlib.Sby.load(p) for p in sorted(mutlib.FORMAL.glob("*.sby")))
+            if module in s.modules()]
+
+
+def run_tests(c: Campaign, seed: int, count: int, work: Path) -> dict:
+    """The campaign's tests against every mutant (one pytest session): plugin results."""
+    cfg = {"work": str(work), "modules": c.modules, "count": count, "seed": seed,
+           "harness": c.harness, "results": str(work / "results.json")}
+    (work / "config.json").write_text(json.dumps(cfg))
+    env = dict(os.environ, BITBYTE_MUTATION=str(work / "config.json"), BITBYTE_SEED=str(seed),
+               PYTHONPATH=os.pathsep.join([str(ROOT / "mutation"), os.environ.get("PYTHONPATH", "")]),
+               **c.env)
+    cmd = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-p", "plugin",
+           "-p", "no:xdist", *c.tests] + (["-k", c.keyword] if c.keyword else [])
+    proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
+    (work / "pytest.log").write_text(proc.stdout + proc.stderr)
+    results = work / "results.json"
+    if not results.exists():
+        raise mutlib.MutationError(f"{work / 'pytest.log'}: the tests did not run:\n"
+                                   + "\n".join(proc.stdout.splitlines()[-15:]))
+    return json.loads(results.read_text())
+
+
+def run_proofs(muts, survivors, work: Path, timeout: float) -> dict:
+    """Each surviving mutant against the prove tasks of every proof reading its module:
+    {id: {proof: outcome}}; the proof's elaboration gets the mutation mapped by key."""
+    out: dict = {}
+    home_sigs = None
+    by_module: dict = {}
+    for m in muts:
+        if m.id in survivors:
+            by_module.setdefault(m.home, []).append(m)
+    for module, ms in sorted(by_module.items()):
+        for sby in proofs_of(module):
+            for task in sby.prove_tasks():
+                pw = mutlib.prepare_dir(work / f"proof-{sby.path.stem}-{task}")
+                elab, _ = sby.elab(task)
+                cands = mutlib.candidates(pw, elab, [module], "all")
+                sigs = mutlib.cell_signatures(pw, elab, "sigs")
+                if home_sigs is None:
+                    home_sigs = load_home_sigs(work)
+                mapped = mutlib.map_mutations(ms, home_sigs, cands, sigs, home_candidates(work))
+                for m in ms:
+                    name = f"{sby.path.stem}:{task}"
+                    if m.id not in mapped:
+                        out.setdefault(m.id, {})[name] = "n/a"
+                        continue
+                    res = mutlib.run_sby(pw, sby.with_mutation(task, mapped[m.id]),
+                                         f"m{m.id}", timeout)
+                    out.setdefault(m.id, {})[name] = res
+    return out
+
+
+def home_dir(work: Path) -> Path:
+    results = json.loads((work / "results.json").read_text())
+    return Path(results["elaborations"][0]["dir"])
+
+
+def load_home_sigs(work: Path) -> dict:
+    """The sampling elaboration's cell signatures (the plugin wrote them there)."""
+    return mutlib.signatures_from_json(home_dir(work) / "sigs.json")
+
+
+def home_candidates(work: Path) -> list:
+    home = home_dir(work)
+    return [mutlib.Mutation.parse(line) for f in sorted(home.glob("all.*.list"))
+            for line in f.read_text().splitlines() if line.strip()]
+
+
+def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
+              timeout: float) -> dict:
+    t0 = time.time()
+    res = run_tests(c, seed, count, work)
+    t_tests = time.time() - t0
+    muts = [mutlib.Mutation.from_json(d) for d in res["mutations"]]
+    base_bad = {n: o for n, o in res["baseline"].items() if o[0] != "pass"}
+    killed = {int(k): v for k, v in res["killed"].items()}
+    survivors = {m.id for m in muts if m.id not in killed}
+    t1 = time.time()
+    proofs = run_proofs(muts, survivors, work, timeout)
+    t_proofs = time.time() - t1
+    proof_killed = {i for i, r in proofs.items()
+                    if any(o in ("fail", "unknown") for o in r.values())}
+    t2 = time.time()
+    equiv = {}
+    if c.equivalence:
+        home = res["elaborations"][0]
+        for i in sorted(survivors - proof_killed):
+            try:
+                equiv[i] = mutlib.equivalence(work / "equiv", Path(home["dir"]) / "mutants.v",
+                                              home["top"], i, eq_depth, timeout)
+            except mutlib.MutationError as e:
+                equiv[i] = "error"
+                (work / f"equiv-{i}.err").write_text(str(e))
+    t_eq = time.time() - t2
+    cands = {}
+    for f in sorted(home_dir(work).glob("all.*.list")):
+        cands[f.name.split(".")[1]] = sum(1 for line in f.read_text().splitlines() if line.strip())
+    summary = {
+        "campaign": c.name, "tests": c.tests, "keyword": c.keyword, "modules": c.modules,
+        "seed": seed, "count": count, "env": c.env, "candidates": cands,
+        "elaborations": res["elaborations"], "baseline": res["baseline"],
+        "baseline_failed": base_bad,
+        "mutants": [dict(m.to_json(), where=m.where(),
+                         tests=killed.get(m.id), proofs=proofs.get(m.id, {}),
+                         equivalence=equiv.get(m.id)) for m in muts],
+        "seconds": {"tests": round(t_tests, 1), "proofs": round(t_proofs, 1),
+                    "equivalence": round(t_eq, 1)},
+    }
+    (work / "summary.json").write_text(json.dumps(summary, indent=1))
+    return summary
+
+
+def verdict(m: dict) -> str:
+    if m["tests"]:
+        return "killed (tests)"
+    if any(o in ("fail", "unknown") for o in m["proofs"].values()):
+        return "killed (proof)"
+    if m["equivalence"] == "equivalent":
+        return "equivalent"
+    return "survived"
+
+
+def module_rows(summaries) -> list:
+    rows = []
+    for s in summaries:
+        for mod in s["modules"]:
+            ms = [m for m in s["mutants"] if m["home"] == mod]
+            v = [verdict(m) for m in ms]
+            kt, kp = v.count("killed (tests)"), v.count("killed (proof)")
+            eq, sv = v.count("equivalent"), v.count("survived")
+            live = len(ms) - eq
+            rate = f"{100.0 * (kt + kp) / live:.1f} %" if live else "-"
+            rows.append((mod, s["campaign"], s["candidates"].get(mod, 0), len(ms), kt, kp, eq,
+                         sv, rate))
+    return rows
+
+
+def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
+    lines = [
+        "# Mutation testing",
+        "",
+        "Generated by `make mutate` (mutation/run_mutate.py); do not edit by hand. "
+        "What it does and why: [verification.md](verification.md#mutation-testing).",
+        "",
+        "Each mutant is one bit of one cell of the elaborated module (Yosys `mutate`: an "
+        "input or output bit inverted, stuck at 0 or 1, or XORed with another bit), drawn "
+        "by `mutate -list N -seed S` evenly over the module's cells. All of a "
+        "campaign's mutants are built into one netlist behind `mutsel` (0 = the "
+        "original), built once per simulator; each mutant is a run with `+mutsel=<id>`. "
+        "A mutant is **killed (tests)** when a test of its campaign fails on it while "
+        "passing on the original, **killed (proof)** when a prove task of a "
+        "formal/*.sby reading its module no longer passes with the mutation applied "
+        "in the proof's elaboration, **equivalent** when a Yosys miter of the original "
+        "and the mutant is proved (k-induction, SymbiYosys) to give the same outputs "
+        "from reset. **Survived** is a gap: a test to add.",
+        "",
+        f"Run time {total_s / 60:.1f} min (the campaigns' tests, proofs and "
+        "equivalence checks, one after another, on a 2-core machine).",
+        "",
+        "| module | campaign | candidates | sampled | killed (tests) | killed (proof) "
+        "| equivalent | survived | kill rate |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for row in module_rows(summaries):
+        lines.append("| " + " | ".join(str(x) for x in row) + " |")
+    lines += ["", "Kill rate: killed / (sampled - equivalent).", "", "## Campaigns", ""]
+    for s in summaries:
+        tests = ", ".join(f"`{t}`" for t in s["tests"])
+        kw = f" (`-k {s['keyword']}`)" if s["keyword"] else ""
+        env = "".join(f", {k}={v}" for k, v in s["env"].items())
+        sec = s["seconds"]
+        lines.append(f"- **{s['campaign']}**: seed {s['seed']}, {s['count']} per module{env}; "
+                     f"tests {tests}{kw}; {sec['tests']} s tests, {sec['proofs']} s proofs, "
+                     f"{sec['equivalence']} s equivalence.")
+        for e in s["elaborations"]:
+            p = ", ".join(f"{k}={v}" for k, v in e["params"].items()) or "defaults"
+            hb = f"; harness build {e['harness_build_s']} s" if "harness_build_s" in e else ""
+            lines.append(f"  - elaboration `{e['top']}` ({p}): {len(e['mapped'])} mutants "
+                         f"mapped{hb}")
+        if s["baseline_failed"]:
+            lines.append(f"  - tests failing on the unmutated netlist (left out): "
+                         f"{', '.join(s['baseline_failed'])}")
+    lines += ["", "## Mutants not killed", "",
+              "| campaign | id | module | where (source, cell.port[bit], mode) | proofs | verdict |",
+              "|---|---:|---|---|---|---|"]
+    for s in summaries:
+        for m in s["mutants"]:
+            v = verdict(m)
+            if v.startswith("killed"):
+                continue
+            pr = ", ".join(f"{k} {o}" for k, o in m["proofs"].items()) or "none reads it"
+            eq = m["equivalence"] or "not checked"
+            lines.append(f"| {s['campaign']} | {m['id']} | {m['home']} | `{m['where']}` | "
+                         f"{pr} | {v} (miter: {eq}) |")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--count", type=int, default=30, help="mutants per module (all when fewer)")
+    ap.add_argument("--only", help="campaigns, comma-separated (default: all)")
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--eq-depth", type=int, default=8)
+    ap.add_argument("--timeout", type=float, default=120.0, help="per proof, seconds")
+    ap.add_argument("--doc", default=str(DOC))
+    args = ap.parse_args(argv)
+    names = args.only.split(",") if args.only else [c.name for c in CAMPAIGNS]
+    unknown = set(names) - {c.name for c in CAMPAIGNS}
+    if unknown:
+        print(f"run_mutate.py: unknown campaign(s): {', '.join(sorted(unknown))}", file=sys.stderr)
+        return 2
+    def one(c):
+        work = BUILD / c.name
+        if work.exists():
+            subprocess.run(["rm", "-rf", str(work)], check=True)
+        work.mkdir(parents=True)
+        t = time.time()
+        s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout)
+        print(f"{c.name}: {len(s['mutants'])} mutants, {time.time() - t:.0f} s", flush=True)
+        return s
+    try:
+        with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            list(pool.map(one, [c for c in CAMPAIGNS if c.name in names]))
+    except mutlib.MutationError as e:
+        print(f"run_mutate.py: {e}", file=sys.stderr)
+        return 1
+    summaries = [json.loads((BUILD / c.name / "summary.json").read_text())
+                 for c in CAMPAIGNS if (BUILD / c.name / "summary.json").exists()]
+    total = sum(sum(s["seconds"].values()) for s in summaries)
+    write_doc(summaries, total, Path(args.doc))
+    rows = module_rows(summaries)
+    for row in rows:
+        print("  {:14s} {:10s} sampled {:3d}  tests {:3d}  proof {:3d}  equiv {:3d}  "
+              "survived {:3d}  {}".format(row[0], row[1], *row[3:]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
