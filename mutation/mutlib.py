@@ -408,16 +408,31 @@ def run_sby(work: Path, text: str, name: str, timeout: float) -> str:
 
 # ------------------------------------------------------------------------ equivalence
 EQ_TOP = """\
-// Equivalence from reset: reset is held in the first clock; {what}.
+// Equivalence{from_}; {what}.
 module eq_top (
 {ports}
 );
   {module} u_check ({conns});
+{reset}endmodule
+"""
+EQ_RESET = """\
   reg f_first = 1'b1;
   always @(posedge clk_i) f_first <= 1'b0;
   always @(*) if (f_first) assume (!{reset});
-endmodule
 """
+
+
+def not_state(mod: dict) -> list[str]:
+    """The named wires of a write_json module that are neither a port nor a register's
+    output (the netlist's _012_ wires included; mutsel too, meant to differ)."""
+    state = set()
+    for cell in mod["cells"].values():
+        if "Q" in cell["connections"] and ("ff" in cell["type"] or "latch" in cell["type"]):
+            state.update(b for b in cell["connections"]["Q"] if isinstance(b, int))
+    return sorted(n for n, info in mod["netnames"].items()
+                  if n not in mod["ports"] and not info.get("hide_name")
+                  and not set(b for b in info["bits"] if isinstance(b, int)) <= state
+                  or n == MUTSEL)
 
 
 def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
@@ -427,12 +442,12 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
     'unknown' / 'timeout' / 'error'.
 
     Two checks on two copies of the netlist (mutsel a constant in each), memories and
-    registers without reset starting equal (zero). First the strong one: every named
-    signal equal in both (equiv_make -make_assert), by 2-induction; it holds when the
-    mutation changes no named signal, and then its proof is quick. Else the miter of
-    the outputs (miter -equiv) by k-induction to `depth`: a mutation that changes
-    state the outputs never show needs the deeper proof, and a failing base case is a
-    real difference."""
+    registers without reset starting equal (zero). First the strong one: every
+    register and port equal in both (equiv_make -make_assert on those names only), by
+    2-induction; it holds when the mutation never changes the next state, and then
+    its proof is quick. Else the miter of the outputs (miter -equiv) by k-induction
+    to `depth`: a mutation that changes state the outputs never show needs the deeper
+    proof, and a failing base case is a real difference."""
     name = f"eq{mut_id}"
     work = prepare_dir(work)
     shutil.copy2(netlist, work / netlist.name)
@@ -441,23 +456,26 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
             "rename {top} {copy}\ndesign -stash {copy}\n")
     both = (read.format(k=0, top=top, copy="gold") + read.format(k=mut_id, top=top, copy="gate")
             + "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n")
-    (work / "blacklist").write_text(MUTSEL + "\n")   # the one signal meant to differ
-    run_yosys(work, both + "select gold\nwrite_json -selected ports.json\nselect -clear\n"
-              "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
+    run_yosys(work, both + "select gold\nwrite_json -selected ports.json\n", name + "_gold")
+    mod = json.loads((work / "ports.json").read_text())["modules"]["gold"]
+    (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod)))
+    run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
               "hierarchy -top strong\n"
               f"write_rtlil {name}_strong.il\n", name + "_strong")
     run_yosys(work, both + "miter -equiv -flatten -make_assert -ignore_gold_x gold gate miter\n"
               f"hierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
-    mod = json.loads((work / "ports.json").read_text())["modules"]["gold"]
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
-    if not any(n == reset for n, _ in inputs):
-        raise MutationError(f"{netlist}: {top} has no {reset} input for the equivalence check")
+    # a module without a reset (dispatch: no state; sync_ram: memory only) starts from
+    # its zero initial values
+    has_reset = any(n == reset for n, _ in inputs)
     decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
 
     def check(kind: str, module: str, prefix: str, what: str, k: int) -> str:
         conns = ", ".join(f".{prefix}{n}({n})" for n, _ in inputs)
         (work / f"{name}_{kind}_top.sv").write_text(
-            EQ_TOP.format(ports=decl, module=module, conns=conns, reset=reset, what=what))
+            EQ_TOP.format(ports=decl, module=module, conns=conns, what=what,
+                          from_=" from reset: reset is held in the first clock" if has_reset
+                          else "", reset=EQ_RESET.format(reset=reset) if has_reset else ""))
         text = (f"[options]\nmode prove\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
                 f"[script]\nread_rtlil {name}_{kind}.il\nread -formal {name}_{kind}_top.sv\n"
                 f"prep -top eq_top\n\n[files]\n{work / (name + '_' + kind + '.il')}\n"

@@ -39,6 +39,7 @@ async def next_done_and_ctx(dut):
     assert int(dut.next_o.value) == 1 and int(dut.ctx_o.value) == (7 << 16) | FIRST | RLO
     assert int(dut.instr_o.value) == 0x90000000
     assert int(dut.ctl_we_o.value) == 0          # a compare is no timer/counter
+    assert int(dut.done_o.value) == 0            # waiting: no DONE before DONE is written
     dut.done_we_i.value, dut.done_data_i.value = 1, 0b10
     await settle()
     assert (int(dut.done_o.value), int(dut.done_rlo_o.value),
