@@ -154,8 +154,9 @@ def run_yosys(work: Path, script: str, name: str) -> str:
     return (work / f"{name}.log").read_text()
 
 
-def rtl_files(top: str) -> list[str]:
-    """rtl/*.v in a fixed order (Yosys reads every file; prep keeps what top uses)."""
+def rtl_files() -> list[str]:
+    """rtl/*.v in a fixed order (Yosys reads every file; hierarchy keeps what the top
+    uses)."""
     return sorted(f.name for f in RTL.glob("*.v"))
 
 
@@ -169,7 +170,7 @@ def light_elab(top: str) -> str:
 
 def elab_script(top: str, params: dict | None = None) -> str:
     """Read rtl/ as the simulators do (no FORMAL) and elaborate `top` with `params`."""
-    lines = [f"read_verilog -sv {f}" for f in rtl_files(top)]
+    lines = [f"read_verilog -sv {f}" for f in rtl_files()]
     if params:
         sets = " ".join(f"-set {k} {int(v)}" for k, v in sorted(params.items()))
         lines.append(f"chparam {sets} {top}")

@@ -62,6 +62,7 @@ async def counts_cycles_of_each_scan(dut):
         assert int(dut.scan_done_o.value) == 1
         assert int(dut.scan_cycles_o.value) == body + 2
         assert int(dut.scan_count_o.value) == scan + 1
+        assert int(dut.scan_cycles_max_o.value) == body + 2     # each scan longer
     assert flags(dut) == (1, 1)
     await clock(dut, end=True)           # END as the first instruction
     assert int(dut.scan_cycles_o.value) == 1 and int(dut.scan_count_o.value) == 4
@@ -104,6 +105,27 @@ async def watchdog_exactly_at_limit(dut):
     assert int(dut.scan_count_o.value) == 1
     await clock(dut, end=True)           # too late: stays in fault
     assert int(dut.fault_o.value) == 1 and int(dut.scan_count_o.value) == 1
+
+
+@cocotb.test()
+async def watchdog_limit_uses_every_bit(dut):
+    """A limit of 2**k + 4 lets scans of 8 clocks run, for every bit k above the
+    scan's length (make mutate: a limit bit stuck at 0 fired the watchdog early)."""
+    await reset(dut)
+    for k in range(4, 32):
+        dut.rst_ni.value, dut.run_i.value = 0, 0    # reset again, the clock running
+        dut.watchdog_limit_i.value = (1 << k) + 4
+        await clock(dut)
+        dut.rst_ni.value = 1
+        dut.mem_ready_i.value = 1
+        await clock(dut)
+        dut.run_i.value = 1
+        await clock(dut)
+        for _ in range(2):
+            for _ in range(7):
+                await clock(dut)             # latch + 6 clocks
+            await clock(dut, end=True)       # clock 8 is END
+        assert int(dut.fault_o.value) == 0 and int(dut.scan_count_o.value) == 2, k
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)
