@@ -147,3 +147,40 @@ def test_accumulators_reset_after_65536_skipped_scans(tmp_path):
     assert lines[0].endswith(",QW0") and len(lines) == 1 + 65537
     qw0 = {int(r.split(",")[0]): int(r.rsplit(",", 1)[1]) for r in lines[1:3] + lines[-2:]}
     assert qw0 == {0: 7, 1: 7, 65535: 7, 65536: 0}
+
+
+# Every input pin and every output pin (16 bytes each, the default build): one program
+# per input view copies input bit n.m to output Q n.m, so the outputs of scan s are
+# worked out from the pins' patterns P_s by hand: I and PI give P_s, IR gives
+# P_s & ~P_{s-1}, IF gives ~P_s & P_{s-1} (P_{-1} = 0, the pins after reset). The cases
+# above use a few low pins only (make mutate: mutants of single high pin bits in the
+# input unit, the bit processor and the output unit survived them).
+PINS = 128
+PATTERNS = [0, (1 << PINS) - 1, 0, int("55" * 16, 16), int("AA" * 16, 16),
+            0x0123456789ABCDEFFEDCBA9876543210, 0]
+
+
+def _pins_expected(view: str) -> list[int]:
+    prev, out = 0, []
+    for p in PATTERNS:
+        out.append({"I": p, "PI": p, "IR": p & ~prev, "IF": ~p & prev & ((1 << PINS) - 1)}[view])
+        prev = p
+    return out
+
+
+@pytest.mark.parametrize("view", ["I", "PI", "IR", "IF"])
+def test_every_pin_harness(view, tmp_path):
+    names = [f"{n}.{m}" for n in range(PINS // 8) for m in range(8)]
+    il = tmp_path / f"pins_{view}.il"
+    il.write_text("".join(f"LD {view}{b}\n= Q{b}\n" for b in names))
+    stim = tmp_path / "pins.csv"
+    stim.write_text("scan," + ",".join(f"I{b}" for b in names) + "\n" + "".join(
+        f"{s}," + ",".join(str(p >> i & 1) for i in range(PINS)) + "\n"
+        for s, p in enumerate(PATTERNS)))
+    trace = tmp_path / "trace.csv"
+    assert cli.main(["run", str(il), "--scans", str(len(PATTERNS)), "--stimulus", str(stim),
+                     "--trace", str(trace)]) == 0
+    header, *rows = [line.split(",") for line in trace.read_text().splitlines()]
+    q_at = {h: i for i, h in enumerate(header) if h.startswith("Q")}
+    got = [sum(int(r[q_at[f"Q{b}"]]) << i for i, b in enumerate(names)) for r in rows]
+    assert got == _pins_expected(view), view
