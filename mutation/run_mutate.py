@@ -171,8 +171,10 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
     cands = {}
     for f in sorted(home_dir(work).glob("all.*.list")):
         cands[f.name.split(".")[1]] = sum(1 for line in f.read_text().splitlines() if line.strip())
+    head = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT,
+                          capture_output=True, text=True).stdout.strip()
     summary = {
-        "campaign": c.name, "tests": c.tests, "keyword": c.keyword, "modules": c.modules,
+        "campaign": c.name, "commit": head, "tests": c.tests, "keyword": c.keyword, "modules": c.modules,
         "seed": seed, "count": count, "env": c.env, "candidates": cands,
         "elaborations": res["elaborations"], "baseline": res["baseline"],
         "baseline_failed": base_bad,
@@ -245,7 +247,9 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
         kw = f" (`-k {s['keyword']}`)" if s["keyword"] else ""
         env = "".join(f", {k}={v}" for k, v in s["env"].items())
         sec = s["seconds"]
-        lines.append(f"- **{s['campaign']}**: seed {s['seed']}, {s['count']} per module{env}; "
+        at = f" (at {s['commit']})" if s.get("commit") else ""
+        lines.append(f"- **{s['campaign']}**{at}: seed {s['seed']}, "
+                     f"{s['count']} per module{env}; "
                      f"tests {tests}{kw}; {sec['tests']} s tests, {sec['proofs']} s proofs, "
                      f"{sec['equivalence']} s equivalence.")
         for e in s["elaborations"]:
@@ -280,8 +284,12 @@ def main(argv=None) -> int:
     ap.add_argument("--eq-depth", type=int, default=8)
     ap.add_argument("--timeout", type=float, default=120.0, help="per proof, seconds")
     ap.add_argument("--doc", default=str(DOC))
+    ap.add_argument("--doc-only", action="store_true",
+                    help="rewrite the doc from the campaigns' last summaries, run nothing")
     args = ap.parse_args(argv)
     names = args.only.split(",") if args.only else [c.name for c in CAMPAIGNS]
+    if args.doc_only:
+        names = []
     unknown = set(names) - {c.name for c in CAMPAIGNS}
     if unknown:
         print(f"run_mutate.py: unknown campaign(s): {', '.join(sorted(unknown))}", file=sys.stderr)

@@ -128,6 +128,25 @@ async def watchdog_limit_uses_every_bit(dut):
         assert int(dut.fault_o.value) == 0 and int(dut.scan_count_o.value) == 2, k
 
 
+@cocotb.test()
+async def longest_scan_compares_every_bit(dut):
+    """Scans of 2**k + 1 clocks, each followed by one of 40: the longest stays the
+    long one, for k up to 12 (make mutate: a compare ignoring bit 11 of the longest
+    scan took the 40 for longer)."""
+    await reset(dut, limit=1 << 20)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+    for k in range(6, 13):
+        for length in ((1 << k) + 1, 40):
+            for _ in range(length - 1):
+                await clock(dut)
+            await clock(dut, end=True)
+            assert int(dut.scan_cycles_o.value) == length
+            assert int(dut.scan_cycles_max_o.value) == (1 << k) + 1, (k, length)
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_scan_ctrl(sim):
     run_cocotb(sim, "scan_ctrl", "test_scan_ctrl")
