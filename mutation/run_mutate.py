@@ -143,9 +143,12 @@ def home_candidates(work: Path) -> list:
 
 
 def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
-              timeout: float) -> dict:
+              timeout: float, reuse: bool = False) -> dict:
     t0 = time.time()
-    res = run_tests(c, seed, count, work)
+    if reuse:   # the tests' results of an interrupted run (their time is not known)
+        res = json.loads((work / "results.json").read_text())
+    else:
+        res = run_tests(c, seed, count, work)
     t_tests = time.time() - t0
     muts = [mutlib.Mutation.from_json(d) for d in res["mutations"]]
     base_bad = {n: o for n, o in res["baseline"].items() if o[0] != "pass"}
@@ -183,6 +186,7 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
                          equivalence=equiv.get(m.id)) for m in muts],
         "seconds": {"tests": round(t_tests, 1), "proofs": round(t_proofs, 1),
                     "equivalence": round(t_eq, 1)},
+        "tests_reused": reuse,
     }
     (work / "summary.json").write_text(json.dumps(summary, indent=1))
     return summary
@@ -241,8 +245,13 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
     ]
     for row in module_rows(summaries):
         lines.append("| " + " | ".join(str(x) for x in row) + " |")
+    missing = [c for c in CAMPAIGNS if c.name not in {s["campaign"] for s in summaries}]
     lines += ["", "Kill rate: killed / (sampled - equivalent). Candidates: every mutation "
-              "`mutate` can make in the module's elaboration.", "", "## Campaigns", ""]
+              "`mutate` can make in the module's elaboration."]
+    if missing:
+        lines += ["", "Not in these results (campaign not run yet): " + "; ".join(
+            f"{c.name} ({', '.join(c.modules)})" for c in missing) + "."]
+    lines += ["", "## Campaigns", ""]
     for s in summaries:
         tests = ", ".join(f"`{t}`" for t in s["tests"])
         kw = f" (`-k {s['keyword']}`)" if s["keyword"] else ""
@@ -251,8 +260,10 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
         at = f" (at {s['commit']})" if s.get("commit") else ""
         lines.append(f"- **{s['campaign']}**{at}: seed {s['seed']}, "
                      f"{s['count']} per module{env}; "
-                     f"tests {tests}{kw}; {sec['tests']} s tests, {sec['proofs']} s proofs, "
-                     f"{sec['equivalence']} s equivalence.")
+                     f"tests {tests}{kw}; "
+                     + ("tests' results kept from an interrupted run (time not recorded), "
+                        if s.get("tests_reused") else f"{sec['tests']} s tests, ")
+                     + f"{sec['proofs']} s proofs, {sec['equivalence']} s equivalence.")
         for e in s["elaborations"]:
             p = ", ".join(f"{k}={v}" for k, v in e["params"].items()) or "defaults"
             hb = f"; harness build {e['harness_build_s']} s" if "harness_build_s" in e else ""
@@ -290,6 +301,9 @@ def main(argv=None) -> int:
     ap.add_argument("--eq-depth", type=int, default=8)
     ap.add_argument("--timeout", type=float, default=120.0, help="per proof, seconds")
     ap.add_argument("--doc", default=str(DOC))
+    ap.add_argument("--reuse-tests", action="store_true",
+                    help="keep a campaign's test results (build/mutation/<c>/results.json) "
+                         "and redo only its proofs and equivalence checks")
     ap.add_argument("--doc-only", action="store_true",
                     help="rewrite the doc from the campaigns' last summaries, run nothing")
     args = ap.parse_args(argv)
@@ -302,11 +316,12 @@ def main(argv=None) -> int:
         return 2
     def one(c):
         work = BUILD / c.name
-        if work.exists():
+        reuse = args.reuse_tests and (work / "results.json").exists()
+        if work.exists() and not reuse:
             subprocess.run(["rm", "-rf", str(work)], check=True)
-        work.mkdir(parents=True)
+        work.mkdir(parents=True, exist_ok=True)
         t = time.time()
-        s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout)
+        s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout, reuse)
         print(f"{c.name}: {len(s['mutants'])} mutants, {time.time() - t:.0f} s", flush=True)
         return s
     try:
