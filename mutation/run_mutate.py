@@ -186,7 +186,7 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
                          equivalence=equiv.get(m.id)) for m in muts],
         "seconds": {"tests": round(t_tests, 1), "proofs": round(t_proofs, 1),
                     "equivalence": round(t_eq, 1)},
-        "tests_reused": reuse,
+        "tests_reused": reuse, "check_timeout": timeout, "eq_depth": eq_depth,
     }
     (work / "summary.json").write_text(json.dumps(summary, indent=1))
     return summary
@@ -251,6 +251,10 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
     if missing:
         lines += ["", "Not in these results (campaign not run yet): " + "; ".join(
             f"{c.name} ({', '.join(c.modules)})" for c in missing) + "."]
+    homeless = sorted({p.stem for p in mutlib.RTL.glob("*.v")}
+                      - {m for c in CAMPAIGNS for m in c.modules})
+    if homeless:
+        lines += ["", "Modules in no campaign yet: " + ", ".join(homeless) + "."]
     lines += ["", "## Campaigns", ""]
     for s in summaries:
         tests = ", ".join(f"`{t}`" for t in s["tests"])
@@ -263,7 +267,10 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
                      f"tests {tests}{kw}; "
                      + ("tests' results kept from an interrupted run (time not recorded), "
                         if s.get("tests_reused") else f"{sec['tests']} s tests, ")
-                     + f"{sec['proofs']} s proofs, {sec['equivalence']} s equivalence.")
+                     + f"{sec['proofs']} s proofs, {sec['equivalence']} s equivalence"
+                     + (f" (each proof and check stopped after {s['check_timeout']:.0f} s, "
+                        f"k-induction depth {s['eq_depth']})" if "check_timeout" in s else "")
+                     + ".")
         for e in s["elaborations"]:
             p = ", ".join(f"{k}={v}" for k, v in e["params"].items()) or "defaults"
             hb = f"; harness build {e['harness_build_s']} s" if "harness_build_s" in e else ""
