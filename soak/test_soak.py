@@ -49,7 +49,7 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.run.prepare import prepare_run
 from bitbyte.sim.cocotb_runner import records_from_rows, run_jobs
 from coverage_count import Coverage
-from randprog import (long_timers, random_mixed_program, random_mixed_stimulus,
+from randprog import (FULL_WATCH, long_timers, random_mixed_program, random_mixed_stimulus,
                       random_mixed_watch, random_parallel_program, random_program,
                       random_scan_stimulus, random_stimulus, random_watch)
 
@@ -62,11 +62,8 @@ SCANS = 12
 PAR_SCANS = 10
 PAR_WATCHDOG = 50_000
 EXCHANGES = ("handshake", "queue")
-# Parallel mode is compared on everything the generators write: every word, timer and
-# counter they use, every marker byte they touch (randprog._bit), the output words.
-PARALLEL_WATCH = ([f"MW{n}" for n in range(8)] + [f"QW{n}" for n in range(4)] +
-                  [f"T{n}" for n in range(8)] + [f"C{n}" for n in range(8)] +
-                  [f"M{b}.{n}" for b in (0, 1, 2, 3, 255) for n in range(8)])
+# Parallel mode is compared on everything the generators write (randprog.FULL_WATCH).
+PARALLEL_WATCH = FULL_WATCH
 
 
 class Family:

@@ -253,6 +253,13 @@ def random_mixed_stimulus(seed: int, scans: int, us_per_scan: float) -> str:
     return "\n".join(rows) + "\n"
 
 
+# Everything the generators write: every word, timer and counter they use, every marker
+# byte they touch (_bit), the output words; for comparisons across modes.
+FULL_WATCH = ([f"MW{n}" for n in range(8)] + [f"QW{n}" for n in range(4)] +
+              [f"T{n}" for n in range(8)] + [f"C{n}" for n in range(8)] +
+              [f"M{b}.{n}" for b in (0, 1, 2, 3, 255) for n in range(8)])
+
+
 def random_mixed_watch(seed: int) -> list[str]:
     rng = random.Random(seed ^ 0xAB)
     pick = [f"MW{n}" for n in range(8)] + [f"T{n}" for n in range(8)] + \

@@ -20,8 +20,8 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.sim.cocotb_runner import run_jobs
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows
-from randprog import (long_timers, make_cases, plant_stimulus, random_mixed_program,
-                      random_mixed_watch, random_parallel_program, random_scan_stimulus,
+from randprog import (FULL_WATCH, long_timers, make_cases, plant_stimulus, random_mixed_program,
+                      random_parallel_program, random_scan_stimulus,
                       strip_timers)
 
 PROGRAMS = int(os.environ.get("BITBYTE_PARALLEL_PROGRAMS", "100"))
@@ -44,7 +44,7 @@ class Case:
         self.stim = tmp / f"par{self.seed}.csv"
         self.il.write_text(long_timers(maker(self.seed), random.Random(self.seed)))
         self.stim.write_text(random_scan_stimulus(self.seed, SCANS))
-        self.watch = ",".join(random_mixed_watch(self.seed))
+        self.watch = ",".join(FULL_WATCH)    # everything the generators write
         kw = dict(stimulus=str(self.stim), watch=self.watch, scans=SCANS, watchdog=WATCHDOG)
         self.program, self.columns, _, _ = prepare_run(str(self.il), **kw)
         self.jobs = {ex: prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
