@@ -13,6 +13,8 @@ import json
 import sys
 from pathlib import Path
 
+from bitbyte.lang.definition import DEF
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 DOCS = ROOT / "docs"
@@ -42,7 +44,6 @@ def free_note(fr: dict | None) -> str:
     if not fr:
         return ""
     scan = f"mean {fr['byte_scan']:.0f} clocks" if fr.get("byte_scan") else "mean –"
-    from bitbyte.lang.definition import DEF
     if fr["losses"] is None:
         losses = ("none (marker exchange)" if fr.get("exchange") == "marker"
                   else "not stated")
