@@ -12,8 +12,11 @@ line mistakes) and a non-zero exit status, never a traceback:
 from __future__ import annotations
 
 import argparse
+import importlib.metadata
 import json
 import sys
+import textwrap
+import tomllib
 from fractions import Fraction
 from pathlib import Path
 
@@ -36,44 +39,165 @@ EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
 EXIT_NO_FIT = 5
 
 
-def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="bitbyte", description="bit-byte PLC CPU toolchain")
-    sub = p.add_subparsers(dest="command", required=True)
+def version() -> str:
+    """The package version, written once in pyproject.toml (installed metadata, or the
+    file itself when run from a source tree that is not installed)."""
+    try:
+        return importlib.metadata.version("bitbyte")
+    except importlib.metadata.PackageNotFoundError:
+        pyproject = Path(__file__).resolve().parents[1] / "pyproject.toml"
+        return tomllib.loads(pyproject.read_text())["project"]["version"]
 
-    a = sub.add_parser("asm", help="assemble PROG.il: image (.hex), listing (.lst), .json")
-    a.add_argument("program")
-    a.add_argument("--mode", choices=["serial", "parallel"], default="serial")
-    a.add_argument("-o", "--outdir", default=None)
+
+_FORMAT = argparse.RawDescriptionHelpFormatter   # the examples keep their lines
+
+
+def _para(text: str) -> str:
+    """A description paragraph, wrapped as argparse would (the raw formatter does not)."""
+    return textwrap.fill(text, 79)
+
+_ASM_EXAMPLES = """\
+examples:
+  bitbyte asm examples/star_delta.il -o build/star_delta
+      the image (.hex), the listing (.lst) and the program model (.json)
+  bitbyte asm examples/fig5.il --mode parallel -o build/fig5
+      the bit part and the byte part (the partitioning compiler's report beside them)
+"""
+
+_RUN_EXAMPLES = """\
+examples:
+  bitbyte run examples/star_delta.il --stimulus examples/star_delta.stim.csv \\
+      --clock-mhz 1 --until-us 260000 --watch Run,SpeedOK --trace star.csv
+      serial mode on Verilator: one trace row per scan, the summary on stdout
+  bitbyte run examples/fig5.il --mode parallel --scans 20 --sim icarus
+      the paper's Fig. 5 program split over the bit and byte processors, on Icarus
+  bitbyte run examples/star_delta.il --scans 50 --waves sim/waves/star.fst
+      also writes star.gtkw: open it with `gtkwave sim/waves/star.fst sim/waves/star.gtkw`
+  bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000
+      a multi-core plant (spec section 7): every core's trace and summary
+
+exit status: 0 done, 1 bad program or stimulus (file:line:col: message), 2 usage,
+3 scan watchdog (completed scans still traced), 4 simulator failure
+"""
+
+_ALLOC_EXAMPLES = """\
+examples:
+  bitbyte alloc examples/alloc/tasks.csv --cores 4 --json alloc.json
+      pack the periodic tasks of tasks.csv onto at most 4 cores, the table on stdout
+  bitbyte alloc --generate becker2015 --networks 200 --seed 1
+      seed 002's synthetic workload on its 16 cores
+  bitbyte alloc examples/alloc/tasks.csv --cores 4 --emit plant.toml
+      also write a plant file (spec section 7) when every task is placed
+
+exit status: 0 placed, 1 a task fits no core (its line named; --json still written),
+2 usage, 5 the tasks do not fit the cores (the reason on stderr)
+"""
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="bitbyte", formatter_class=_FORMAT,
+        description=_para("Toolchain of the bit-byte PLC CPU: assemble instruction-list "
+                          "(IL) or S7 statement-list programs, simulate them on the RTL "
+                          "(Verilator or Icarus), check multi-core plants and allocate "
+                          "tasks to cores."),
+        epilog=_para("`bitbyte COMMAND --help` explains a command and shows examples; "
+                     "docs/toolchain.md describes them all."))
+    p.add_argument("--version", action="version", version=f"%(prog)s {version()}",
+                   help="print the toolchain's version and exit")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                           title="commands")
+
+    a = sub.add_parser("asm", formatter_class=_FORMAT, epilog=_ASM_EXAMPLES,
+                       help="assemble a program: image (.hex), listing (.lst), .json",
+                       description=_para("Assemble PROG.il (or PROG.awl) into the program "
+                                   "memory image, a listing and the program model; in "
+                                   "parallel mode also the bit and byte parts."))
+    a.add_argument("program", metavar="PROG.il",
+                   help="the source: IL (spec section 3) or S7 STL (.awl, section 9)")
+    a.add_argument("--mode", choices=["serial", "parallel"], default="serial",
+                   help="serial: one image, byte instructions dispatched from the bit "
+                        "processor; parallel: partition into a bit part and a byte part "
+                        "(the paper's Fig. 12/13) (default serial)")
+    a.add_argument("-o", "--outdir", default=None, metavar="OUTDIR",
+                   help="where the files go (default: beside the source)")
     _source_options(a)
 
-    r = sub.add_parser("run", help="assemble and simulate PROG.il, write a trace")
-    r.add_argument("program")
-    r.add_argument("--mode", choices=["serial", "parallel", "free"], default="serial")
-    r.add_argument("--exchange", choices=DEF.exchanges)
-    r.add_argument("--stimulus")
+    r = sub.add_parser("run", formatter_class=_FORMAT, epilog=_RUN_EXAMPLES,
+                       help="assemble and simulate a program (or a plant), write a trace",
+                       description=_para("Assemble PROG.il and run it on the simulated CPU: "
+                                   "the bit processor's RTL and the byte processor's "
+                                   "firmware model. Prints a summary (scans, scan time, "
+                                   "stalls, exchange and response-time figures); --trace "
+                                   "writes one row per scan (spec section 4). PROG may "
+                                   "also be a plant file PLANT.toml (section 7)."))
+    r.add_argument("program", metavar="PROG.il",
+                   help="the source (IL or .awl), or a plant file PLANT.toml")
+    r.add_argument("--mode", choices=["serial", "parallel", "free"], default="serial",
+                   help="serial: the byte processor waits for its dispatched "
+                        "instructions; parallel: both processors run their part of each "
+                        "scan at once; free: each side scans at its own pace "
+                        "(spec section 2; default serial)")
+    r.add_argument("--exchange", choices=DEF.exchanges,
+                   help="how conditions cross between the processors in parallel/free "
+                        "mode: handshake (one-slot channels, the writer waits), queue "
+                        "(FIFOs), queue-free (FIFOs, losses counted instead of waits), "
+                        "marker (Fig. 17's marker area). Default: handshake in parallel "
+                        "mode, marker in free mode; serial mode ignores it")
+    r.add_argument("--stimulus", metavar="STIM.csv",
+                   help="input pins over time: first column scan or t_us, then one "
+                        "column per input (I0.0, IW3 or a symbol); unnamed inputs are 0")
     stop = r.add_mutually_exclusive_group()
-    stop.add_argument("--scans", type=int)
-    stop.add_argument("--until-us", type=str)
-    r.add_argument("--watchdog", type=int, default=100_000)
-    r.add_argument("--trace")
-    r.add_argument("--watch", default="")
-    r.add_argument("--waves")
-    r.add_argument("--sim", choices=["verilator", "icarus"], default="verilator")
-    r.add_argument("--clock-mhz", type=str, default="100")
-    r.add_argument("--channels", type=int, default=None,
+    stop.add_argument("--scans", type=int, metavar="N",
+                      help="stop after N complete scans")
+    stop.add_argument("--until-us", type=str, metavar="T",
+                      help="stop after the first scan that ends at or after T "
+                           "microseconds of simulated time")
+    r.add_argument("--watchdog", type=int, default=100_000, metavar="N",
+                   help="a scan longer than N clocks is a fault: outputs go to 0, the "
+                        "run stops with exit status 3 (default 100000)")
+    r.add_argument("--trace", metavar="TRACE.csv",
+                   help="write the trace: scan, t_us, cycles, every written Q bit and "
+                        "QW, then the --watch operands; one row per scan")
+    r.add_argument("--watch", default="", metavar="OP,...",
+                   help="extra trace columns: addresses (MW0, M0.0, T1, C2, IW0) or "
+                        "declared symbols, comma-separated, named as typed")
+    r.add_argument("--waves", metavar="FILE.fst",
+                   help="write a waveform (FST, or VCD by the suffix) of the whole "
+                        "run, with a GTKWave layout beside it (Verilator only)")
+    r.add_argument("--sim", choices=["verilator", "icarus"], default="verilator",
+                   help="simulator: the Verilator C++ harness (fast) or cocotb on "
+                        "Icarus; both give identical traces (default verilator)")
+    r.add_argument("--clock-mhz", type=str, default="100", metavar="F",
+                   help="the bit processor's clock in MHz, an exact decimal; sets "
+                        "t_us and the timers' time base (default 100)")
+    r.add_argument("--channels", type=int, default=None, metavar="K",
                    help="parallel/free mode: exchange channels per direction the "
                         "partitioning compiler uses (1..4, default 4; Fig. 14/15 tasks)")
-    r.add_argument("--costs", default="paper",
-                   help="byte processor cost table: paper (default) or c320")
+    r.add_argument("--costs", default="paper", metavar="TABLE",
+                   help="byte processor cost table, in bit-processor clocks per "
+                        "instruction: paper (S7-315-2DP weights, default) or c320")
     _source_options(r)
 
-    k = sub.add_parser("link", help="check a multi-core plant (PLANT.toml) and print its "
-                                    "shared-memory map and copy plan")
-    k.add_argument("plant")
+    k = sub.add_parser("link", formatter_class=_FORMAT,
+                       help="check a multi-core plant (PLANT.toml) and print its "
+                            "shared-memory map and copy plan",
+                       description=_para("Read a plant file (spec section 7), check "
+                                         "its projects and shared variables, and print "
+                                         "where each shared variable lives and what each "
+                                         "core copies."),
+                       epilog="example:\n  bitbyte link examples/plant_6_1/plant_sim.toml\n")
+    k.add_argument("plant", metavar="PLANT.toml", help="the plant file")
 
-    al = sub.add_parser("alloc", help="allocate periodic tasks (TASKS.csv) to cores "
-                                      "(spec section 8, seed 002)")
-    al.add_argument("tasks", nargs="?")
+    al = sub.add_parser("alloc", formatter_class=_FORMAT, epilog=_ALLOC_EXAMPLES,
+                        help="allocate periodic tasks (TASKS.csv) to cores "
+                             "(spec section 8, seed 002)",
+                        description=_para("Allocate periodic tasks to cores so that each "
+                                    "core's utilisation, memory and communication fit "
+                                    "(spec section 8, after seed 002)."))
+    al.add_argument("tasks", nargs="?", metavar="TASKS.csv",
+                    help="one task per row: name, period, WCET or program, memory, "
+                         "communication (spec section 8)")
     al.add_argument("--generate", choices=["becker2015"],
                     help="instead of TASKS.csv: seed 002's synthetic workload (Table I)")
     al.add_argument("--networks", type=int, help="--generate: number of networks")
@@ -84,13 +208,18 @@ def _parser() -> argparse.ArgumentParser:
     al.add_argument("--mem", type=int, default=4096, help="bytes per core (4096)")
     al.add_argument("--alpha", default="0.001145", help="read time, ms per byte")
     al.add_argument("--beta", default="0.001145", help="write time, ms per byte")
-    al.add_argument("--algorithm", choices=["ffd", "best"], default="best")
+    al.add_argument("--algorithm", choices=["ffd", "best"], default="best",
+                    help="ffd: first-fit decreasing; best: the best of several "
+                         "orderings and fits (default best)")
     al.add_argument("--clock-mhz", type=str, default="100",
                     help="clock for WCETs from programs and for --emit (100)")
     al.add_argument("--mode", choices=["serial", "parallel"], default="serial",
                     help="WCET of a program: serial or parallel scan (serial)")
-    al.add_argument("--json", metavar="OUT.json")
-    al.add_argument("--emit", metavar="PLANT.toml")
+    al.add_argument("--json", metavar="OUT.json",
+                    help="write the allocation as JSON (also when it does not fit)")
+    al.add_argument("--emit", metavar="PLANT.toml",
+                    help="write a plant file for the allocation (only when every task "
+                         "is placed)")
     return p
 
 
@@ -212,7 +341,7 @@ def cmd_run(args) -> int:
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, str(GTKW)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
-                       response_times(prep, records)), end="")
+                       response_times(prep, records), watchdog=args.watchdog), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

@@ -191,8 +191,8 @@ def test_one_summary_for_every_simulator(tmp_path, mode, exchange, extra, stop):
     printed by one printer: the exchange statistics of the mode, the byte flags."""
     args = ["--mode", mode] + (["--exchange", exchange] if exchange else [])
     summary, trace = _summaries(tmp_path, SUMMARY_PROGRAM, *args, stop=stop)
-    assert list(summary) == ["scans", "cycles/scan", "scan time [us]", "stalls", *extra,
-                             "byte flags", "simulated"]
+    assert list(summary) == ["scans", "cycles/scan", "scan time [us]", "scan histogram",
+                             "watchdog", "stalls", *extra, "byte flags", "simulated"]
     assert summary["byte flags"] == "ARITH (/I or MOD by 0)"
     assert summary["scans"] == str(len(trace) - 1)
     if mode == "free":

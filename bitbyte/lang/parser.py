@@ -68,6 +68,7 @@ from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import GlobalVar, Instr, Operand, Program
+from bitbyte.lang.suggest import did_you_mean
 
 # --------------------------------------------------------------------------------------
 # Vocabulary
@@ -337,6 +338,7 @@ class Parser:
         self.instrs: list[Instr] = []
         self.symbols: dict[str, Operand] = {}
         self.symbol_defs: dict[str, _Name] = {}
+        self.names: dict[str, list[str]] = {"symbol": [], "label": []}  # as spelled, for hints
         self.labels: dict[str, int] = {}
         self.label_defs: dict[str, _Name] = {}
         self.pending_labels: list[str] = []
@@ -461,7 +463,8 @@ class Parser:
     def unknown_label_error(self) -> SourceError | None:
         for instr, tok in self.jumps:
             if instr.operand.label not in self.label_defs:   # incl. ones before EOF
-                return self.error(tok, f"unknown label `{tok.text}`")
+                return self.error(tok, f"unknown label `{tok.text}`"
+                                       + did_you_mean(tok.text, self.names["label"]))
         return None
 
     def unclosed_error(self) -> SourceError | None:
@@ -603,6 +606,7 @@ class Parser:
         key = name.upper()
         self.symbols[key] = operand
         self.symbol_defs[key] = _Name(tok.line, tok.col)
+        self.names["symbol"].append(name)
 
     # -- statements -----------------------------------------------------------------
 
@@ -638,6 +642,7 @@ class Parser:
                                   "a mnemonic or an address")
         self.check_new_name("label", tok.text, tok)
         self.label_defs[tok.text.upper()] = _Name(tok.line, tok.col)
+        self.names["label"].append(tok.text)
         self.pending_labels.append(tok.text)
 
     def end_statement(self, instr: Instr) -> None:
@@ -679,7 +684,8 @@ class Parser:
             self.next()
             return combined
         if word not in MNEMONICS:
-            raise self.error(tok, f"unknown mnemonic `{tok.text}`")
+            raise self.error(tok, f"unknown mnemonic `{tok.text}`"
+                                  + did_you_mean(tok.text, MNEMONICS))
         return word
 
     # -- operands -------------------------------------------------------------------
@@ -737,7 +743,8 @@ class Parser:
     def lookup_symbol(self, tok: Token) -> Operand:
         operand = self.symbols.get(tok.text.upper())
         if operand is None:
-            raise self.error(tok, f"undeclared symbol `{tok.text}`")
+            raise self.error(tok, f"undeclared symbol `{tok.text}`"
+                                  + did_you_mean(tok.text, self.names["symbol"]))
         return replace(operand, text=self.src.text[tok.start:tok.end])
 
     # -- addresses ------------------------------------------------------------------

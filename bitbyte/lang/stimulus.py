@@ -26,6 +26,7 @@ from bitbyte.lang.program import Operand
 from bitbyte.lang.trace import mhz, operand_fits, resolve_operand
 
 from bitbyte.lang.errors import SourceError, read_utf8
+from bitbyte.lang.suggest import did_you_mean
 
 KINDS = ("scan", "t_us")
 
@@ -214,7 +215,8 @@ class _Reader:
             self.fail(cell, "empty column name")
         op = resolve_operand(cell.text, self.symbols)
         if op is None:
-            self.fail(cell, f"unknown operand '{cell.text}'")
+            self.fail(cell, f"unknown operand '{cell.text}'"
+                      + did_you_mean(cell.text, self.symbols))
         if op.kind == "bit" and op.area in ("I", "PI"):
             op = Operand("bit", "I", byte=op.byte, bit=op.bit, text=cell.text)
         elif not (op.kind == "index" and op.area == "IW"):

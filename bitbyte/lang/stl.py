@@ -33,6 +33,7 @@ from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Instr, Operand, Program
 from bitbyte.lang.s7symbols import Symbol, read_symbol_table
+from bitbyte.lang.suggest import did_you_mean
 
 # --------------------------------------------------------------------------------------
 # Vocabulary: mnemonic as written -> {language: canonical (English S7) mnemonic}
@@ -266,7 +267,9 @@ class StlFrontEnd:
                 where = (f"not in the symbol table {self.symbol_path}" if
                          self.symbol_path else "no symbol table: --symbols FILE")
                 raise self.error(stmt.line, word.col,
-                                 f"undeclared symbol `{word.text}` ({where})")
+                                 f"undeclared symbol `{word.text}` ({where})"
+                                 + did_you_mean(name, [s.name for s in
+                                                       self.symbol_table.values()]))
             address = self.symbol_address(sym)
             if address is None:
                 raise self.unsupported(stmt, f"symbol `{word.text}` is `{sym.address}` "
@@ -549,7 +552,8 @@ class StlFrontEnd:
         langs = MNEMONIC_TABLE.get(word)
         if langs is None:
             raise self.error(stmt.line, stmt.mnemonic.col,
-                             f"unknown mnemonic `{stmt.mnemonic.text}`")
+                             f"unknown mnemonic `{stmt.mnemonic.text}`"
+                             + did_you_mean(word, MNEMONIC_TABLE))
         stmt.canon = langs[self.lang]
 
     # -- operands ------------------------------------------------------------------

@@ -19,6 +19,7 @@ from typing import Iterable
 
 from bitbyte.lang.config import Config
 from bitbyte.lang.program import BIT_AREAS, INDEXED_BIT_AREAS, WORD_AREAS, Operand, Program
+from bitbyte.lang.suggest import did_you_mean
 
 FIXED_HEADER = ("scan", "t_us", "cycles")
 
@@ -152,7 +153,8 @@ def _watch_column(text: str, symbols: dict[str, Operand], config: Config | None)
     header = text.strip()
     op = resolve_operand(header, symbols)
     if op is None or op.kind not in ("bit", "index"):
-        raise ValueError(f"'{header}' is neither an address nor a bit/word symbol")
+        raise ValueError(f"'{header}' is neither an address nor a bit/word symbol"
+                         + (did_you_mean(header, symbols) if op is None else ""))
     if config is not None and not operand_fits(op, config):
         raise ValueError(f"'{header}': operand out of range")
     return Column(header, op)

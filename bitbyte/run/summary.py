@@ -38,9 +38,10 @@ def _label(name: str) -> str:
 
 def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats,
                  trace_path: str | None = None, waves: tuple[str, str] | None = None,
-                 response: Responses | None = None) -> str:
+                 response: Responses | None = None, watchdog: int | None = None) -> str:
     """waves: (the wave file, the GTKWave layout); response: bitbyte.run.response's
-    figures, printed when an input changed."""
+    figures, printed when an input changed; watchdog: the limit in clocks (its margin
+    against the longest scan is printed)."""
     mhz = format_decimal(clock_mhz)
     lines = [_label("scans") + str(len(records))]
     if records:
@@ -51,6 +52,9 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
         us = [format_t_us(c, clock_mhz) for c in (lo, hi)]
         lines.append(_label("scan time [us]") + f"min {us[0]}  mean "
                      f"{format_decimal(mean / clock_mhz)}  max {us[1]}  (clock {mhz} MHz)")
+        lines.append(_label("scan histogram") + histogram(cycles))
+        if watchdog is not None:
+            lines.append(_label("watchdog") + watchdog_margin(hi, watchdog))
     else:
         lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
     lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")
@@ -78,6 +82,35 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
     if waves:
         lines.append(_label("waves") + f"{waves[0]}   (gtkwave {waves[0]} {waves[1]})")
     return "\n".join(lines) + "\n"
+
+
+HISTOGRAM_BINS = 8
+
+
+def histogram(cycles: list[int]) -> str:
+    """Scans per scan length in clocks: one bin per value when there are at most
+    HISTOGRAM_BINS distinct lengths, else HISTOGRAM_BINS bins of equal integer width
+    from the shortest scan (`lo-hi count`, empty bins left out)."""
+    values = sorted(set(cycles))
+    if len(values) <= HISTOGRAM_BINS:
+        bins = [(v, v, cycles.count(v)) for v in values]
+    else:
+        lo, hi = values[0], values[-1]
+        width = -(-(hi - lo + 1) // HISTOGRAM_BINS)
+        counts = [0] * HISTOGRAM_BINS
+        for c in cycles:
+            counts[(c - lo) // width] += 1
+        bins = [(lo + i * width, min(hi, lo + (i + 1) * width - 1), n)
+                for i, n in enumerate(counts) if n]
+    return "[clk] " + " | ".join((f"{a}" if a == b else f"{a}-{b}") + f": {n}"
+                                 for a, b, n in bins)
+
+
+def watchdog_margin(longest: int, limit: int) -> str:
+    """How far the longest scan stayed below the scan watchdog (spec §4)."""
+    margin = limit - longest
+    return (f"limit {limit} clocks, longest scan {longest}: margin {margin} clocks "
+            f"({format_decimal(Fraction(100 * margin, limit), 1)} %)")
 
 
 def _response_lines(response: Responses, clock_mhz: Fraction) -> list[str]:
