@@ -33,7 +33,8 @@ from bitbyte.run.prepare import parse_clock_mhz, prepare
 from bitbyte.run.response import response_times
 from bitbyte.run.summary import summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
-from bitbyte.sim.verilator import GTKW, run_harness
+from bitbyte.sim.gtkw import WaveLayoutError, write_gtkw
+from bitbyte.sim.verilator import run_harness
 
 EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
 EXIT_NO_FIT = 5
@@ -339,7 +340,7 @@ def cmd_run(args) -> int:
         if args.waves:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
-    waves = (args.waves, str(GTKW)) if args.waves else None
+    waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
                        response_times(prep, records), watchdog=args.watchdog), end="")
     if fault:
@@ -347,6 +348,18 @@ def cmd_run(args) -> int:
               "outputs forced to 0", file=sys.stderr)
         return EXIT_WATCHDOG
     return 0
+
+
+def _wave_layout(args, prep, records, stats) -> str:
+    """W.gtkw beside the waves W.fst: the layout in the program's names (spec §4)."""
+    gtkw = str(Path(args.waves).with_suffix(".gtkw"))
+    try:
+        write_gtkw(gtkw, args.waves, prep.program, prep.listing,
+                   serial=args.mode == "serial", clock_mhz=prep.f,
+                   t0_ps=stats.wave_t0_ps, scan_clocks=records[0].cycles if records else None)
+    except WaveLayoutError as e:
+        raise SimError(f"waveform layout {gtkw}: {e}") from None
+    return gtkw
 
 
 def cmd_run_plant(args) -> int:

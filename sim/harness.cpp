@@ -365,6 +365,7 @@ int main(int argc, char** argv) {
   top.exchange_i = rf.exchange;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
+  const uint64_t t0_ps = d.t_ps;  // waveform time of clock 0 (the layout's first view)
 
   // ---- the scans: the firmware runs until Run::end_clock() jumps back here
   run.by_scan = rf.stim_kind == "scan";
@@ -415,6 +416,7 @@ int main(int argc, char** argv) {
     stat("queue_underflows", top.dbg_queue_underflows_o);
   }
   stat("byte_flags", bb_flags(&bb));
+  if (!rf.waves.empty()) stat("wave_t0_ps", t0_ps);  // waves only: the layout's first view
   std::printf("stat wall_s %.6f\n", wall);
   return fault ? 3 : 0;
 }

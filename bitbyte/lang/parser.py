@@ -411,7 +411,8 @@ class Parser:
         self.check_size(self.instrs[-1], appended=True)
         self.check_jump_sections()
         return Program(self.src.path, self.instrs, dict(self.labels), dict(self.symbols),
-                       list(self.globals))
+                       list(self.globals),
+                       {name.upper(): name for name in self.names["symbol"]})
 
     # -- BIT: / BYTE: sections (hand-partitioned programs) ----------------------------
 

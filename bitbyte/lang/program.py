@@ -126,3 +126,4 @@ class Program:
     labels: dict[str, int] = field(default_factory=dict)
     symbols: dict[str, Operand] = field(default_factory=dict)
     globals: list[GlobalVar] = field(default_factory=list)
+    symbol_names: dict[str, str] = field(default_factory=dict)  # upper-case -> as declared

@@ -6,7 +6,7 @@ that every simulator driver runs alike.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 from bitbyte.compiler.partition import partition
@@ -64,6 +64,7 @@ class Prepared:
     changes: list
     stimulus: Stimulus
     config: Config
+    listing: list = field(default_factory=list)   # the bit processor's program, word by word
 
 
 def prepare_run(program_path: str, **settings):
@@ -144,7 +145,8 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
                  byte_prog=byte_words)
-    return Prepared(program, columns, job, f, stim.changes(f), stim, config)
+    return Prepared(program, columns, job, f, stim.changes(f), stim, config,
+                    list(part.bit) if mode in ("parallel", "free") else list(program.instrs))
 
 
 def _one_cell_per_condition(program, part, cells: int) -> None:

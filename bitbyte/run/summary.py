@@ -20,6 +20,7 @@ class RunStats:
     queue_losses: tuple[int, int] | None = None  # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
     byte_flags: int = 0                          # BYTE_FLAGS (bb_flags())
     wall_s: float | None = None                  # the simulator's own run time
+    wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
 
 
 def parse_stats(stdout: str) -> dict[str, float]:

@@ -68,5 +68,6 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      byte_scans=st.get("byte_scans"),
                      queue_losses=(st["queue_overflows"], st["queue_underflows"])
                      if "queue_overflows" in st else None,
-                     byte_flags=st["byte_flags"], wall_s=st["wall_s"])
+                     byte_flags=st["byte_flags"], wall_s=st["wall_s"],
+                     wave_t0_ps=st.get("wave_t0_ps"))
     return records, proc.returncode == HARNESS_WATCHDOG, stats

@@ -1,0 +1,273 @@
+"""The waveform layout of a run (spec §4, issue 17): `bitbyte run ... --waves W.fst`
+also writes W.gtkw, a GTKWave save file in the program's own names.
+
+What a PLC engineer sees when GTKWave opens it:
+* Scan: the scan count, the scan controller's state by name, latch and scan end;
+* Program: the instruction in the bit processor's execute stage as `line: source`
+  (a translate filter on its program counter), the RLO, and in serial mode whether a
+  byte instruction is with the byte processor;
+* Inputs, Outputs, Markers, Timers / counters, Words: every declared symbol, and every
+  address the program uses without a symbol, as its own named signal — GTKWave aliases
+  onto bits of the image vectors (`+{name} (k)vector`), words combined from 16 bits
+  (`#{name} ...`), markers from the marker RAM's words (traced: sim/trace.vlt);
+* a first view from the latch of scan 0 over a few whole scans.
+
+GTKWave silently drops a signal its file does not have, so every name is checked
+against the wave file's own signal list (read_signal_names) before it is written;
+WaveLayoutError names the first that is missing. The translate filter files sit
+beside W.gtkw (W.state.txt, W.instr.txt)."""
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+
+from bitbyte.lang.program import Instr, Operand, Program
+
+ROOT = Path(__file__).resolve().parents[2]
+CPU = "TOP.bitbyte_cpu"
+SCAN_CTRL_V = ROOT / "rtl" / "scan_ctrl.v"
+
+# GTKWave trace flags (the `@` lines): right-justified binary, hex, decimal; +0x2000
+# runs the value through the current translate filter; group open / close.
+BIN, DEC, SIGNED_DEC = "@28", "@24", "@424"
+DEC_FILTERED = "@2024"
+GROUP_OPEN, GROUP_CLOSE = "@800200", "@1000200"
+
+WAVE_AREA_PX = 880          # the wave pane of a [size] 1400 x 900 window
+SCANS_IN_FIRST_VIEW = 4
+# GTKWave's zoom z shows 2**-z / ZOOM_PS_PER_PX_SCALE ps per pixel (measured under
+# Xvfb: at z = -30, 1 ms is 191 px; at z = -20, 1 us is 195 px).
+ZOOM_PS_PER_PX_SCALE = 204.8
+
+
+class WaveLayoutError(Exception):
+    """A signal the layout needs is not in the wave file."""
+
+
+# --- the wave file's own signal list -----------------------------------------------
+
+def read_signal_names(wave_file: str | Path) -> set[str]:
+    """Every signal of an FST or VCD file as GTKWave names it: scope path, name, and
+    the bit range of a vector (`TOP.bitbyte_cpu.pii[127:0]`); an array word traced
+    as its own signal keeps its index (`...u_marker_ram.mem.mem[5]`)."""
+    path = Path(wave_file)
+    if path.suffix == ".vcd":
+        return _vcd_header_names(path.read_text(errors="replace").splitlines())
+    proc = subprocess.Popen(["fst2vcd", "-f", str(path)], stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL, text=True)
+    lines = []
+    assert proc.stdout is not None
+    for line in proc.stdout:                 # the header only: stop at its end
+        lines.append(line)
+        if "$enddefinitions" in line:
+            break
+    proc.kill()
+    proc.wait()
+    return _vcd_header_names(lines)
+
+
+def _vcd_header_names(lines) -> set[str]:
+    names, scope = set(), []
+    for line in lines:
+        words = line.split()
+        if not words:
+            continue
+        if words[0] == "$scope":
+            scope.append(words[2])
+        elif words[0] == "$upscope":
+            scope.pop()
+        elif words[0] == "$var":
+            width, name = int(words[2]), words[4]
+            rng = words[5] if len(words) > 6 and words[5].startswith("[") else ""
+            full = ".".join(scope + [name])
+            names.add(full + rng if width > 1 else full)
+        elif words[0] == "$enddefinitions":
+            break
+    return names
+
+
+# --- translate filters --------------------------------------------------------------
+
+def scan_states(scan_ctrl_v: Path = SCAN_CTRL_V) -> dict[int, str]:
+    """The scan controller's state codes and names, read from its localparams
+    (`localparam [1:0] StRun = 2'd2;` -> 2: run): one place for the encoding."""
+    states = {}
+    for m in re.finditer(r"localparam\s*\[[^\]]*\]\s*St(\w+)\s*=\s*\d+'d(\d+)\s*;",
+                         scan_ctrl_v.read_text()):
+        states[int(m.group(2))] = m.group(1).lower()
+    return states
+
+
+def instruction_text(instr: Instr) -> str:
+    """`line: source text` of an instruction (the source line without its comment).
+    An instruction the partitioning compiler made (a channel transfer, `= FBY 0` for
+    the enable of `SD Timer`) shows itself and then the line it serves."""
+    text = " ".join(instr.source.split("//")[0].split()) or instr.mnemonic
+    op = instr.operand
+    if op is not None and op.area in ("FBI", "FBY"):
+        return f"{instr.line}: {instr.mnemonic} {op.area} {op.index}  ({text})"
+    return f"{instr.line}: {text}"
+
+
+def filter_text(rows: dict[int, str]) -> str:
+    """A GTKWave translate filter: the value as the decimal trace shows it, then the
+    text to show instead."""
+    return "".join(f"{value} {text}\n" for value, text in sorted(rows.items()))
+
+
+# --- the layout ---------------------------------------------------------------------
+
+@dataclass
+class Layout:
+    """A .gtkw being written: its lines, the signals it names, the filter files."""
+    signals: set[str]
+    lines: list[str] = field(default_factory=list)
+    named: list[str] = field(default_factory=list)      # every signal the layout names
+    filters: dict[str, str] = field(default_factory=dict)  # file name -> contents
+
+    def need(self, signal: str) -> str:
+        if signal not in self.signals:
+            raise WaveLayoutError(f"the wave file has no signal {signal}")
+        self.named.append(signal)
+        return signal
+
+    def group(self, title: str, rows: list[str]) -> None:
+        if rows:
+            self.lines += [GROUP_OPEN, f"-{title}", *rows, GROUP_CLOSE, f"-{title}"]
+
+    def trace(self, fmt: str, signal: str, alias: str | None = None) -> list[str]:
+        name = self.need(signal)
+        return [fmt, f"+{{{alias}}} {name}" if alias else name]
+
+    def vector(self, vector: str) -> tuple[str, int]:
+        """The wave file's `vector[msb:0]` and its width (the build's size)."""
+        for name in self.signals:
+            m = re.fullmatch(re.escape(vector) + r"\[(\d+):0\]", name)
+            if m:
+                self.named.append(name)
+                return name, int(m.group(1)) + 1
+        raise WaveLayoutError(f"the wave file has no signal {vector}[..:0]")
+
+    def bit(self, vector: str, index: int, alias: str) -> list[str]:
+        """Bit `index` of a vector (GTKWave counts exploded bits from the most
+        significant one)."""
+        name, width = self.vector(vector)
+        if index >= width:
+            raise WaveLayoutError(f"{alias}: bit {index} is beyond {name}")
+        return [BIN, f"+{{{alias}}} ({width - 1 - index}){name}"]
+
+    def word(self, vector: str, index: int, alias: str) -> list[str]:
+        """16-bit word `index` of a vector of words, shown as signed decimal."""
+        name, width = self.vector(vector)
+        if 16 * index + 15 >= width:
+            raise WaveLayoutError(f"{alias}: word {index} is beyond {name}")
+        bits = " ".join(f"({width - 1 - (16 * index + b)}){name}" for b in range(15, -1, -1))
+        return [SIGNED_DEC, f"#{{{alias}}} {bits}"]
+
+    def filtered(self, signal: str, alias: str, filter_name: str, rows: dict[int, str],
+                 filter_dir: Path) -> list[str]:
+        name = self.need(signal)
+        self.filters[filter_name] = filter_text(rows)
+        return [DEC_FILTERED, f"^1 {filter_dir / filter_name}", f"+{{{alias}}} {name}"]
+
+
+def _operands(program: Program) -> list[tuple[str, Operand]]:
+    """(name, operand): every declared symbol (as declared), then every address the
+    program uses without a symbol, each operand once."""
+    out: list[tuple[str, Operand]] = []
+    seen: set[tuple] = set()
+
+    def key(op: Operand) -> tuple:
+        return (op.kind, op.area, op.bit_number if op.kind == "bit" else op.index)
+
+    for upper, op in program.symbols.items():
+        if op.kind in ("bit", "index") and key(op) not in seen:
+            seen.add(key(op))
+            out.append((program.symbol_names.get(upper, upper), op))
+    for instr in program.instrs:
+        op = instr.operand
+        if op is not None and op.kind in ("bit", "index") and key(op) not in seen:
+            seen.add(key(op))
+            out.append((op.address(), op))
+    return out
+
+
+# The image vector each bit area is shown from: the PII and its edge flags, the pins
+# (PI: read directly), the output pins (what the PIO update drives).
+BIT_VECTORS = {"I": "pii", "PI": "in_pins_i", "IR": "rise", "IF": "fall",
+               "Q": "out_pins_o", "PQ": "out_pins_o"}
+
+
+def write_gtkw(gtkw_path: str | Path, wave_file: str | Path, program: Program,
+               listing: list[Instr], *, serial: bool, clock_mhz: Fraction,
+               t0_ps: int | None, scan_clocks: int | None) -> list[str]:
+    """Write the layout (and its filter files) for a run; returns the signals it names.
+
+    listing: the bit processor's program memory, word by word (serial mode: the whole
+    program; parallel mode: the bit part); t0_ps: the waveform time of clock 0;
+    scan_clocks: a typical scan's length (the first view shows a few)."""
+    gtkw_path = Path(gtkw_path)
+    stem = gtkw_path.name.removesuffix(".gtkw")
+    filter_dir = gtkw_path.resolve().parent
+    lay = Layout(read_signal_names(wave_file))
+    bp = f"{CPU}.u_bit_proc"
+
+    lay.group("Scan", [
+        *lay.trace(DEC, f"{CPU}.scan_count_o[31:0]", "scan"),
+        *lay.filtered(f"{CPU}.u_scan_ctrl.state_q[1:0]", "scan state", f"{stem}.state.txt",
+                      scan_states(), filter_dir),
+        *lay.trace(BIN, f"{CPU}.latch", "latch (PII)"),
+        *lay.trace(BIN, f"{CPU}.scan_done_o", "scan done (PIO)"),
+        *lay.trace(BIN, f"{CPU}.fault_o", "watchdog fault"),
+    ])
+    program_rows = [
+        *lay.filtered(f"{bp}.e_pc_q[11:0]", "executing", f"{stem}.instr.txt",
+                      {pc: instruction_text(i) for pc, i in enumerate(listing)}, filter_dir),
+        *lay.trace(BIN, f"{bp}.e_valid_q", "executing valid"),
+        *lay.trace(BIN, f"{CPU}.rlo", "RLO"),
+    ]
+    if serial:      # a byte instruction dispatched to the byte processor, until DONE
+        program_rows += lay.trace(BIN, f"{CPU}.byte_req", "byte busy")
+    lay.group("Program", program_rows)
+
+    kinds: dict[str, list[str]] = {k: [] for k in
+                                   ("Inputs", "Outputs", "Markers", "Timers / counters",
+                                    "Words", "Not in the waves")}
+    for name, op in _operands(program):
+        alias = name if name == op.address() else f"{name} {op.address()}"
+        if op.kind == "bit" and op.area in BIT_VECTORS:
+            group = "Outputs" if op.area in ("Q", "PQ") else "Inputs"
+            kinds[group] += lay.bit(f"{CPU}.{BIT_VECTORS[op.area]}", op.bit_number, alias)
+        elif op.kind == "bit" and op.area == "M":
+            kinds["Markers"] += lay.trace(
+                BIN, f"{bp}.u_marker_ram.mem.mem[{op.bit_number}]", alias)
+        elif op.kind == "index" and op.area in ("T", "C"):
+            vec = f"{CPU}.{'timer' if op.area == 'T' else 'counter'}_status"
+            kinds["Timers / counters"] += lay.bit(vec, op.index, alias)
+        elif op.kind == "index" and op.area in ("IW", "QW"):
+            vec = f"{CPU}.{'in_words_i' if op.area == 'IW' else 'out_words_o'}"
+            kinds["Words"] += lay.word(vec, op.index, alias)
+        else:                                   # MW: the byte processor's memory
+            kinds["Not in the waves"].append(f"-{alias}: byte processor memory (--watch)")
+    for title, rows in kinds.items():
+        lay.group(title, rows)
+
+    header = [f"[*] {Path(program.path).name}: waveform layout written by bitbyte run",
+              f"[*] open with: gtkwave {wave_file} {gtkw_path}",
+              f"[dumpfile] \"{Path(wave_file).resolve()}\"",
+              "[size] 1400 900", "[signals_width] 320", "[sst_width] 200",
+              "[sst_expanded] 0"]
+    if t0_ps is not None:
+        header.append(f"[timestart] {t0_ps}")
+        clocks = (scan_clocks or 100) * SCANS_IN_FIRST_VIEW
+        ps = clocks * Fraction(1_000_000, 1) / clock_mhz
+        zoom = -math.log2(float(ps) / WAVE_AREA_PX * ZOOM_PS_PER_PX_SCALE)
+        header.append(f"*{zoom:.6f} {t0_ps} -1")
+    gtkw_path.write_text("\n".join(header + lay.lines) + "\n")
+    for fname, text in lay.filters.items():
+        (filter_dir / fname).write_text(text)
+    return lay.named
