@@ -31,6 +31,7 @@ from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import parse_clock_mhz, prepare
 from bitbyte.run.response import response_times
+from bitbyte.run.status import block_status_text
 from bitbyte.run.summary import summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
 from bitbyte.sim.gtkw import WaveLayoutError, write_gtkw
@@ -72,6 +73,8 @@ examples:
       serial mode on Verilator: one trace row per scan, the summary on stdout
   bitbyte run examples/fig5.il --mode parallel --scans 20 --sim icarus
       the paper's Fig. 5 program split over the bit and byte processors, on Icarus
+  bitbyte run examples/fig5.il --stimulus examples/fig5.stim.csv --scans 4 --status 3
+      the block status of scan 3: RLO, operand and accumulators per line
   bitbyte run examples/star_delta.il --scans 50 --waves sim/waves/star.fst
       also writes star.gtkw: open it with `gtkwave sim/waves/star.fst sim/waves/star.gtkw`
   bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000
@@ -175,6 +178,11 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--channels", type=int, default=None, metavar="K",
                    help="parallel/free mode: exchange channels per direction the "
                         "partitioning compiler uses (1..4, default 4; Fig. 14/15 tasks)")
+    r.add_argument("--status", type=int, default=None, metavar="SCAN",
+                   help="print the block status of scan SCAN (from 0) after the summary: "
+                        "per program line the RLO after it, the operand bit it read, "
+                        "ACCU1/ACCU2 after word instructions, or 'not executed' "
+                        "(serial mode)")
     r.add_argument("--costs", default="paper", metavar="TABLE",
                    help="byte processor cost table, in bit-processor clocks per "
                         "instruction: paper (S7-315-2DP weights, default) or c320")
@@ -333,6 +341,13 @@ def cmd_run(args) -> int:
         profile=args.profile, symbols=args.symbols)
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
+    if args.status is not None:
+        if args.mode != "serial":
+            raise UsageError("--status: serial mode only, for now (docs/toolchain.md)")
+        if args.status < 0 or (args.scans is not None and args.status >= args.scans):
+            raise UsageError(f"--status {args.status}: not a scan of this run "
+                             f"(scans 0..{(args.scans or 1) - 1})")
+        job.status_scan = args.status
 
     if args.sim == "verilator":
         records, fault, stats = run_harness(job, columns, args.trace, args.waves)
@@ -343,6 +358,12 @@ def cmd_run(args) -> int:
     waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
                        response_times(prep, records), watchdog=args.watchdog), end="")
+    if args.status is not None:
+        if len(records) <= args.status:
+            raise UsageError(f"--status {args.status}: the run ended after "
+                             f"{len(records)} scans")
+        print(block_status_text(prep.listing, stats.block_status or {}, args.status,
+                                args.sim))
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

@@ -115,7 +115,12 @@ module bit_proc #(
   output reg                          rlo_o,
   output wire                         rlo_now_o,      // the RLO execute works with (= rlo_o)
   output wire [$clog2(ProgWords)-1:0] exec_pc_o,
-  output wire                         exec_valid_o
+  output wire                         exec_valid_o,
+  // retirement (the block status, docs/toolchain.md): an instruction completed in the
+  // last clock, where it was and the operand bit it read; rlo_o is now its RLO after
+  output reg                          ret_valid_o,
+  output reg  [$clog2(ProgWords)-1:0] ret_pc_o,
+  output reg                          ret_opnd_o
 );
   localparam integer PcW   = $clog2(ProgWords);
   localparam integer MW    = $clog2(MarkerBits);
@@ -663,6 +668,23 @@ module bit_proc #(
 
   assign exec_pc_o    = w_busy ? w_pc_q : e_pc_q;
   assign exec_valid_o = (w_busy && exec_i) || e_go;
+
+  // Retirement, one clock late (observation only: no logic reads it, and where the
+  // outputs stay open, as in the synthesis wrapper, Yosys removes it). An instruction
+  // completes in execute (e_done) or in the wait slot (w_done); a live operand is the
+  // one its pin picked, an FBI read in the slot the channel's bit.
+  wire e_opnd_eff = e_src_live_q ? (pin_live ? e_live1_q : e_live0_q) : operand;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ret_valid_o <= 1'b0;
+      ret_pc_o    <= {PcW{1'b0}};
+      ret_opnd_o  <= 1'b0;
+    end else begin
+      ret_valid_o <= e_done || (w_busy && w_done && exec_i);
+      ret_pc_o    <= w_busy ? w_pc_q : e_pc_q;
+      ret_opnd_o  <= w_busy ? (w_fwait_q && w_fbr_q && w_fb_bit) : e_opnd_eff;
+    end
+  end
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused;
     // verilator lint_off UNUSEDSIGNAL

@@ -74,7 +74,11 @@ module bitbyte_cpu #(
   output wire [31:0]                  dbg_queue_overflows_o, // as bus QUEUE_OVERFLOWS
   output wire [31:0]                  dbg_queue_underflows_o, // as bus QUEUE_UNDERFLOWS
   input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,  // a marker bit M to look at ...
-  output wire                         dbg_m_o            // ... its value now, without a clock
+  output wire                         dbg_m_o,           // ... its value now, without a clock
+  output wire                         dbg_ret_valid_o,   // an instruction retired last clock
+  output wire [$clog2(ProgWords)-1:0] dbg_ret_pc_o,      // ... at this address,
+  output wire                         dbg_ret_opnd_o,    // ... reading this operand bit
+  output wire                         dbg_rlo_o          // the RLO (after it, when it retired)
 );
   localparam integer InBits  = InBytes * 8;
   localparam integer OutBits = OutBytes * 8;
@@ -114,6 +118,7 @@ module bitbyte_cpu #(
 
   // ---------------------------------------------------------------- observation
   assign dbg_pii_o              = pii;
+  assign dbg_rlo_o              = rlo;
   assign dbg_rise_o             = rise;
   assign dbg_fall_o             = fall;
   assign dbg_timer_status_o     = timer_status;
@@ -229,6 +234,9 @@ module bitbyte_cpu #(
     .rlo_now_o       (rlo_now),
     .exec_pc_o       (exec_pc),
     .exec_valid_o    (exec_valid),
+    .ret_valid_o     (dbg_ret_valid_o),
+    .ret_pc_o        (dbg_ret_pc_o),
+    .ret_opnd_o      (dbg_ret_opnd_o),
     .m_peek_addr_i   (dbg_m_addr_i),
     .m_peek_o        (dbg_m_o)
   );
@@ -369,7 +377,7 @@ module bitbyte_cpu #(
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, rlo, exec_pc, exec_valid, byte_flags};
+  wire unused_obs = ^{cycle_now, exec_pc, exec_valid, byte_flags};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

@@ -147,6 +147,13 @@ module plc_core #(
   assign ready_o     = cpu_ready && !clearing;
 
   // ---------------------------------------------------------------- the CPU
+  // The block status port (bitbyte run --status): the plant hosts do not read it.
+  wire                         ret_valid, ret_opnd, ret_rlo;
+  wire [$clog2(ProgWords)-1:0] ret_pc;
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_ret = ^{ret_valid, ret_pc, ret_opnd, ret_rlo};
+  // verilator lint_on UNUSEDSIGNAL
+
   bitbyte_cpu #(
     .ProgWords  (ProgWords),
     .InBytes    (InBytes),
@@ -200,7 +207,11 @@ module plc_core #(
     .dbg_queue_overflows_o (queue_overflows),
     .dbg_queue_underflows_o(queue_underflows),
     .dbg_m_addr_i         (dbg_m_addr_i),
-    .dbg_m_o              (dbg_m_o)
+    .dbg_m_o              (dbg_m_o),
+    .dbg_ret_valid_o      (ret_valid),
+    .dbg_ret_pc_o         (ret_pc),
+    .dbg_ret_opnd_o       (ret_opnd),
+    .dbg_rlo_o            (ret_rlo)
   );
 
   // ---------------------------------------------------------------- the sequencer

@@ -23,6 +23,7 @@ extern "C" {
 #include "hal.h"
 }
 #include <csetjmp>
+#include <map>
 // Waves: the build picks one format (Verilator allows one --trace-* per model).
 #if VM_TRACE_FST
 #include "verilated_fst_c.h"
@@ -164,6 +165,20 @@ struct Run {
     *p++ = '\n';
     out->commit(p);
   }
+  // Block status (bitbyte run --status): per address, the last retirement in the
+  // chosen scan (its RLO after, the operand bit, the firmware's accumulators after it)
+  // and how often the address retired in that scan.
+  struct Status { uint64_t count = 0; unsigned rlo = 0, opnd = 0; int32_t accu1 = 0, accu2 = 0; };
+  std::map<uint32_t, Status> status;
+  void observe_retirement() {
+    if (int64_t(scans) != rf->status_scan || !top->dbg_ret_valid_o) return;
+    Status& s = status[top->dbg_ret_pc_o];
+    ++s.count;
+    s.rlo = top->dbg_rlo_o;
+    s.opnd = top->dbg_ret_opnd_o;
+    s.accu1 = bb_accu1(bb);
+    s.accu2 = bb_accu2(bb);
+  }
   void end_clock() {
     top->clk_i = 1;
     d->eval();
@@ -172,6 +187,7 @@ struct Run {
     top->bus_re_i = 0;
     top->bus_we_i = 0;
     ++n;
+    observe_retirement();  // before scan_done: END retires in its scan's last clock
     if (top->fault_o) { fault = true; std::longjmp(stop, 1); }
     if (top->scan_done_o) {
       record();
@@ -417,6 +433,9 @@ int main(int argc, char** argv) {
   }
   stat("byte_flags", bb_flags(&bb));
   if (!rf.waves.empty()) stat("wave_t0_ps", t0_ps);  // waves only: the layout's first view
+  for (const auto& [pc, s] : run.status)  // with `status K` only: the block status
+    std::printf("status %u %llu %u %u %d %d\n", pc, (unsigned long long)s.count, s.rlo,
+                s.opnd, s.accu1, s.accu2);
   std::printf("stat wall_s %.6f\n", wall);
   return fault ? 3 : 0;
 }

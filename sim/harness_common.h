@@ -126,6 +126,7 @@ struct RunFile {
   bool free_running = false;                                       // mode free
   unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
   std::string byte_prog;                                           // its byte part (.hex)
+  int64_t status_scan = -1;                                        // block status of this scan
 };
 
 static int hex_digit(char c) {  // -1 if c is no hex digit
@@ -171,6 +172,7 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   else if (k == "watchdog")    { want(1); rf.watchdog = parse_u64(w[1], "watchdog"); }
   else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
   else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
+  else if (k == "status")      { want(1); rf.status_scan = int64_t(parse_u64(w[1], "status scan")); }
   else if (k == "stim_kind") {
     want(1);
     if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");

@@ -45,6 +45,7 @@ class RunJob:
     mode: str = "serial"                 # serial | parallel | free
     exchange: str = "handshake"          # handshake | queue | queue-free | marker
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
+    status_scan: int | None = None       # the block status of this scan (--status)
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -64,6 +65,8 @@ class RunJob:
             lines.append(f"scans {self.scans}")
         if self.until_clock is not None:
             lines.append(f"until_clock {self.until_clock}")
+        if self.status_scan is not None:
+            lines.append(f"status {self.status_scan}")
         lines.append(f"stim_kind {self.stim_kind}")
         for key, pins, words in self.stim:
             tail = "" if words is None else " " + " ".join(str(w) for w in words)
@@ -88,6 +91,7 @@ class RunResult:
     byte_scans: int | None = None        # free-running: the byte side's own scans
     queue_losses: tuple[int, int] | None = None   # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
     byte_flags: int = 0                  # bb_flags()
+    block_status: dict | None = None     # --status: address -> (count, rlo, operand, accu1, accu2)
 
     def to_json(self) -> str:
         return json.dumps(asdict(self))

@@ -21,6 +21,30 @@ class RunStats:
     byte_flags: int = 0                          # BYTE_FLAGS (bb_flags())
     wall_s: float | None = None                  # the simulator's own run time
     wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
+    block_status: dict | None = None             # --status: address -> Retired
+
+
+@dataclass(frozen=True)
+class Retired:
+    """The block status of one program address in the chosen scan (bitbyte run
+    --status): how often it retired, and at its last retirement the RLO after it, the
+    operand bit it read, the byte processor's ACCU1 / ACCU2 after it."""
+    count: int
+    rlo: int
+    operand: int
+    accu1: int
+    accu2: int
+
+
+def parse_block_status(stdout: str) -> dict[int, Retired]:
+    """A harness's `status PC COUNT RLO OPERAND ACCU1 ACCU2` lines (sim/README.md)."""
+    out = {}
+    for line in stdout.splitlines():
+        words = line.split()
+        if len(words) == 7 and words[0] == "status":
+            pc, *rest = (int(w) for w in words[1:])
+            out[pc] = Retired(*rest)
+    return out
 
 
 def parse_stats(stdout: str) -> dict[str, float]:

@@ -29,7 +29,7 @@ from pathlib import Path
 import cocotb
 from cocotb.clock import Clock
 from cocotb.task import bridge, resume
-from cocotb.triggers import Event, FallingEdge, First, RisingEdge, Timer
+from cocotb.triggers import Event, FallingEdge, First, ReadOnly, RisingEdge, Timer
 from cocotb.utils import get_sim_steps, get_sim_time
 
 from bitbyte.lang.definition import DEF
@@ -119,7 +119,8 @@ def load_firmware(path):
         "bb_load_pool": ([vp, vp, uint], None), "bb_load_program": ([vp, vp, uint], ctypes.c_int),
         "bb_run_step": ([vp, ctypes.c_int], ctypes.c_int), "bb_run": ([vp, ctypes.c_int], None),
         "bb_mw": ([vp, uint], ctypes.c_int16), "bb_flags": ([vp], ctypes.c_uint32),
-        "bb_byte_scans": ([vp], ctypes.c_uint64)}
+        "bb_byte_scans": ([vp], ctypes.c_uint64),
+        "bb_accu1": ([vp], ctypes.c_int32), "bb_accu2": ([vp], ctypes.c_int32)}
     lib = ctypes.CDLL(str(path))
     for name, (args, result) in signatures.items():
         fn = getattr(lib, name)
@@ -160,6 +161,9 @@ class Firmware:
 
     def mw(self, n: int) -> int:
         return int(self._lib.bb_mw(self.state, n))
+
+    def accus(self) -> tuple[int, int]:
+        return int(self._lib.bb_accu1(self.state)), int(self._lib.bb_accu2(self.state))
 
     def stats(self) -> dict:
         """The firmware's part of the run summary (bitbyte.run.summary.RunStats)."""
@@ -258,14 +262,39 @@ async def run_job(dut, job: RunJob) -> dict:
 
     firmware = Firmware(dut, job, get_sim_time("ns"))
     fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
+    status: dict[int, list[int]] = {}
+    monitor = (cocotb.start_soon(_block_status(dut, job.status_scan, firmware, status))
+               if job.status_scan is not None else None)
     try:
         result = await _scans(dut, job, firmware)
+        result["block_status"] = status if monitor is not None else None
+        if monitor is not None:
+            monitor.cancel()
     finally:
         firmware.stopped.set()
         await fw_thread
         firmware.close()
         dut.bus_re_i.value = dut.bus_we_i.value = 0
     return result
+
+
+async def _block_status(dut, status_scan: int, firmware: Firmware,
+                        out: dict[int, list[int]]) -> None:
+    """bitbyte run --status, as the C++ harness keeps it: after every clock edge of
+    scan `status_scan`, the instruction that retired in that clock (the bit
+    processor's retirement port), its RLO after, its operand bit, and the firmware's
+    accumulators (the firmware thread waits inside the HAL call spanning the clock)."""
+    scan = 0
+    while scan <= status_scan:
+        await RisingEdge(dut.clk_i)
+        await ReadOnly()
+        if scan == status_scan and int(dut.dbg_ret_valid_o.value):
+            pc = int(dut.dbg_ret_pc_o.value)
+            count = out[pc][0] + 1 if pc in out else 1
+            out[pc] = [count, int(dut.dbg_rlo_o.value), int(dut.dbg_ret_opnd_o.value),
+                       *firmware.accus()]
+        if int(dut.scan_done_o.value):
+            scan += 1
 
 
 async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:

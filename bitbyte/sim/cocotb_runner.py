@@ -16,7 +16,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import ScanRecord, write_trace
-from bitbyte.run.summary import RunStats
+from bitbyte.run.summary import Retired, RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
@@ -101,7 +101,9 @@ def run_jobs(jobs, sim: str = "icarus"):
     return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
                       clocks=d["clocks"], stalls=tuple(d["stalls"]),
                       byte_scans=d["byte_scans"], byte_flags=d["byte_flags"],
-                      queue_losses=tuple(d["queue_losses"]) if d["queue_losses"] else None)
+                      queue_losses=tuple(d["queue_losses"]) if d["queue_losses"] else None,
+                      block_status={int(pc): tuple(v) for pc, v in d["block_status"].items()}
+                      if d.get("block_status") is not None else None)
             for d in data]
 
 
@@ -123,5 +125,7 @@ def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
     if trace:
         write_trace(trace, columns, records, f)
     stats = RunStats(clocks=result.clocks, stalls=result.stalls, byte_scans=result.byte_scans,
-                     queue_losses=result.queue_losses, byte_flags=result.byte_flags)
+                     queue_losses=result.queue_losses, byte_flags=result.byte_flags,
+                     block_status={pc: Retired(*v) for pc, v in result.block_status.items()}
+                     if result.block_status is not None else None)
     return records, result.fault, stats

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows
-from bitbyte.run.summary import RunStats, parse_stats
+from bitbyte.run.summary import RunStats, parse_block_status, parse_stats
 
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
@@ -69,5 +69,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      queue_losses=(st["queue_overflows"], st["queue_underflows"])
                      if "queue_overflows" in st else None,
                      byte_flags=st["byte_flags"], wall_s=st["wall_s"],
-                     wave_t0_ps=st.get("wave_t0_ps"))
+                     wave_t0_ps=st.get("wave_t0_ps"),
+                     block_status=parse_block_status(proc.stdout)
+                     if job.status_scan is not None else None)
     return records, proc.returncode == HARNESS_WATCHDOG, stats

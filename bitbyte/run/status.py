@@ -1,0 +1,54 @@
+"""The block status of one scan (`bitbyte run --status K`, issue 17 item 2), as
+STEP 7's "monitor" view shows an STL block: per program line, the RLO after it, the
+status of the operand it read (STA), the accumulators after a word instruction, and
+"not executed" for what the scan skipped. A line that ran several times in the scan
+(a loop) shows its last execution and how often it ran.
+
+The values are the simulated system's: the bit processor's retirement port (RLO,
+operand bit; rtl/bit_proc.v `ret_*_o`) and the byte processor firmware's accumulators
+(bb_accu1 / bb_accu2) at the clock the instruction completed, recorded by the Verilator
+harness and by the cocotb driver alike (bitbyte.run.summary.Retired) — never by the
+reference interpreter, which the tests compare them with."""
+from __future__ import annotations
+
+from bitbyte.encoding.isa import READ_OPS, is_byte_instruction
+from bitbyte.lang.program import Instr
+from bitbyte.run.summary import Retired
+
+SOURCE_WIDTH = 34
+
+
+def _reads_bit(instr: Instr) -> bool:
+    """An instruction whose operand is a bit it reads (its STA is meaningful)."""
+    op = instr.operand
+    return instr.mnemonic in READ_OPS and op is not None and (
+        op.kind == "bit" or op.area in ("T", "C"))
+
+
+def _is_word(instr: Instr) -> bool:
+    op = instr.operand
+    return is_byte_instruction(instr.mnemonic, op.area if op is not None else None)
+
+
+def block_status_text(listing: list[Instr], status: dict[int, Retired], scan: int,
+                      where: str) -> str:
+    """listing: the bit processor's program memory by address (serial mode: the whole
+    program); status: address -> its retirement in scan `scan`; where: the simulator."""
+    head = (f"block status of scan {scan} ({where}): RLO after each line, STA the "
+            "operand bit it read, ACCU1/ACCU2 after word instructions")
+    lines = [head, f"{'line':>5}  {'instruction':<{SOURCE_WIDTH}} {'RLO':>3} {'STA':>3} "
+                   f"{'ACCU1':>7} {'ACCU2':>7}"]
+    for pc, instr in enumerate(listing):
+        text = " ".join(instr.source.split("//")[0].split()) or instr.mnemonic
+        if len(text) > SOURCE_WIDTH:
+            text = text[:SOURCE_WIDTH - 1] + "~"
+        row = f"{instr.line:>5}  {text:<{SOURCE_WIDTH}}"
+        r = status.get(pc)
+        if r is None:
+            lines.append(f"{row} not executed")
+            continue
+        sta = str(r.operand) if _reads_bit(instr) else ""
+        accus = (f"{r.accu1:>7} {r.accu2:>7}" if _is_word(instr) else f"{'':>7} {'':>7}")
+        times = f"  ({r.count} times)" if r.count > 1 else ""
+        lines.append(f"{row} {r.rlo:>3} {sta:>3} {accus}{times}".rstrip())
+    return "\n".join(lines) + "\n"
