@@ -363,7 +363,7 @@ def cmd_run(args) -> int:
             raise UsageError(f"--status {args.status}: the run ended after "
                              f"{len(records)} scans")
         print(block_status_text(prep.listing, stats.block_status or {}, args.status,
-                                args.sim))
+                                args.sim), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

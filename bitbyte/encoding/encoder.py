@@ -212,7 +212,8 @@ def _header(program: Program, words: list[int], config: Config) -> list[str]:
              f"; config: {sizes}"]
     if program.symbols:
         lines += ["", "symbols:"]
-        lines += [f"  {name:<16} {op.address()}" for name, op in program.symbols.items()]
+        lines += [f"  {program.symbol_names.get(name, name):<16} {op.address()}"
+                  for name, op in program.symbols.items()]
     if program.labels:
         lines += ["", "labels:"]
         lines += [f"  {name:<16} {addr:04X}" for name, addr in program.labels.items()]
