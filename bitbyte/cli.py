@@ -30,6 +30,7 @@ from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import parse_clock_mhz, prepare
+from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
 from bitbyte.run.status import block_status_text
 from bitbyte.run.summary import summary_text
@@ -75,6 +76,8 @@ examples:
       the paper's Fig. 5 program split over the bit and byte processors, on Icarus
   bitbyte run examples/fig5.il --stimulus examples/fig5.stim.csv --scans 4 --status 3
       the block status of scan 3: RLO, operand and accumulators per line
+  bitbyte run examples/tutorial/motor.il --scans 6 --force Start=1@1-2 --force Ready=1@4
+      press Start in scans 1 and 2, light the Ready lamp in scan 4 whatever the program says
   bitbyte run examples/star_delta.il --scans 50 --waves sim/waves/star.fst
       also writes star.gtkw: open it with `gtkwave sim/waves/star.fst sim/waves/star.gtkw`
   bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000
@@ -183,6 +186,12 @@ def _parser() -> argparse.ArgumentParser:
                         "per program line the RLO after it, the operand bit it read, "
                         "ACCU1/ACCU2 after word instructions, or 'not executed' "
                         "(serial mode)")
+    r.add_argument("--force", action="append", default=[], metavar="OP=V[@FROM-TO]",
+                   help="force an input or output bit (I, PI, Q, PQ or its symbol) to 0 "
+                        "or 1 in scans FROM..TO (default: all; @K: scan K only; @K-: "
+                        "from K on), as the force table in the I/O units does it: a "
+                        "forced input is what the CPU reads, a forced output what the pin "
+                        "shows. Repeatable")
     r.add_argument("--costs", default="paper", metavar="TABLE",
                    help="byte processor cost table, in bit-processor clocks per "
                         "instruction: paper (S7-315-2DP weights, default) or c320")
@@ -348,6 +357,10 @@ def cmd_run(args) -> int:
             raise UsageError(f"--status {args.status}: not a scan of this run "
                              f"(scans 0..{(args.scans or 1) - 1})")
         job.status_scan = args.status
+    if args.force:
+        forces = [parse_force(text, program.symbols, prep.config) for text in args.force]
+        check_overlaps(forces)
+        job.force = force_tables(forces)
 
     if args.sim == "verilator":
         records, fault, stats = run_harness(job, columns, args.trace, args.waves)
@@ -357,7 +370,8 @@ def cmd_run(args) -> int:
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
-                       response_times(prep, records), watchdog=args.watchdog), end="")
+                       None if args.force else response_times(prep, records),
+                       watchdog=args.watchdog), end="")
     if args.status is not None:
         if len(records) <= args.status:
             raise UsageError(f"--status {args.status}: the run ended after "

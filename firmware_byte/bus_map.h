@@ -37,6 +37,10 @@
 #define BB_BUS_BYTE_FLAGS       0x62u  /* RW */
 #define BB_BUS_QUEUE_OVERFLOWS  0x63u  /* R */
 #define BB_BUS_QUEUE_UNDERFLOWS 0x64u  /* R */
+#define BB_BUS_FORCE_IN_MASK(n) (0x70u + (unsigned)(n)) /* W, n < 4 */
+#define BB_BUS_FORCE_IN_VAL(n)  (0x74u + (unsigned)(n)) /* W, n < 4 */
+#define BB_BUS_FORCE_OUT_MASK(n) (0x78u + (unsigned)(n)) /* W, n < 4 */
+#define BB_BUS_FORCE_OUT_VAL(n) (0x7Cu + (unsigned)(n)) /* W, n < 4 */
 #define BB_BUS_MW(n)            (0x100u + (unsigned)(n)) /* RW, n < 256 */
 
 #define BB_BUS_ID_VALUE         0xB17B7E01u

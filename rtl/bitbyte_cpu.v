@@ -17,7 +17,8 @@ module bitbyte_cpu #(
                                          // flip-flops, 2 the queues, 4 the marker area
   parameter integer NestDepth   = 8,     // parenthesis nesting levels
   parameter integer InWords     = 16,    // word inputs IW n (analog)
-  parameter integer OutWords    = 16     // word outputs QW n (analog)
+  parameter integer OutWords    = 16,    // word outputs QW n (analog)
+  parameter integer ForceBits   = 128    // I / Q bits 0..ForceBits-1 can be forced (force_table.v; 1..128)
 ) (
   input  wire                         clk_i,
   input  wire                         rst_ni,
@@ -145,10 +146,32 @@ module bitbyte_cpu #(
     .cycle_q_o        (cycle_now)
   );
 
+  // The force table sits between the pins and the I/O units: what the CPU reads and
+  // what the pins show (docs/byte-bus.md, FORCE_*).
+  wire [InBits-1:0]  in_pins;           // the input pins as the CPU sees them
+  wire [OutBits-1:0] out_unit_pins;     // the output unit's pins, before forcing
+  // (a build with fewer pins than ForceBits forces all it has)
+  localparam integer ForceMax = InBits < OutBits ? InBits : OutBits;
+  localparam integer ForceN   = ForceBits < ForceMax ? ForceBits : ForceMax;
+  force_table #(.InBits(InBits), .OutBits(OutBits), .ForceBits(ForceN)) u_force (
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .bus_addr_i (bus_addr_i),
+    .bus_wdata_i(bus_wdata_i),
+    .bus_we_i   (bus_we_i),
+    .run_i      (run_i),
+    .swap_i     (end_exec),
+    .fault_i    (fault_o),
+    .in_pins_i  (in_pins_i),
+    .out_pins_i (out_unit_pins),
+    .in_pins_o  (in_pins),
+    .out_pins_o (out_pins_o)
+  );
+
   input_unit #(.InBits(InBits)) u_input_unit (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
-    .pins_i (in_pins_i),
+    .pins_i (in_pins),
     .latch_i  (latch),
     .refresh_i(refresh),
     .pii_o     (pii),
@@ -168,7 +191,7 @@ module bitbyte_cpu #(
     .update_i   (end_exec),
     .fault_i    (fault_o),
     .pio_o      (pio),
-    .pins_o     (out_pins_o)
+    .pins_o     (out_unit_pins)
   );
 
   bit_proc #(
@@ -192,7 +215,7 @@ module bitbyte_cpu #(
     .end_o           (end_exec),
     .refresh_o       (refresh),
     .pii_i           (pii),
-    .pins_i          (in_pins_i),
+    .pins_i          (in_pins),
     .rise_i          (rise),
     .fall_i          (fall),
     .rise_pend_i     (rise_pend),

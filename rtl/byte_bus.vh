@@ -37,6 +37,10 @@
 `define BUS_BYTE_FLAGS       8'h62     // RW
 `define BUS_QUEUE_OVERFLOWS  8'h63     // R
 `define BUS_QUEUE_UNDERFLOWS 8'h64     // R
+`define BUS_FORCE_IN_MASK    8'h70     // W, 4 registers
+`define BUS_FORCE_IN_VAL     8'h74     // W, 4 registers
+`define BUS_FORCE_OUT_MASK   8'h78     // W, 4 registers
+`define BUS_FORCE_OUT_VAL    8'h7C     // W, 4 registers
 `define BUS_ID_VALUE         32'hB17B7E01 // what ID reads
 `define BUS_TICK_DIV_RESET   32'd100000 // TICK_DIV after reset
 

@@ -23,6 +23,7 @@ extern "C" {
 #include "hal.h"
 }
 #include <csetjmp>
+#include <deque>
 #include <map>
 // Waves: the build picks one format (Verilator allows one --trace-* per model).
 #if VM_TRACE_FST
@@ -179,6 +180,22 @@ struct Run {
     s.accu1 = bb_accu1(bb);
     s.accu2 = bb_accu2(bb);
   }
+  // --force: the host's writes of the force table (FORCE_*, docs/byte-bus.md) go over
+  // the byte bus in clocks the byte processor leaves it idle (idle_clock), the table
+  // for scan k during scan k; what changed since the last table only.
+  std::deque<std::pair<uint16_t, uint32_t>> host_writes;
+  uint32_t force_written[4][kInPinWords] = {};
+  size_t next_force = 0;
+  void queue_force(int64_t key) {
+    if (next_force >= rf->force.size() || rf->force[next_force].key != key) return;
+    const RunFile::Force& f = rf->force[next_force++];
+    for (unsigned g = 0; g < 4; ++g)
+      for (unsigned n = 0; n < kInPinWords; ++n)
+        if (f.v[g][n] != force_written[g][n]) {
+          host_writes.emplace_back(uint16_t(BB_BUS_FORCE_IN_MASK(0) + 4 * g + n), f.v[g][n]);
+          force_written[g][n] = f.v[g][n];
+        }
+  }
   void end_clock() {
     top->clk_i = 1;
     d->eval();
@@ -190,14 +207,27 @@ struct Run {
     observe_retirement();  // before scan_done: END retires in its scan's last clock
     if (top->fault_o) { fault = true; std::longjmp(stop, 1); }
     if (top->scan_done_o) {
+      if (!host_writes.empty())  // the table would take effect a scan late: say so
+        die("--force: the force table of scan %llu was not written: the byte processor "
+            "left the bus no idle clock for it", (unsigned long long)scans);
       record();
       ++scans;
+      queue_force(int64_t(scans));
       if (scans >= want_scans || n >= until) std::longjmp(stop, 1);
       if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`
     }
     inputs_for_clock();
   }
-  void idle_clock() { fall(); end_clock(); }
+  void idle_clock() {
+    if (!host_writes.empty()) {  // the bus is free in this clock: a host write
+      top->bus_addr_i = host_writes.front().first;
+      top->bus_wdata_i = host_writes.front().second;
+      top->bus_we_i = 1;
+      host_writes.pop_front();
+    }
+    fall();
+    end_clock();
+  }
   bool next() const { return top->byte_next_o; }
 };
 
@@ -376,6 +406,15 @@ int main(int argc, char** argv) {
   top.bus_we_i = 1;
   d.tick();
   top.bus_we_i = 0;
+  run.queue_force(-1);  // --force: the table before RUN (applies at once), then scan 0's
+  for (; !run.host_writes.empty(); run.host_writes.pop_front()) {
+    top.bus_addr_i = run.host_writes.front().first;
+    top.bus_wdata_i = run.host_writes.front().second;
+    top.bus_we_i = 1;
+    d.tick();
+    top.bus_we_i = 0;
+  }
+  run.queue_force(0);
   top.parallel_i = rf.parallel;
   top.free_i = rf.free_running;
   top.exchange_i = rf.exchange;

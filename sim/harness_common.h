@@ -127,6 +127,10 @@ struct RunFile {
   unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
   std::string byte_prog;                                           // its byte part (.hex)
   int64_t status_scan = -1;                                        // block status of this scan
+  // --force: the force table (in mask, in values, out mask, out values) a host writes
+  // during a scan (key: the scan; -1: before RUN), rows in ascending key order
+  struct Force { int64_t key; uint32_t v[4][kInPinWords]; };
+  std::vector<Force> force;
 };
 
 static int hex_digit(char c) {  // -1 if c is no hex digit
@@ -173,6 +177,15 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
   else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
   else if (k == "status")      { want(1); rf.status_scan = int64_t(parse_u64(w[1], "status scan")); }
+  else if (k == "force") {
+    // force KEY INMASK INVAL OUTMASK OUTVAL: KEY a scan or `pre`; hex vectors as `stim`
+    want(5);
+    RunFile::Force f{};
+    f.key = w[1] == "pre" ? -1 : int64_t(parse_u64(w[1], "force scan"));
+    if (!rf.force.empty() && f.key <= rf.force.back().key) die("force keys must be ascending");
+    for (int g = 0; g < 4; ++g) parse_pins(w[2 + g], f.v[g]);
+    rf.force.push_back(f);
+  }
   else if (k == "stim_kind") {
     want(1);
     if (w[1] != "none" && w[1] != "scan" && w[1] != "clock") die("stim_kind must be none, scan or clock");

@@ -24,6 +24,7 @@ class Config:
     in_words: int = _S["in_words"]  # IW n
     out_words: int = _S["out_words"]  # QW n
     data_words: int = _S["data_words"]  # MW n
+    force_bits: int = _S["force_bits"]  # ForceBits: I/Q bits 0..force_bits-1 can be forced
     clock_mhz: float = 100.0  # bit-processor clock
 
     def area_size(self, area: str) -> int:

@@ -46,6 +46,9 @@ class RunJob:
     exchange: str = "handshake"          # handshake | queue | queue-free | marker
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
     status_scan: int | None = None       # the block status of this scan (--status)
+    # --force: (scan, in mask, in values, out mask, out values), the force table a host
+    # writes during that scan (-1: before RUN); bitbyte.run.force
+    force: list[tuple[int, int, int, int, int]] = field(default_factory=list)
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -67,6 +70,9 @@ class RunJob:
             lines.append(f"until_clock {self.until_clock}")
         if self.status_scan is not None:
             lines.append(f"status {self.status_scan}")
+        for key, *vectors in self.force:
+            lines.append(f"force {'pre' if key < 0 else key} "
+                         + " ".join(f"{v:x}" for v in vectors))
         lines.append(f"stim_kind {self.stim_kind}")
         for key, pins, words in self.stim:
             tail = "" if words is None else " " + " ".join(str(w) for w in words)

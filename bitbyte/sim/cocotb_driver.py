@@ -149,6 +149,12 @@ class Firmware:
             lib.bb_load_program(self.state, words, len(job.byte_prog))
         # The HAL: each callback runs in the firmware's thread and blocks on a coroutine;
         # the table is this state's HAL context.
+        # --force: the host's writes of the force table go over the byte bus in clocks
+        # the byte processor leaves it idle (_spend, _wait), as sim/harness.cpp does
+        self.forces = {key: vectors for key, *vectors in job.force}
+        self.force_written = [0, 0, 0, 0]
+        self.host_writes: list[tuple[int, int]] = []
+        self.host_queued = Event()             # wakes an idle byte processor for them
         self._hal = hal_callbacks(resume(self._read), resume(self._write),
                                   resume(self._spend), resume(self._wait), self._now)
         lib.bb_set_hal_ctx(self.state, ctypes.byref(self._hal))
@@ -197,10 +203,38 @@ class Firmware:
     async def _write(self, addr: int, data: int) -> None:
         await self._access(addr, data)
 
+    def queue_force(self, key: int) -> None:
+        """The force table for scan `key` (bitbyte.run.force), its changed registers."""
+        if key not in self.forces:
+            return
+        base = BUS["FORCE_IN_MASK"]
+        for g, vector in enumerate(self.forces[key]):
+            for n in range(4):
+                word = vector >> (32 * n) & 0xFFFFFFFF
+                if word != self.force_written[g] >> (32 * n) & 0xFFFFFFFF:
+                    self.host_writes.append((base + 4 * g + n, word))
+            self.force_written[g] = vector
+        if self.host_writes:
+            self.host_queued.set()
+
+    async def _host_clock(self) -> None:
+        """An idle clock of the byte processor carrying the next host write."""
+        dut = self.dut
+        dut.bus_addr_i.value, dut.bus_wdata_i.value = self.host_writes.pop(0)
+        dut.bus_we_i.value = 1
+        await FallingEdge(dut.clk_i)
+        dut.bus_we_i.value = 0
+
     async def _spend(self, clocks: int) -> None:
-        if clocks and not self.stopped.is_set():
-            # from one falling edge to the falling edge `clocks` clocks later, in one wait
-            await Timer(clocks * PERIOD_NS, unit="ns")
+        # from one falling edge to the falling edge `clocks` clocks later, in one wait
+        # unless host writes come (queued at a falling edge: their clocks start there)
+        end = get_sim_time("ns") + clocks * PERIOD_NS
+        while not self.stopped.is_set() and get_sim_time("ns") < end:
+            if self.host_writes:
+                await self._host_clock()
+                continue
+            self.host_queued.clear()
+            await First(Timer(end - get_sim_time("ns"), unit="ns"), self.host_queued.wait())
 
     async def _wait(self) -> None:
         # NEXT is combinational: an event-driven simulator may show it rising for a
@@ -208,8 +242,13 @@ class Firmware:
         # again in the clock itself
         dut = self.dut
         while not (int(dut.byte_next_o.value) or self.stopped.is_set()):
-            await First(RisingEdge(dut.byte_next_o), self.stopped.wait())
-            if not self.stopped.is_set():
+            if self.host_writes:
+                await self._host_clock()
+                continue
+            self.host_queued.clear()
+            next_rose = RisingEdge(dut.byte_next_o)
+            fired = await First(next_rose, self.stopped.wait(), self.host_queued.wait())
+            if fired is next_rose and not self.stopped.is_set():
                 await FallingEdge(dut.clk_i)           # into the dispatch clock
 
     def _now(self) -> int:
@@ -253,6 +292,14 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.bus_we_i.value = 1
     await FallingEdge(dut.clk_i)
     dut.bus_we_i.value = 0
+    firmware = Firmware(dut, job, 0.0)
+    firmware.queue_force(-1)                # --force: the table before RUN, at once
+    for addr, word in firmware.host_writes:
+        dut.bus_addr_i.value, dut.bus_wdata_i.value, dut.bus_we_i.value = addr, word, 1
+        await FallingEdge(dut.clk_i)
+        dut.bus_we_i.value = 0
+    firmware.host_writes.clear()
+    firmware.queue_force(0)                 # ... then scan 0's, during scan 0
     dut.parallel_i.value = int(job.mode == "parallel")
     dut.free_i.value = int(job.mode == "free")
     dut.marker_write_buffer_i.value = 0
@@ -260,7 +307,7 @@ async def run_job(dut, job: RunJob) -> dict:
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
 
-    firmware = Firmware(dut, job, get_sim_time("ns"))
+    firmware.clock0_ns = get_sim_time("ns")
     fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
     status: dict[int, list[int]] = {}
     monitor = (cocotb.start_soon(_block_status(dut, job.status_scan, firmware, status))
@@ -359,8 +406,12 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
             fault = True
             break
         if isinstance(fired, RisingEdge) and int(dut.scan_done_o.value):
+            if firmware.host_writes:           # the table would take effect a scan late
+                raise RuntimeError(f"--force: the force table of scan {scan} was not "
+                                   "written: the byte processor left the bus no idle clock")
             rows.append((scan, clock, int(dut.scan_cycles_o.value), await values()))
             scan += 1
+            firmware.queue_force(scan)
             if job.scans is not None and scan >= job.scans:
                 break
             if job.until_clock is not None and clock >= job.until_clock:
