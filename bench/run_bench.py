@@ -313,18 +313,20 @@ def main(argv=None) -> int:
         print("bench: serial mode does not run; nothing to measure", file=sys.stderr)
         return 1
 
-    bl.progress("scan time (harness) ...")
+    steps = 5 if args.no_cocotb else 6     # the phases below, for the progress lines
+    bl.progress(f"[1/{steps}] scan time (harness) ...")
     scan = measure_scan(scan_cases(f, args.quick), modes, f)
-    bl.progress(f"response time: {args.edges} edges per mode ...")
+    bl.progress(f"[2/{steps}] response time: {args.edges} edges per mode ...")
     resp = measure_response(modes, f, args.edges)
-    bl.progress(f"response time, fast bit logic next to slow word logic ...")
+    bl.progress(f"[3/{steps}] response time, fast bit logic next to slow word logic ...")
     resp_fast = measure_response(modes, f, args.edges, "response_fast", "response_fast.il")
     if args.no_cocotb:
         speed = {}
     else:
-        bl.progress("simulator speed (harness, cocotb on Verilator and Icarus) ...")
+        bl.progress(f"[4/{steps}] simulator speed (harness, cocotb on Verilator and Icarus) ...")
         speed = measure_simspeed(f, args.quick)
 
+    bl.progress(f"[{steps - 1}/{steps}] single-MCU baseline ...")
     mcu = mcu_baseline.bit_cost(PROG / "table1.il")
     bl.progress(f"single-MCU baseline: {mcu['b']} clocks of 0.1 µs per bit instruction "
                 f"(8051 interpreter on a {mcu['mcu_mhz']:g} MHz DS80C320; native code "
@@ -340,7 +342,7 @@ def main(argv=None) -> int:
                    mcu_bit_costs=sorted(set(MCU_BIT_COSTS) | {
                        mcu["b"], mcu["b_native"], mcu["b_25mhz"]}))
     (bl.BUILD / "results.json").write_text(json.dumps(results, indent=1))
-    bl.progress("report ...")
+    bl.progress(f"[{steps}/{steps}] report ...")
     import report
     report.write_report(results)
     bl.progress(f"done in {time.perf_counter() - t_start:.0f} s: docs/performance.md")

@@ -196,6 +196,16 @@ struct Run {
           force_written[g][n] = f.v[g][n];
         }
   }
+  Progress progress;
+  void show_progress() {
+    if (progress.fd < 0) return;
+    const double done = until != UINT64_MAX ? double(n) / double(until)
+                      : want_scans != UINT64_MAX ? double(scans) / double(want_scans) : 0.0;
+    char what[96];
+    std::snprintf(what, sizeof what, "bitbyte run: scan %llu, %.3f s simulated",
+                  (unsigned long long)scans, double(n) / double(rf->clock_hz));
+    progress.update(std::min(done, 1.0), what);
+  }
   void end_clock() {
     top->clk_i = 1;
     d->eval();
@@ -204,6 +214,7 @@ struct Run {
     top->bus_re_i = 0;
     top->bus_we_i = 0;
     ++n;
+    if ((n & 0xFFFF) == 0) show_progress();
     observe_retirement();  // before scan_done: END retires in its scan's last clock
     if (top->fault_o) { fault = true; std::longjmp(stop, 1); }
     if (top->scan_done_o) {
@@ -406,6 +417,9 @@ int main(int argc, char** argv) {
   top.bus_we_i = 1;
   d.tick();
   top.bus_we_i = 0;
+  run.progress.fd = rf.progress_fd;
+  run.progress.after_s = rf.progress_after_s;
+  run.progress.t0 = run.progress.last = std::chrono::steady_clock::now();
   run.queue_force(-1);  // --force: the table before RUN (applies at once), then scan 0's
   for (; !run.host_writes.empty(); run.host_writes.pop_front()) {
     top.bus_addr_i = run.host_writes.front().first;
@@ -437,6 +451,7 @@ int main(int argc, char** argv) {
                                                                 : BB_MODE_SERIAL);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  run.progress.finish();
   const uint64_t n = run.n, scans = run.scans;
   const bool fault = run.fault;
 

@@ -113,6 +113,28 @@ struct Stim {                                                      // one stimul
 };
 struct Col  { std::string header, kind; uint32_t index; };
 
+// Progress of a long run (`bitbyte run` on a terminal passes `progress FD [AFTER_S]`):
+// from AFTER_S seconds of wall time on (default 2), at most once a second, one line
+// rewritten in place on FD: where the run is, the share done and the time left.
+struct Progress {
+  int fd = -1;
+  double after_s = 2.0;
+  bool shown = false;
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now(), last = t0;
+  // done: the share done (0..1), what: where the run is, in words
+  void update(double done, const char* what) {
+    if (fd < 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    const double run_s = std::chrono::duration<double>(now - t0).count();
+    if (run_s < after_s || (shown && std::chrono::duration<double>(now - last).count() < 1.0)) return;
+    last = now;
+    shown = true;
+    const double left = done > 0 ? run_s * (1 - done) / done : 0;
+    dprintf(fd, "\r%s: %.0f %%, %.0f s so far, about %.0f s left   ", what, 100 * done, run_s, left);
+  }
+  void finish() { if (fd >= 0 && shown) dprintf(fd, "\n"); }
+};
+
 struct RunFile {
   std::string prog, trace, waves, gtkw = "sim/bitbyte.gtkw";
   uint64_t clock_hz = 100000000, watchdog = 100000;
@@ -131,6 +153,8 @@ struct RunFile {
   // during a scan (key: the scan; -1: before RUN), rows in ascending key order
   struct Force { int64_t key; uint32_t v[4][kInPinWords]; };
   std::vector<Force> force;
+  int progress_fd = -1;                                            // progress lines go here
+  double progress_after_s = 2.0;
 };
 
 static int hex_digit(char c) {  // -1 if c is no hex digit
@@ -177,6 +201,11 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
   else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
   else if (k == "status")      { want(1); rf.status_scan = int64_t(parse_u64(w[1], "status scan")); }
+  else if (k == "progress") {
+    if (w.size() != 2 && w.size() != 3) die("'progress' takes FD [AFTER_S]");
+    rf.progress_fd = int(parse_u64(w[1], "progress fd"));
+    if (w.size() == 3) rf.progress_after_s = double(parse_u64(w[2], "progress after_s"));
+  }
   else if (k == "force") {
     // force KEY INMASK INVAL OUTMASK OUTVAL: KEY a scan or `pre`; hex vectors as `stim`
     want(5);

@@ -17,3 +17,44 @@ def pytest_configure(config):
 def pytest_report_header(config):
     return (f"soak: BITBYTE_SEED={os.environ.get('BITBYTE_SEED')}, "
             f"N={os.environ.get('BITBYTE_SOAK_N', '100')} programs")
+
+
+class _Progress:
+    """Every tenth of the soak's items (on the controller, after xdist's reports): how
+    many are done and the time left at this pace, on stderr; pytest -q's dots say the
+    rest."""
+
+    def __init__(self):
+        self.total = self.done = 0
+        self.t0 = time.monotonic()
+        self.next = 0.1
+
+    def collected(self, n: int) -> None:
+        self.total, self.t0 = n, time.monotonic()
+
+    def finished(self) -> None:
+        self.done += 1
+        if self.total and self.done / self.total >= self.next:
+            self.next += 0.1
+            run = time.monotonic() - self.t0
+            left = run * (self.total - self.done) / self.done
+            sys.stderr.write(f"\nsoak: {self.done}/{self.total} items, {run / 60:.1f} min so "
+                             f"far, about {left / 60:.1f} min left\n")
+
+
+_PROGRESS = _Progress()
+
+
+def pytest_collection_finish(session):
+    if not os.environ.get("PYTEST_XDIST_WORKER"):
+        _PROGRESS.collected(len(session.items))
+
+
+def pytest_runtest_logreport(report):
+    if report.when == "teardown" and not os.environ.get("PYTEST_XDIST_WORKER"):
+        _PROGRESS.finished()
+
+
+def pytest_xdist_node_collection_finished(node, ids):
+    """With xdist the controller learns the count from the workers (each collects all)."""
+    _PROGRESS.collected(len(ids))

@@ -31,6 +31,7 @@ import re
 import shutil
 import subprocess
 import sys
+import threading
 import time
 import tomllib
 from dataclasses import dataclass, field
@@ -998,13 +999,21 @@ def main() -> int:
                                      seeds=args.seeds[:1]))
     log(f"{len(jobs)} default jobs, {len(sweep)} sweep points, {args.jobs} at a time")
 
+    total, finished, start = len(jobs) + len(sweep), [0], now()
+    lock = threading.Lock()
+
     def go(j: Job) -> Job:
         t0 = now()
         execute(j, files, build, defaults, present_names)
         r = j.result
         f = fmax_of(r)
+        with lock:              # progress: jobs done, and the time left at this pace
+            finished[0] += 1
+            done = finished[0]
+        left = (now() - start) * (total - done) / done
         log(f"done {j.result.get('cfg', j.cfg).label()} [{job_tag(j)}] in {now() - t0:.0f} s"
-            + (f", Fmax {f:.1f} MHz" if f else "") + (f", {r['error']}" if "error" in r else ""))
+            + (f", Fmax {f:.1f} MHz" if f else "") + (f", {r['error']}" if "error" in r else "")
+            + f"  ({done}/{total}, about {left / 60:.0f} min left)")
         return j
 
     with cf.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:

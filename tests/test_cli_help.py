@@ -4,6 +4,7 @@ statistics of the run summary."""
 from __future__ import annotations
 
 import argparse
+import re
 import shlex
 import tomllib
 from pathlib import Path
@@ -194,3 +195,23 @@ def test_stl_unknown_mnemonic_suggests(tmp_path):
     assert proc.returncode == 1
     assert proc.stderr.splitlines()[0] == \
         f"{src}:3:7: unknown mnemonic `UNN`; did you mean `UN` or `UN(`?"
+
+
+# --- progress on long runs ------------------------------------------------------------
+
+def test_progress_line_on_request(tmp_path):
+    """BITBYTE_PROGRESS=S (a terminal gets it after 2 s): the harness rewrites one line
+    with the scan, the share done and the time left; without it, stderr stays quiet."""
+    import os
+    run = ["run", "examples/star_delta.il", "--clock-mhz", "1", "--until-us", "400000"]
+    os.environ["BITBYTE_PROGRESS"] = "0"
+    try:
+        proc = bitbyte(*run)
+    finally:
+        del os.environ["BITBYTE_PROGRESS"]
+    assert proc.returncode == 0, proc.stderr
+    # (text mode reads the carriage return that rewrites the line as a newline)
+    assert re.search(r"^bitbyte run: scan \d+, [\d.]+ s simulated: \d+ %, \d+ s so far, "
+                     r"about \d+ s left", proc.stderr, re.M), proc.stderr
+    assert proc.stderr.endswith("\n")
+    assert bitbyte(*run).stderr == ""

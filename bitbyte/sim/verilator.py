@@ -7,6 +7,7 @@ from __future__ import annotations
 import fcntl
 import os
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
@@ -35,6 +36,16 @@ def ensure_harness() -> Path:
     return HARNESS
 
 
+def _progress_fd() -> tuple[int, int] | None:
+    """Where the harness shows its progress line, and after how many seconds: this
+    process's stderr when it is a terminal (after 2 s), or when BITBYTE_PROGRESS=S
+    asks for it (after S seconds); None: no progress line (logs, tests)."""
+    after = os.environ.get("BITBYTE_PROGRESS")
+    if after is None and not sys.stderr.isatty():
+        return None
+    return os.dup(sys.stderr.fileno()), int(after) if after and after.isdigit() else 2
+
+
 def run_harness(job, columns, trace: str | None = None, waves: str | None = None):
     """Run `job`; returns (records, watchdog fault?, RunStats).  trace: where the
     harness writes the trace CSV (else a temporary file); waves: FST/VCD."""
@@ -53,10 +64,18 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
             byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,
                                    str(byte_path) if byte_path else None)
+        progress = _progress_fd()
+        if progress is not None:
+            text += f"progress {progress[0]} {progress[1]}\n"
         run_file.write_text(text)
         plusargs = os.environ.get("BITBYTE_HARNESS_ARGS", "").split()   # +name=value
-        proc = subprocess.run([str(harness), str(run_file), *plusargs],
-                              capture_output=True, text=True)
+        try:
+            proc = subprocess.run([str(harness), str(run_file), *plusargs],
+                                  capture_output=True, text=True,
+                                  pass_fds=(progress[0],) if progress else ())
+        finally:
+            if progress is not None:
+                os.close(progress[0])
         if proc.returncode not in (0, HARNESS_WATCHDOG):
             raise SimError(f"Verilator harness failed ({proc.returncode}):\n{proc.stderr}")
         records = read_trace_rows(trace_path, columns)
