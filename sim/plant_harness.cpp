@@ -78,6 +78,8 @@ struct PlantFile {
   unsigned protect = BB_PROTECTION_SEMAPHORE;  // a BB_PROTECTION_* code
   std::string waves, gtkw = "sim/plant.gtkw";
   std::vector<CoreFile> cores;
+  int progress_fd = -1;            // progress FD [AFTER_S]: as the single-CPU harness
+  double progress_after_s = 2.0;
 };
 
 static PlantFile read_plant_file(const char* path) {
@@ -96,6 +98,11 @@ static PlantFile read_plant_file(const char* path) {
       else if (k == "watchdog") pf.watchdog = parse_u64(one(), "watchdog");
       else if (k == "until_clock") pf.until_clock = int64_t(parse_u64(one(), "until_clock"));
       else if (k == "waves") pf.waves = one();
+      else if (k == "progress") {
+        if (w.size() != 2 && w.size() != 3) die("'progress' takes FD [AFTER_S]");
+        pf.progress_fd = int(parse_u64(w[1], "progress fd"));
+        if (w.size() == 3) pf.progress_after_s = double(parse_u64(w[2], "progress after_s"));
+      }
       else if (k == "gtkw") pf.gtkw = one();
       else if (k == "protect") {
         static const char* const kProtections[] = BB_PROTECTION_NAMES;
@@ -420,7 +427,16 @@ int main(int argc, char** argv) {
   }
   const uint64_t until = uint64_t(pf.until_clock);
   bool fault = false;
+  Progress progress;
+  progress.fd = pf.progress_fd;
+  progress.after_s = pf.progress_after_s;
   for (g_n = 0;; ++g_n) {
+    if ((g_n & 0xFFFF) == 0 && progress.fd >= 0) {
+      char what[96];
+      std::snprintf(what, sizeof what, "bitbyte run (plant): %.3f s simulated",
+                    double(g_n) / double(pf.clock_hz));
+      progress.update(std::min(1.0, double(g_n) / double(until)), what);
+    }
     for (Core& k : g_cores) {                         // inputs of clock g_n
       if (k.by_clock) apply_stim(k, g_n);
       const bool run = k.want == Core::kStart || k.want == Core::kBus ||
@@ -475,6 +491,7 @@ int main(int argc, char** argv) {
     }
     if (fault || all_done) { ++g_n; break; }
   }
+  progress.finish();
 
   for (Core& k : g_cores)
     if (k.trace && std::fclose(k.trace) != 0) die("error writing %s", k.cf->rf.trace.c_str());

@@ -215,3 +215,14 @@ def test_progress_line_on_request(tmp_path):
                      r"about \d+ s left", proc.stderr, re.M), proc.stderr
     assert proc.stderr.endswith("\n")
     assert bitbyte(*run).stderr == ""
+
+
+def test_plant_progress_line_on_request():
+    import os
+    os.environ["BITBYTE_PROGRESS"] = "0"
+    try:
+        proc = bitbyte("run", "examples/plant_6_1/plant_sim.toml", "--until-us", "100000")
+    finally:
+        del os.environ["BITBYTE_PROGRESS"]
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(r"^bitbyte run \(plant\): [\d.]+ s simulated: \d+ %", proc.stderr, re.M)

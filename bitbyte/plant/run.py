@@ -16,6 +16,7 @@ Copy-plan words (docs/multicore.md, "The copy engine"):
 from __future__ import annotations
 
 import fcntl
+import os
 import subprocess
 import tempfile
 from pathlib import Path
@@ -27,6 +28,7 @@ from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
 from bitbyte.run.prepare import prepare_run
 from bitbyte.run.summary import parse_stats, plant_summary_text
+from bitbyte.sim.verilator import progress_fd
 
 ROOT = Path(__file__).resolve().parents[2]
 PLANT_GTKW = ROOT / "sim" / "plant.gtkw"     # the waveform layout beside a plant's waves
@@ -171,8 +173,17 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
             waves = str(Path(waves).resolve())
             Path(waves).parent.mkdir(parents=True, exist_ok=True)
         run = tmp / "plant.run"
-        run.write_text(run_file_text(shared_map, jobs, plans, until_clock, tmp, base, waves))
-        proc = subprocess.run([str(harness), str(run)], capture_output=True, text=True)
+        text = run_file_text(shared_map, jobs, plans, until_clock, tmp, base, waves)
+        progress = progress_fd()
+        if progress is not None:
+            text = f"progress {progress[0]} {progress[1]}\n" + text   # a plant key: before the cores
+        run.write_text(text)
+        try:
+            proc = subprocess.run([str(harness), str(run)], capture_output=True, text=True,
+                                  pass_fds=(progress[0],) if progress else ())
+        finally:
+            if progress is not None:
+                os.close(progress[0])
         if proc.returncode not in (0, 3):
             raise PlantRunError(f"plant harness failed ({proc.returncode}):\n{proc.stderr}")
         rows = {}

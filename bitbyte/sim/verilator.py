@@ -36,7 +36,7 @@ def ensure_harness() -> Path:
     return HARNESS
 
 
-def _progress_fd() -> tuple[int, int] | None:
+def progress_fd() -> tuple[int, int] | None:
     """Where the harness shows its progress line, and after how many seconds: this
     process's stderr when it is a terminal (after 2 s), or when BITBYTE_PROGRESS=S
     asks for it (after S seconds); None: no progress line (logs, tests)."""
@@ -64,7 +64,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
             byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,
                                    str(byte_path) if byte_path else None)
-        progress = _progress_fd()
+        progress = progress_fd()
         if progress is not None:
             text += f"progress {progress[0]} {progress[1]}\n"
         run_file.write_text(text)
