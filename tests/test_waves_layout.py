@@ -30,9 +30,10 @@ EXPECTED_SIGNAL = {
 
 
 def declared(source: Path) -> list[tuple[str, str, tuple[int, ...]]]:
-    """(symbol, area, numbers) of the VAR block, read with a regex of its own."""
+    """(symbol, area, numbers) of the VAR blocks (VAR_GLOBAL's `: READ` / `: WRITE`
+    too), read with a regex of its own."""
     out = []
-    for name, area, nums in re.findall(r"^\s*(\w+)\s+AT\s+([A-Z]+)\s*([\d.]+)\s*;",
+    for name, area, nums in re.findall(r"^\s*(\w+)\s+AT\s+([A-Z]+)\s*([\d.]+)\s*(?::\s*\w+\s*)?;",
                                        source.read_text(), re.M):
         out.append((name, area, tuple(int(x) for x in nums.split("."))))
     return out
@@ -147,3 +148,26 @@ def test_parallel_mode_layout_lists_the_bit_part(tmp_path):
     assert "{executing}" in text and "{byte busy}" not in text   # no serial dispatch
     instr = (tmp_path / "fig5.instr.txt").read_text()
     assert "FBY" in instr           # the bit part's channel write (`= FBY k`)
+
+
+def test_plant_layout_names_every_core(tmp_path):
+    """A plant (spec §7): both projects' symbols per core, the semaphore and its owner,
+    each core's sequencer state by name; GTKWave displays every signal it names."""
+    waves = tmp_path / "plant.fst"
+    proc = bitbyte("run", ROOT / "examples" / "plant_6_1" / "plant_sim.toml",
+                   "--until-us", "60000", "--waves", waves)
+    assert proc.returncode == 0, proc.stderr
+    gtkw = tmp_path / "plant.gtkw"
+    assert f"gtkwave {waves} {gtkw}" in proc.stdout
+    text = gtkw.read_text()
+    for core, source in (("p1", "p1.il"), ("p2", "p2.il")):
+        for name, area, nums in declared(ROOT / "examples" / "plant_6_1" / source):
+            address = f"{area}{'.'.join(map(str, nums))}"
+            assert f"{{{core}: {name} {address}}}" in text, (core, name)
+    assert "{lock owner}" in text and "{p2: sequencer}" in text
+    seq = (tmp_path / "plant.seq.txt").read_text()
+    assert "1 pre lock" in seq and "4 scan" in seq
+    shown = gtkwave_displays(tmp_path, waves, gtkw)
+    asked = [line for line in text.splitlines() if line.startswith(("+{", "#{", CPU))]
+    assert len(shown) == len(asked)
+    assert "TOP.plc_system.g_core[1].u_core.u_mw_ram.mem.mem[0][15:0]" in shown   # p2's CNT

@@ -28,6 +28,8 @@ from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
 from bitbyte.run.prepare import prepare_run
 from bitbyte.run.summary import parse_stats, plant_summary_text
+from bitbyte.lang.parser import parse_file
+from bitbyte.sim.gtkw import WaveLayoutError, write_plant_gtkw
 from bitbyte.sim.verilator import progress_fd
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -134,6 +136,21 @@ def trace_base_of(trace: str) -> str:
     return trace[:-4] if trace.lower().endswith(".csv") else trace
 
 
+def _plant_layout(plant, waves: str) -> str:
+    """W.gtkw beside the plant's waves: every core's project in its own names, the
+    semaphore's owner by core name (bitbyte.sim.gtkw); the first view two periods of
+    the slowest core."""
+    gtkw = str(Path(waves).with_suffix(".gtkw"))
+    cores = [(c.name, parse_file(c.program, plant.config())) for c in plant.cores]
+    view = 2 * max(c.period_us for c in plant.cores) * plant.clock_mhz
+    try:
+        write_plant_gtkw(gtkw, waves, cores, clock_mhz=plant.clock_mhz,
+                         view_clocks=int(view))
+    except WaveLayoutError as e:
+        raise PlantRunError(f"waveform layout {gtkw}: {e}") from None
+    return gtkw
+
+
 def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
               watch: str = "", waves: str | None = None, watchdog: int = 100_000,
               costs: str = "paper", sim: str = "verilator"
@@ -203,7 +220,7 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     summary = plant_summary_text(
         plant.protection, jobs[0].clock_hz, st["clocks"],
         [(c.name, rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
-        (waves, str(PLANT_GTKW)) if waves else None)
+        (waves, _plant_layout(plant, waves)) if waves else None)
     if proc.returncode == 3:
         summary += proc.stderr
     return proc.returncode, summary, rows

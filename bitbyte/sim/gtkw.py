@@ -202,6 +202,77 @@ BIT_VECTORS = {"I": "pii", "PI": "in_pins_i", "IR": "rise", "IF": "fall",
                "Q": "out_pins_o", "PQ": "out_pins_o"}
 
 
+def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *,
+                serial: bool, stem: str, filter_dir: Path, title: str = "",
+                mw_ram: str | None = None) -> None:
+    """One CPU's groups (its scope `cpu`): Scan, Program, then its operands by kind;
+    titles prefixed with `title` (a plant's core name). mw_ram: the scope of the word
+    RAM holding MW n (a plant core's), else MW is the byte processor's memory."""
+    bp = f"{cpu}.u_bit_proc"
+    pre = f"{title}: " if title else ""
+    lay.group(f"{pre}Scan", [
+        *lay.trace(DEC, f"{cpu}.scan_count_o[31:0]", f"{pre}scan"),
+        *lay.filtered(f"{cpu}.u_scan_ctrl.state_q[1:0]", f"{pre}scan state",
+                      f"{stem}.state.txt", scan_states(), filter_dir),
+        *lay.trace(BIN, f"{cpu}.latch", f"{pre}latch (PII)"),
+        *lay.trace(BIN, f"{cpu}.scan_done_o", f"{pre}scan done (PIO)"),
+        *lay.trace(BIN, f"{cpu}.fault_o", f"{pre}watchdog fault"),
+    ])
+    program_rows = [
+        *lay.filtered(f"{bp}.e_pc_q[11:0]", f"{pre}executing", f"{stem}.instr.txt",
+                      {pc: instruction_text(i) for pc, i in enumerate(listing)}, filter_dir),
+        *lay.trace(BIN, f"{bp}.e_valid_q", f"{pre}executing valid"),
+        *lay.trace(BIN, f"{cpu}.rlo", f"{pre}RLO"),
+    ]
+    if serial:      # a byte instruction dispatched to the byte processor, until DONE
+        program_rows += lay.trace(BIN, f"{cpu}.byte_req", f"{pre}byte busy")
+    lay.group(f"{pre}Program", program_rows)
+
+    kinds: dict[str, list[str]] = {k: [] for k in
+                                   ("Inputs", "Outputs", "Markers", "Timers / counters",
+                                    "Words", "Not in the waves")}
+    for name, op in _operands(program):
+        alias = name if name == op.address() else f"{name} {op.address()}"
+        alias = f"{pre}{alias}"
+        if op.kind == "bit" and op.area in BIT_VECTORS:
+            group = "Outputs" if op.area in ("Q", "PQ") else "Inputs"
+            kinds[group] += lay.bit(f"{cpu}.{BIT_VECTORS[op.area]}", op.bit_number, alias)
+        elif op.kind == "bit" and op.area == "M":
+            kinds["Markers"] += lay.trace(
+                BIN, f"{bp}.u_marker_ram.mem.mem[{op.bit_number}]", alias)
+        elif op.kind == "index" and op.area in ("T", "C"):
+            vec = f"{cpu}.{'timer' if op.area == 'T' else 'counter'}_status"
+            kinds["Timers / counters"] += lay.bit(vec, op.index, alias)
+        elif op.kind == "index" and op.area in ("IW", "QW"):
+            vec = f"{cpu}.{'in_words_i' if op.area == 'IW' else 'out_words_o'}"
+            kinds["Words"] += lay.word(vec, op.index, alias)
+        elif op.kind == "index" and op.area == "MW" and mw_ram is not None:
+            kinds["Words"] += lay.trace(SIGNED_DEC, f"{mw_ram}.mem.mem[{op.index}][15:0]", alias)
+        else:                                   # MW: the byte processor's memory
+            kinds["Not in the waves"].append(f"-{alias}: byte processor memory (--watch)")
+    for kind, rows in kinds.items():
+        lay.group(f"{pre}{kind}", rows)
+
+
+def _write(lay: Layout, gtkw_path: Path, wave_file, what: str, filter_dir: Path,
+           clock_mhz: Fraction, t0_ps: int | None, view_clocks: int | None) -> None:
+    """The header (the first view: from t0_ps over view_clocks), the groups, the
+    filter files."""
+    header = [f"[*] {what}: waveform layout written by bitbyte run",
+              f"[*] open with: gtkwave {wave_file} {gtkw_path}",
+              f"[dumpfile] \"{Path(wave_file).resolve()}\"",
+              "[size] 1400 900", "[signals_width] 320", "[sst_width] 200",
+              "[sst_expanded] 0"]
+    if t0_ps is not None:
+        header.append(f"[timestart] {t0_ps}")
+        ps = (view_clocks or 400) * Fraction(1_000_000, 1) / clock_mhz
+        zoom = -math.log2(float(ps) / WAVE_AREA_PX * ZOOM_PS_PER_PX_SCALE)
+        header.append(f"*{zoom:.6f} {t0_ps} -1")
+    gtkw_path.write_text("\n".join(header + lay.lines) + "\n")
+    for fname, text in lay.filters.items():
+        (filter_dir / fname).write_text(text)
+
+
 def write_gtkw(gtkw_path: str | Path, wave_file: str | Path, program: Program,
                listing: list[Instr], *, serial: bool, clock_mhz: Fraction,
                t0_ps: int | None, scan_clocks: int | None) -> list[str]:
@@ -214,60 +285,53 @@ def write_gtkw(gtkw_path: str | Path, wave_file: str | Path, program: Program,
     stem = gtkw_path.name.removesuffix(".gtkw")
     filter_dir = gtkw_path.resolve().parent
     lay = Layout(read_signal_names(wave_file))
-    bp = f"{CPU}.u_bit_proc"
+    _cpu_groups(lay, CPU, program, listing, serial=serial, stem=stem, filter_dir=filter_dir)
+    _write(lay, gtkw_path, wave_file, Path(program.path).name, filter_dir, clock_mhz, t0_ps,
+           (scan_clocks or 100) * SCANS_IN_FIRST_VIEW)
+    return lay.named
 
-    lay.group("Scan", [
-        *lay.trace(DEC, f"{CPU}.scan_count_o[31:0]", "scan"),
-        *lay.filtered(f"{CPU}.u_scan_ctrl.state_q[1:0]", "scan state", f"{stem}.state.txt",
-                      scan_states(), filter_dir),
-        *lay.trace(BIN, f"{CPU}.latch", "latch (PII)"),
-        *lay.trace(BIN, f"{CPU}.scan_done_o", "scan done (PIO)"),
-        *lay.trace(BIN, f"{CPU}.fault_o", "watchdog fault"),
-    ])
-    program_rows = [
-        *lay.filtered(f"{bp}.e_pc_q[11:0]", "executing", f"{stem}.instr.txt",
-                      {pc: instruction_text(i) for pc, i in enumerate(listing)}, filter_dir),
-        *lay.trace(BIN, f"{bp}.e_valid_q", "executing valid"),
-        *lay.trace(BIN, f"{CPU}.rlo", "RLO"),
-    ]
-    if serial:      # a byte instruction dispatched to the byte processor, until DONE
-        program_rows += lay.trace(BIN, f"{CPU}.byte_req", "byte busy")
-    lay.group("Program", program_rows)
 
-    kinds: dict[str, list[str]] = {k: [] for k in
-                                   ("Inputs", "Outputs", "Markers", "Timers / counters",
-                                    "Words", "Not in the waves")}
-    for name, op in _operands(program):
-        alias = name if name == op.address() else f"{name} {op.address()}"
-        if op.kind == "bit" and op.area in BIT_VECTORS:
-            group = "Outputs" if op.area in ("Q", "PQ") else "Inputs"
-            kinds[group] += lay.bit(f"{CPU}.{BIT_VECTORS[op.area]}", op.bit_number, alias)
-        elif op.kind == "bit" and op.area == "M":
-            kinds["Markers"] += lay.trace(
-                BIN, f"{bp}.u_marker_ram.mem.mem[{op.bit_number}]", alias)
-        elif op.kind == "index" and op.area in ("T", "C"):
-            vec = f"{CPU}.{'timer' if op.area == 'T' else 'counter'}_status"
-            kinds["Timers / counters"] += lay.bit(vec, op.index, alias)
-        elif op.kind == "index" and op.area in ("IW", "QW"):
-            vec = f"{CPU}.{'in_words_i' if op.area == 'IW' else 'out_words_o'}"
-            kinds["Words"] += lay.word(vec, op.index, alias)
-        else:                                   # MW: the byte processor's memory
-            kinds["Not in the waves"].append(f"-{alias}: byte processor memory (--watch)")
-    for title, rows in kinds.items():
-        lay.group(title, rows)
+PLANT = "TOP.plc_system"
 
-    header = [f"[*] {Path(program.path).name}: waveform layout written by bitbyte run",
-              f"[*] open with: gtkwave {wave_file} {gtkw_path}",
-              f"[dumpfile] \"{Path(wave_file).resolve()}\"",
-              "[size] 1400 900", "[signals_width] 320", "[sst_width] 200",
-              "[sst_expanded] 0"]
-    if t0_ps is not None:
-        header.append(f"[timestart] {t0_ps}")
-        clocks = (scan_clocks or 100) * SCANS_IN_FIRST_VIEW
-        ps = clocks * Fraction(1_000_000, 1) / clock_mhz
-        zoom = -math.log2(float(ps) / WAVE_AREA_PX * ZOOM_PS_PER_PX_SCALE)
-        header.append(f"*{zoom:.6f} {t0_ps} -1")
-    gtkw_path.write_text("\n".join(header + lay.lines) + "\n")
-    for fname, text in lay.filters.items():
-        (filter_dir / fname).write_text(text)
+
+def core_seq_states(core_seq_v: Path = ROOT / "rtl" / "core_seq.v") -> dict[int, str]:
+    """A plant core's sequencer states (seed 000 Fig. 8), from its localparams
+    (`localparam [2:0] StPreLock = 3'd1;` -> 1: pre lock)."""
+    states = {}
+    for m in re.finditer(r"localparam\s*\[[^\]]*\]\s*St(\w+)\s*=\s*\d+'d(\d+)\s*;",
+                         core_seq_v.read_text()):
+        states[int(m.group(2))] = re.sub(r"(?<!^)([A-Z])", r" \1", m.group(1)).lower()
+    return states
+
+
+def write_plant_gtkw(gtkw_path: str | Path, wave_file: str | Path,
+                     cores: list[tuple[str, Program]], *, clock_mhz: Fraction,
+                     view_clocks: int) -> list[str]:
+    """A plant's layout (spec §7): the plant (time, the semaphore and its owner by core
+    name, each core's sequencer state by name), then per core its CPU's groups with the
+    project's symbols (shared variables among them; MW from the core's word RAM)."""
+    gtkw_path = Path(gtkw_path)
+    stem = gtkw_path.name.removesuffix(".gtkw")
+    filter_dir = gtkw_path.resolve().parent
+    lay = Layout(read_signal_names(wave_file))
+    names = {i: name for i, (name, _) in enumerate(cores)}
+    rows = [*lay.trace(DEC, f"{PLANT}.time_o[63:0]", "plant clock"),
+            *lay.trace(BIN, f"{PLANT}.locked_o", "semaphore locked")]
+    owner = f"{PLANT}.lock_owner_o"        # a vector from three cores on
+    owner = lay.need(owner) if owner in lay.signals else lay.vector(owner)[0]
+    rows += [DEC_FILTERED, f"^1 {filter_dir / (stem + '.owner.txt')}",
+             f"+{{lock owner}} {owner}"]
+    lay.filters[f"{stem}.owner.txt"] = filter_text(names)
+    for i, (name, _) in enumerate(cores):
+        rows += lay.filtered(f"{PLANT}.g_core[{i}].u_core.u_seq.state_q[2:0]",
+                             f"{name}: sequencer", f"{stem}.seq.txt", core_seq_states(),
+                             filter_dir)
+    lay.group("Plant", rows)
+    for i, (name, program) in enumerate(cores):
+        core = f"{PLANT}.g_core[{i}].u_core"
+        _cpu_groups(lay, f"{core}.u_cpu", program, list(program.instrs), serial=True,
+                    stem=f"{stem}.{name}", filter_dir=filter_dir, title=name,
+                    mw_ram=f"{core}.u_mw_ram")
+    _write(lay, gtkw_path, wave_file, "plant " + ", ".join(n for n, _ in cores), filter_dir,
+           clock_mhz, 0, view_clocks)
     return lay.named
