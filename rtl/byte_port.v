@@ -21,8 +21,8 @@ module byte_port #(
   input  wire [31:0]                   bus_wdata_i,
   input  wire                          bus_we_i,
   input  wire                          bus_re_i,
-  output reg  [31:0]                   bus_rdata_o,
-  output reg                           bus_ready_o,
+  output wire [31:0]                   bus_rdata_o,
+  output wire                          bus_ready_o,
   // scan state
   input  wire                          latch_i,      // a PII latch (clock 0 starts the time base)
   input  wire                          time_start_i, // a plant's clock 0: start it already
@@ -107,8 +107,9 @@ module byte_port #(
   reg [15:0] disp_iw_q;
   wire       disp_first = next_i && !pending_q;
   wire [3:0] disp_word  = dispatch_instr_i[3:0];
-  wire [15:0] named_iw  = ({28'd0, disp_word} < InWords) ? in_words_i[disp_word*16 +: 16]
-                                                           : 16'd0;
+  // the input words widened to the 16 the bus and the instruction can name (no compare)
+  wire [16*16-1:0] in_words16 = {{((16-InWords)*16){1'b0}}, in_words_i};
+  wire [15:0] named_iw  = in_words16[disp_word*16 +: 16];
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pending_q <= 1'b0;
@@ -122,18 +123,18 @@ module byte_port #(
       end
     end
   end
-  // In the first clock itself the snapshot is the live value.
-  wire [31:0] disp_ms = disp_first ? ms_q : disp_ms_q;
-  wire [15:0] disp_iw = disp_first ? named_iw : disp_iw_q;
+  // In the first clock itself the snapshot is the live value: the read data takes it
+  // last (below), since next_i comes late from the bit side.
 
   // ---------------------------------------------------------------- decode
   wire [2:0] chan   = bus_addr_i[2:0];
   wire is_fby_rd    = bus_re_i && (bus_addr_i[7:3] == AddrFby[7:3]);   // 8 channels
   wire is_fbi_wr    = bus_we_i && (bus_addr_i[7:3] == AddrFbi[7:3]);
-  wire chan_ok      = ({29'd0, chan} < Channels);
-  wire [Channels-1:0] chan_sel = chan_ok ? ({{(Channels-1){1'b0}}, 1'b1} << chan)
-                                         : {Channels{1'b0}};
-  wire is_iw        = bus_addr_i[7:4] == AddrIw[7:4];                // 16 words
+  // one-hot over the 8 channels the bus decodes, cut to the build's (no compare)
+  // verilator lint_off UNUSEDSIGNAL
+  wire [7:0] chan_sel8 = 8'd1 << chan;     // bits of channels the build lacks unused
+  // verilator lint_on UNUSEDSIGNAL
+  wire [Channels-1:0] chan_sel = chan_sel8[Channels-1:0];
   wire is_qw        = bus_addr_i[7:4] == AddrQw[7:4];
   wire [3:0] word   = bus_addr_i[3:0];
 
@@ -154,52 +155,74 @@ module byte_port #(
   wire [63:0] c_stat  = {{(64-StatusBits){1'b0}}, counter_status_i};
   wire [63:0] t_en    = {{(64-StatusBits){1'b0}}, timer_enable_i};
   wire [63:0] c_pulse = {{(64-StatusBits){1'b0}}, counter_pulse_i};
+  wire [16*16-1:0] out_words16 = {{((16-OutWords)*16){1'b0}}, out_words_o};
+  wire [7:0]  fby_data8 = {{(8-Channels){1'b0}}, fby_rd_data_i};
   wire [7:0]  fby_full8 = {{(8-Channels){1'b0}}, fby_full_i};
   wire [7:0]  fbi_full8 = {{(8-Channels){1'b0}}, fbi_full_i};
 
-  always @(*) begin
-    bus_rdata_o = 32'd0;
-    bus_ready_o = 1'b1;
-    if (is_fby_rd && chan_ok) begin
-      bus_rdata_o = {31'd0, |(fby_rd_data_i & chan_sel)};
-      bus_ready_o = |(fby_rd_ready_i & chan_sel);
-    end else if (is_fbi_wr && chan_ok) begin
-      bus_ready_o = |(fbi_wr_ready_i & chan_sel);
-    end else if (is_iw) begin
-      bus_rdata_o = ({28'd0, word} < InWords)
-                  ? {{16{in_words_i[word*16+15]}}, in_words_i[word*16 +: 16]} : 32'd0;
-    end else if (is_qw) begin
-      bus_rdata_o = ({28'd0, word} < OutWords)
-                  ? {{16{out_words_o[word*16+15]}}, out_words_o[word*16 +: 16]} : 32'd0;
-    end else begin
-      case (bus_addr_i)
-        `BUS_ID:       bus_rdata_o = `BUS_ID_VALUE;
-        `BUS_STATUS:   bus_rdata_o = {28'd0, byte_scan_done_o, fault_i, exec_i, next_i};
-        `BUS_DISPATCH_INSTR:    bus_rdata_o = dispatch_instr_i;
-        `BUS_DISPATCH_CTX:      bus_rdata_o = dispatch_ctx_i;
-        `BUS_DISPATCH_MS:   bus_rdata_o = disp_ms;
-        `BUS_DISPATCH_IW:   bus_rdata_o = {{16{disp_iw[15]}}, disp_iw};
-        `BUS_TIME_MS:   bus_rdata_o = ms_q;
-        `BUS_TICK_DIV:  bus_rdata_o = tick_div_q;
-        `BUS_CLOCK:    bus_rdata_o = clock_q;
-        `BUS_T_STATUS_LO:  bus_rdata_o = t_stat[31:0];
-        `BUS_T_STATUS_HI:  bus_rdata_o = t_stat[63:32];
-        `BUS_C_STATUS_LO:  bus_rdata_o = c_stat[31:0];
-        `BUS_C_STATUS_HI:  bus_rdata_o = c_stat[63:32];
-        `BUS_T_ENABLE_LO:    bus_rdata_o = t_en[31:0];
-        `BUS_T_ENABLE_HI:    bus_rdata_o = t_en[63:32];
-        `BUS_C_PULSE_LO: bus_rdata_o = c_pulse[31:0];
-        `BUS_C_PULSE_HI: bus_rdata_o = c_pulse[63:32];
-        `BUS_CHAN_STATUS: bus_rdata_o = {16'd0, fbi_full8, fby_full8};
-        `BUS_STALLS_BIT: bus_rdata_o = stalls_bit_o;
-        `BUS_STALLS_BYTE: bus_rdata_o = stalls_byte_o;
-        `BUS_BYTE_FLAGS:    bus_rdata_o = byte_flags_o;
-        `BUS_QUEUE_OVERFLOWS: bus_rdata_o = queue_overflows_i;
-        `BUS_QUEUE_UNDERFLOWS: bus_rdata_o = queue_underflows_i;
-        default:      bus_rdata_o = 32'd0;
-      endcase
+  // Read data: one table entry per address, indexed by the address, so that Yosys
+  // builds a balanced multiplexer on the eight address bits (the many zero entries
+  // fold away). The former range compares (carry chains) and priority chain of windows
+  // made this path, from the FPGA wrapper's bus registers through here and back, the
+  // HX8K's critical path. Which address holds what is settled at elaboration, from the
+  // register map and the parameters; the channels and words the build lacks read 0.
+  wire [31:0] rd_tab [0:255];
+  genvar ga;
+  generate
+    for (ga = 0; ga < 256; ga = ga + 1) begin : g_rd
+      localparam [7:0] A = ga[7:0];
+      if (A[7:3] == AddrFby[7:3]) begin : g_fby
+        // a channel's condition, only under the read strobe (a write reads 0)
+        assign rd_tab[ga] = {31'd0, bus_re_i && fby_data8[ga % 8]};
+      end else if (A[7:4] == AddrIw[7:4] || A[7:4] == AddrQw[7:4]) begin : g_word
+        // a word window, sign-extended
+        wire [15:0] word_v = (A[7:4] == AddrIw[7:4]) ? in_words16[(ga % 16)*16 +: 16]
+                                                     : out_words16[(ga % 16)*16 +: 16];
+        assign rd_tab[ga] = {{16{word_v[15]}}, word_v};
+      end else begin : g_reg
+        assign rd_tab[ga] =
+            (A == `BUS_ID)               ? `BUS_ID_VALUE :
+            (A == `BUS_STATUS)           ? {28'd0, byte_scan_done_o, fault_i, exec_i, 1'b0} :
+            (A == `BUS_DISPATCH_INSTR)   ? dispatch_instr_i :
+            (A == `BUS_DISPATCH_CTX)     ? dispatch_ctx_i :
+            (A == `BUS_DISPATCH_MS)      ? disp_ms_q :
+            (A == `BUS_DISPATCH_IW)      ? {{16{disp_iw_q[15]}}, disp_iw_q} :
+            (A == `BUS_TIME_MS)          ? ms_q :
+            (A == `BUS_TICK_DIV)         ? tick_div_q :
+            (A == `BUS_CLOCK)            ? clock_q :
+            (A == `BUS_T_STATUS_LO)      ? t_stat[31:0] :
+            (A == `BUS_T_STATUS_HI)      ? t_stat[63:32] :
+            (A == `BUS_C_STATUS_LO)      ? c_stat[31:0] :
+            (A == `BUS_C_STATUS_HI)      ? c_stat[63:32] :
+            (A == `BUS_T_ENABLE_LO)      ? t_en[31:0] :
+            (A == `BUS_T_ENABLE_HI)      ? t_en[63:32] :
+            (A == `BUS_C_PULSE_LO)       ? c_pulse[31:0] :
+            (A == `BUS_C_PULSE_HI)       ? c_pulse[63:32] :
+            (A == `BUS_CHAN_STATUS)      ? {16'd0, fbi_full8, fby_full8} :
+            (A == `BUS_STALLS_BIT)       ? stalls_bit_o :
+            (A == `BUS_STALLS_BYTE)      ? stalls_byte_o :
+            (A == `BUS_BYTE_FLAGS)       ? byte_flags_o :
+            (A == `BUS_QUEUE_OVERFLOWS)  ? queue_overflows_i :
+            (A == `BUS_QUEUE_UNDERFLOWS) ? queue_underflows_i : 32'd0;
+      end
     end
-  end
+  endgenerate
+  // What depends on next_i (STATUS.NEXT, and the live snapshot in a dispatch's first
+  // clock) joins at the end, so that the bit side's late request does not also pass
+  // through the whole multiplexer.
+  wire rd_status = bus_addr_i == `BUS_STATUS;
+  wire rd_ms_now = disp_first && bus_addr_i == `BUS_DISPATCH_MS;
+  wire rd_iw_now = disp_first && bus_addr_i == `BUS_DISPATCH_IW;
+  assign bus_rdata_o = rd_ms_now ? ms_q
+                     : rd_iw_now ? {{16{named_iw[15]}}, named_iw}
+                     : rd_tab[bus_addr_i] | {31'd0, rd_status && next_i};
+
+  // Ready: only a condition channel can refuse an access (a channel the build lacks
+  // never does). Widened to the 8 channels the bus decodes and indexed by the channel
+  // number, again without a compare.
+  wire [7:0] fby_ready8 = {{(8-Channels){1'b1}}, fby_rd_ready_i};
+  wire [7:0] fbi_ready8 = {{(8-Channels){1'b1}}, fbi_wr_ready_i};
+  assign bus_ready_o = !(is_fby_rd && !fby_ready8[chan]) && !(is_fbi_wr && !fbi_ready8[chan]);
 
   // ---------------------------------------------------------------- statistics
   // Every clock in which an access is refused is one byte-side stall (it is repeated).
@@ -223,6 +246,7 @@ module byte_port #(
     else if (latch_i) byte_scan_done_o <= 1'b0;
   end
 
+  integer w;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       tick_div_q    <= `BUS_TICK_DIV_RESET;   // 100 MHz
@@ -231,12 +255,13 @@ module byte_port #(
     end else begin
       if (bus_we_i && bus_addr_i == `BUS_TICK_DIV) tick_div_q <= bus_wdata_i;
       if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_o <= bus_wdata_i;
-      if (bus_we_i && is_qw && ({28'd0, word} < OutWords))
-        out_words_o[word*16 +: 16] <= bus_wdata_i[15:0];
+      for (w = 0; w < OutWords; w = w + 1)
+        if (bus_we_i && is_qw && word == w[3:0]) out_words_o[w*16 +: 16] <= bus_wdata_i[15:0];
     end
   end
 
 `ifdef FORMAL
+  wire chan_ok = ({29'd0, chan} < Channels);
   // Bus protocol properties (formal/byte_port.sby, k-induction; the time base's own
   // are in time_base.v).
   reg f_past_valid = 1'b0;
