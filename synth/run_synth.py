@@ -583,6 +583,11 @@ LIMITS = [
     (r"u_dispatch|u_tc_status|u_fb[iy]|g_channel", "the exchange circuits (dispatch, status buffer, channels)"),
     (r"u_scan_ctrl", "the scan controller (32-bit watchdog compare and counters)"),
     (r"u_(input|output)_unit", "the I/O units"),
+    # the bridge's registers around the core's combinational bus read (address -> read
+    # data / ready -> strobes): the path runs through the core's register map
+    (r"^u_bus\.(bus_addr_o|bus_re_o|bus_we_o|rd_data_o|rd_valid_o)",
+     "the byte-side bus read: the core's register-map multiplexer and a channel's ready "
+     "between the wrapper's bridge registers"),
     (r"^u_(spi|host|readback|bus|din|dout|reset)", "the FPGA wrapper (not the core)"),
 ]
 
@@ -784,8 +789,11 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
     w("* block-RAM clock-to-out where a RAM output is used in the same clock (ECP5 DP16KD "
       "without its output register: about 4.3 ns of a 5 ns budget at 200 MHz);")
     w("* the byte-side bus (`bus_rdata_o` and `bus_ready_o` are combinational by the bus "
-      "protocol: the address decode, the read multiplexer and a channel's ready lie "
-      "between the wrapper's bridge registers and back).")
+      "protocol: the read multiplexer and a channel's ready lie between the wrapper's "
+      "bridge registers and back). `byte_port.v` builds the read data as a table indexed "
+      "by the eight address bits (a balanced multiplexer, no range compares or priority "
+      "chain), with the bit side's late STATUS.NEXT and first-clock snapshot joining "
+      "after it.")
     w("")
     w("The iCE40 costs about 0.3 to 0.4 ns per LUT and 0.6 to 3 ns per route, so 100 MHz "
       "leaves room for about five LUT levels; ECP5-25 speed 8 at 200 MHz for about five "
