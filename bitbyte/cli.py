@@ -76,8 +76,10 @@ examples:
       the paper's Fig. 5 program split over the bit and byte processors, on Icarus
   bitbyte run examples/fig5.il --stimulus examples/fig5.stim.csv --scans 4 --status 3
       the block status of scan 3: RLO, operand and accumulators per line
-  bitbyte run examples/tutorial/motor.il --scans 6 --force Start=1@1-2 --force Ready=1@4
-      press Start in scans 1 and 2, light the Ready lamp in scan 4 whatever the program says
+  bitbyte run examples/tutorial/motor.il --scans 6 --force Stop=1 --force Start=1@1-2 \\
+      --force Ready=1@4 --watch Start,Running
+      Stop released, Start pressed in scans 1 and 2: the motor starts; the Ready lamp
+      lit in scan 4 whatever the program says
   bitbyte run examples/star_delta.il --scans 50 --waves sim/waves/star.fst
       also writes star.gtkw: open it with `gtkwave sim/waves/star.fst sim/waves/star.gtkw`
   bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000
@@ -371,13 +373,15 @@ def cmd_run(args) -> int:
     waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
     print(summary_text(records, f, stats, args.trace, waves,
                        None if args.force else response_times(prep, records),
-                       watchdog=args.watchdog), end="")
+                       watchdog=args.watchdog,
+                       fault_scan=len(records) if fault else None), end="")
     if args.status is not None:
-        if len(records) <= args.status:
+        faulted = fault and len(records) == args.status    # the scan the watchdog ended
+        if len(records) <= args.status and not faulted:
             raise UsageError(f"--status {args.status}: the run ended after "
                              f"{len(records)} scans")
         print(block_status_text(prep.listing, stats.block_status or {}, args.status,
-                                args.sim), end="")
+                                args.sim, ended_by_watchdog=faulted), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)
@@ -403,7 +407,8 @@ def cmd_run_plant(args) -> int:
         raise UsageError("running a plant needs --until-us T")
     for opt, given in (("--mode", args.mode != "serial"), ("--exchange", args.exchange),
                        ("--stimulus", args.stimulus), ("--channels", args.channels),
-                       ("--clock-mhz", args.clock_mhz != "100")):
+                       ("--clock-mhz", args.clock_mhz != "100"),
+                       ("--status", args.status is not None), ("--force", args.force)):
         if given:
             raise UsageError(f"{opt} does not apply to a plant (the plant file sets it)")
     try:

@@ -219,8 +219,11 @@ struct Run {
     if (top->fault_o) { fault = true; std::longjmp(stop, 1); }
     if (top->scan_done_o) {
       if (!host_writes.empty())  // the table would take effect a scan late: say so
-        die("--force: the force table of scan %llu was not written: the byte processor "
-            "left the bus no idle clock for it", (unsigned long long)scans);
+        die("--force: the force table of scan %llu did not fit into that scan (%zu of its "
+            "register writes left; it takes effect at the scan's END, so all must be "
+            "written in clocks where the byte processor leaves the bus idle): a short "
+            "scan, or one whose byte side keeps the bus busy; spread the changes over "
+            "more scans", (unsigned long long)scans, host_writes.size());
       record();
       ++scans;
       queue_force(int64_t(scans));

@@ -182,3 +182,22 @@ def test_status_usage_errors():
     assert proc.returncode == 2 and "--status 3: not a scan of this run" in proc.stderr
     proc = bitbyte("run", EX / "fig5.il", "--mode", "parallel", "--scans", 3, "--status", 1)
     assert proc.returncode == 2 and "serial mode only" in proc.stderr
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_the_scan_the_watchdog_stopped(tmp_path, sim):
+    """--status on the scan the watchdog ends: what ran up to then (the loop, the lines
+    after it not reached), the summary and exit status of a fault."""
+    src, stim = tmp_path / "loop.il", tmp_path / "s.csv"
+    src.write_text("again:  LD    I0.1\n        JC    again\n        LD    I0.0\n"
+                   "        =     Q0.0\n")
+    stim.write_text("scan,I0.1\n0,0\n2,1\n")
+    proc = bitbyte("run", src, "--stimulus", stim, "--scans", 5, "--status", 2,
+                   "--watchdog", 200, "--sim", sim)
+    assert proc.returncode == 3, proc.stderr
+    assert "scan watchdog: scan 2 exceeded 200 clocks" in proc.stderr
+    assert "watchdog         limit 200 clocks: exceeded in scan 2" in proc.stdout
+    assert "ended by the scan watchdog" in proc.stdout
+    rows = {r["line"]: r for r in parse_status(proc.stdout).values()}
+    assert rows[1]["executed"] and rows[1]["count"] >= 40 and rows[1]["rlo"] == 1
+    assert not rows[3]["executed"] and not rows[4]["executed"]

@@ -4,6 +4,7 @@ A directed program with a hand-worked trace on both simulators."""
 from __future__ import annotations
 
 import csv
+import re
 from pathlib import Path
 
 import pytest
@@ -126,3 +127,23 @@ def test_force_usage_through_the_cli(tmp_path):
     src.write_text(PROGRAM)
     proc = bitbyte("run", src, "--scans", 2, "--force", "Copy=1", "--force", "Q0.1=0@1")
     assert proc.returncode == 2 and "same pin in scan 1" in proc.stderr
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_a_table_that_does_not_fit_its_scan_is_an_error(tmp_path, sim):
+    """A 3-clock scan cannot carry four register writes: the run stops and says so
+    (the table would otherwise take effect a scan late, silently)."""
+    src = tmp_path / "tiny.il"
+    src.write_text("  LD I0.0\n  = Q0.0\n")
+    proc = bitbyte("run", src, "--scans", 4, "--force", "I0.0=1@2", "--force", "Q0.0=1@1",
+                   "--sim", sim)
+    assert proc.returncode == 4, proc.stdout + proc.stderr
+    # (which scan runs short first depends on the host's clock of its first write)
+    assert re.search(r"the force table of scan [12] did not fit into that scan", proc.stderr)
+
+
+def test_plant_runs_refuse_force_and_status():
+    plant = Path(__file__).resolve().parents[1] / "examples" / "plant_6_1" / "plant_sim.toml"
+    for opt in (["--force", "I0.0=1"], ["--status", "1"]):
+        proc = bitbyte("run", plant, "--until-us", 2000, *opt)
+        assert proc.returncode == 2 and "does not apply to a plant" in proc.stderr

@@ -31,11 +31,16 @@ def _is_word(instr: Instr) -> bool:
 
 
 def block_status_text(listing: list[Instr], status: dict[int, Retired], scan: int,
-                      where: str) -> str:
+                      where: str, ended_by_watchdog: bool = False) -> str:
     """listing: the bit processor's program memory by address (serial mode: the whole
-    program); status: address -> its retirement in scan `scan`; where: the simulator."""
-    head = (f"block status of scan {scan} ({where}): RLO after each line, STA the "
-            "operand bit it read, ACCU1/ACCU2 after word instructions")
+    program); status: address -> its retirement in scan `scan`; where: the simulator;
+    ended_by_watchdog: the scan did not end, the watchdog stopped it (its lines show
+    what ran up to then)."""
+    head = (f"block status of scan {scan} ({where}"
+            + ("; ended by the scan watchdog: the lines up to then" if ended_by_watchdog
+               else "")
+            + "): RLO after each line, STA the operand bit it read, ACCU1/ACCU2 after "
+            "word instructions")
     lines = [head, f"{'line':>5}  {'instruction':<{SOURCE_WIDTH}} {'RLO':>3} {'STA':>3} "
                    f"{'ACCU1':>7} {'ACCU2':>7}"]
     for pc, instr in enumerate(listing):

@@ -63,10 +63,11 @@ def _label(name: str) -> str:
 
 def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats,
                  trace_path: str | None = None, waves: tuple[str, str] | None = None,
-                 response: Responses | None = None, watchdog: int | None = None) -> str:
+                 response: Responses | None = None, watchdog: int | None = None,
+                 fault_scan: int | None = None) -> str:
     """waves: (the wave file, the GTKWave layout); response: bitbyte.run.response's
     figures, printed when an input changed; watchdog: the limit in clocks (its margin
-    against the longest scan is printed)."""
+    against the longest scan is printed); fault_scan: the scan the watchdog stopped."""
     mhz = format_decimal(clock_mhz)
     lines = [_label("scans") + str(len(records))]
     if records:
@@ -78,8 +79,12 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
         lines.append(_label("scan time [us]") + f"min {us[0]}  mean "
                      f"{format_decimal(mean / clock_mhz)}  max {us[1]}  (clock {mhz} MHz)")
         lines.append(_label("scan histogram") + histogram(cycles))
-        if watchdog is not None:
-            lines.append(_label("watchdog") + watchdog_margin(hi, watchdog))
+    if watchdog is not None and fault_scan is not None:
+        lines.append(_label("watchdog") + f"limit {watchdog} clocks: exceeded in scan "
+                     f"{fault_scan} (the run stopped there)")
+    elif watchdog is not None and records:
+        lines.append(_label("watchdog") + watchdog_margin(max(r.cycles for r in records),
+                                                           watchdog))
     else:
         lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
     lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")

@@ -264,6 +264,10 @@ class Firmware:
             lib.bb_run_step(self.state, mode)
 
 
+class RunError(Exception):
+    """A run the user asked for cannot be done as asked (bitbyte.run.force's table)."""
+
+
 async def run_job(dut, job: RunJob) -> dict:
     dut.rst_ni.value = 0
     dut.run_i.value = 0
@@ -407,8 +411,12 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
             break
         if isinstance(fired, RisingEdge) and int(dut.scan_done_o.value):
             if firmware.host_writes:           # the table would take effect a scan late
-                raise RuntimeError(f"--force: the force table of scan {scan} was not "
-                                   "written: the byte processor left the bus no idle clock")
+                raise RunError(f"--force: the force table of scan {scan} did not fit into "
+                               f"that scan ({len(firmware.host_writes)} of its register "
+                               "writes left; it takes effect at the scan's END, so all must "
+                               "be written in clocks where the byte processor leaves the "
+                               "bus idle): a short scan, or one whose byte side keeps the "
+                               "bus busy; spread the changes over more scans")
             rows.append((scan, clock, int(dut.scan_cycles_o.value), await values()))
             scan += 1
             firmware.queue_force(scan)
@@ -435,6 +443,9 @@ async def run_jobs(dut):
     for sig in (dut.prog_we_i, dut.prog_waddr_i, dut.prog_wdata_i, dut.in_words_i,
                 dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i):
         sig.value = 0
-    results = [await run_job(dut, job) for job in jobs]
+    try:
+        results = [await run_job(dut, job) for job in jobs]
+    except RunError as e:                       # a user's error: its words, not a trace
+        results = {"error": str(e)}
     with open(os.environ["BITBYTE_RESULTS"], "w") as f:
         json.dump(results, f)

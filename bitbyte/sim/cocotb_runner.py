@@ -124,6 +124,8 @@ def run_jobs(jobs, sim: str = "icarus"):
                                       "BITBYTE_RESULTS": str(results_path)},
                            quiet=True)
         data = json.loads(results_path.read_text())
+    if isinstance(data, dict) and "error" in data:
+        raise SimError(data["error"])
     return [RunResult(rows=[tuple(r) for r in d["rows"]], fault=d["fault"],
                       clocks=d["clocks"], stalls=tuple(d["stalls"]),
                       byte_scans=d["byte_scans"], byte_flags=d["byte_flags"],

@@ -56,7 +56,8 @@ def read_signal_names(wave_file: str | Path) -> set[str]:
     as its own signal keeps its index (`...u_marker_ram.mem.mem[5]`)."""
     path = Path(wave_file)
     if path.suffix == ".vcd":
-        return _vcd_header_names(path.read_text(errors="replace").splitlines())
+        with path.open(errors="replace") as f:      # the header only, streamed
+            return _vcd_header_names(f)
     proc = subprocess.Popen(["fst2vcd", "-f", str(path)], stdout=subprocess.PIPE,
                             stderr=subprocess.DEVNULL, text=True)
     lines = []
@@ -197,8 +198,9 @@ def _operands(program: Program) -> list[tuple[str, Operand]]:
 
 
 # The image vector each bit area is shown from: the PII and its edge flags, the pins
-# (PI: read directly), the output pins (what the PIO update drives).
-BIT_VECTORS = {"I": "pii", "PI": "in_pins_i", "IR": "rise", "IF": "fall",
+# as the CPU reads them (PI: read directly; after the force table), the output pins
+# (what the PIO update drives, after the force table).
+BIT_VECTORS = {"I": "pii", "PI": "in_pins", "IR": "rise", "IF": "fall",
                "Q": "out_pins_o", "PQ": "out_pins_o"}
 
 
@@ -218,10 +220,12 @@ def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *
         *lay.trace(BIN, f"{cpu}.scan_done_o", f"{pre}scan done (PIO)"),
         *lay.trace(BIN, f"{cpu}.fault_o", f"{pre}watchdog fault"),
     ])
+    # the instruction executing: in execute, or in the wait slot while it waits there
+    # for the byte side (bit_proc's exec_pc_o / exec_valid_o)
     program_rows = [
-        *lay.filtered(f"{bp}.e_pc_q[11:0]", f"{pre}executing", f"{stem}.instr.txt",
+        *lay.filtered(f"{cpu}.exec_pc[11:0]", f"{pre}executing", f"{stem}.instr.txt",
                       {pc: instruction_text(i) for pc, i in enumerate(listing)}, filter_dir),
-        *lay.trace(BIN, f"{bp}.e_valid_q", f"{pre}executing valid"),
+        *lay.trace(BIN, f"{cpu}.exec_valid", f"{pre}executing valid"),
         *lay.trace(BIN, f"{cpu}.rlo", f"{pre}RLO"),
     ]
     if serial:      # a byte instruction dispatched to the byte processor, until DONE
