@@ -360,7 +360,8 @@ def cmd_run(args) -> int:
                              f"(scans 0..{(args.scans or 1) - 1})")
         job.status_scan = args.status
     if args.force:
-        forces = [parse_force(text, program.symbols, prep.config) for text in args.force]
+        forces = [parse_force(text, program.symbols, prep.config, program.symbol_names)
+                  for text in args.force]
         check_overlaps(forces)
         job.force = force_tables(forces)
 

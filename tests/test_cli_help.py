@@ -150,12 +150,12 @@ def test_watch_and_stimulus_suggest_the_declared_name(tmp_path):
     src.write_text("VAR Start AT I0.0; Motor AT Q0.0; END_VAR\n  LD Start\n  = Motor\n")
     proc = bitbyte("run", src, "--scans", "2", "--watch", "Motr")
     assert proc.returncode == 2
-    assert "did you mean `MOTOR`?" in proc.stderr
+    assert "did you mean `Motor`?" in proc.stderr
     stim = tmp_path / "s.csv"
     stim.write_text("scan,Strat\n0,1\n")
     proc = bitbyte("run", src, "--scans", "2", "--stimulus", stim)
     assert proc.returncode == 1
-    assert "unknown operand 'Strat'; did you mean `START`?" in proc.stderr
+    assert "unknown operand 'Strat'; did you mean `Start`?" in proc.stderr
 
 
 # --- cycle-time statistics ----------------------------------------------------------

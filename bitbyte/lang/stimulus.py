@@ -188,8 +188,10 @@ def _cells(line: str) -> list[_Cell]:
 class _Reader:
     """Reads one file; `fail` raises a SourceError at a cell."""
 
-    def __init__(self, path: str, symbols: dict[str, Operand] | None, config: Config):
+    def __init__(self, path: str, symbols: dict[str, Operand] | None, config: Config,
+                 names: dict[str, str] | None = None):
         self.path, self.symbols, self.config = path, symbols or {}, config
+        self.names = names or {}          # the symbols as declared (for hints)
         self.line_no, self.line = 0, ""
 
     def fail(self, cell: _Cell | None, message: str):
@@ -216,7 +218,7 @@ class _Reader:
         op = resolve_operand(cell.text, self.symbols)
         if op is None:
             self.fail(cell, f"unknown operand '{cell.text}'"
-                      + did_you_mean(cell.text, self.symbols))
+                      + did_you_mean(cell.text, [self.names.get(k, k) for k in self.symbols]))
         if op.kind == "bit" and op.area in ("I", "PI"):
             op = Operand("bit", "I", byte=op.byte, bit=op.bit, text=cell.text)
         elif not (op.kind == "index" and op.area == "IW"):
@@ -268,19 +270,22 @@ def _plain_decimal(text: str) -> bool:
 
 
 def load_stimulus(path: str, symbols: dict[str, Operand] | None = None,
-                  config: Config | None = None) -> Stimulus:
-    """Read STIM.csv; every malformed line raises SourceError(path, line, col, ...)."""
+                  config: Config | None = None,
+                  names: dict[str, str] | None = None) -> Stimulus:
+    """Read STIM.csv; every malformed line raises SourceError(path, line, col, ...).
+    names: the symbols as declared (Program.symbol_names), for the hints."""
     config = config or Config()
     text = read_utf8(path, "a stimulus is UTF-8 text")   # as open(newline=""): line ends kept
-    return parse_stimulus(text, path, symbols, config)
+    return parse_stimulus(text, path, symbols, config, names)
 
 
 def parse_stimulus(text: str, path: str = "<stimulus>",
                    symbols: dict[str, Operand] | None = None,
-                   config: Config | None = None) -> Stimulus:
+                   config: Config | None = None,
+                   names: dict[str, str] | None = None) -> Stimulus:
     """The parser behind load_stimulus, on a string."""
     config = config or Config()
-    rd = _Reader(path, symbols, config)
+    rd = _Reader(path, symbols, config, names)
     kind, ops = None, []
     pins, words = 0, {}
     rows: list[Row] = []

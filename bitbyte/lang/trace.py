@@ -145,16 +145,18 @@ def trace_columns(program: Program, watch: Iterable[str] = (),
             for b, n in written_q_bits(program)]
     cols += [Column(f"QW{n}", Operand("index", "QW", index=n, text=f"QW{n}"))
              for n in written_qwords(program)]
-    cols += [_watch_column(w, symbols, config) for w in watch]
+    cols += [_watch_column(w, symbols, config, program.symbol_names) for w in watch]
     return cols
 
 
-def _watch_column(text: str, symbols: dict[str, Operand], config: Config | None) -> Column:
+def _watch_column(text: str, symbols: dict[str, Operand], config: Config | None,
+                  names: dict[str, str] | None = None) -> Column:
     header = text.strip()
     op = resolve_operand(header, symbols)
     if op is None or op.kind not in ("bit", "index"):
         raise ValueError(f"'{header}' is neither an address nor a bit/word symbol"
-                         + (did_you_mean(header, symbols) if op is None else ""))
+                         + (did_you_mean(header, [(names or {}).get(k, k) for k in symbols])
+                            if op is None else ""))
     if config is not None and not operand_fits(op, config):
         raise ValueError(f"'{header}': operand out of range")
     return Column(header, op)

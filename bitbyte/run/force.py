@@ -42,7 +42,8 @@ class Force:
         return self.first <= scan and (self.last is None or scan <= self.last)
 
 
-def parse_force(text: str, symbols: dict[str, Operand], config: Config) -> Force:
+def parse_force(text: str, symbols: dict[str, Operand], config: Config,
+                names: dict[str, str] | None = None) -> Force:
     """`Start=1`, `I0.0=1@5-8`, `Q0.1=0@3-`, `Motor=1@2`: an input (I/PI, the pin) or
     an output (Q/PQ) bit, its value, from scan FROM (default 0) to TO (default: the
     end; `@K` alone is scan K only)."""
@@ -53,7 +54,7 @@ def parse_force(text: str, symbols: dict[str, Operand], config: Config) -> Force
     op = resolve_operand(m["op"], symbols)
     if op is None:
         raise UsageError(f"--force {text!r}: unknown operand '{m['op']}'"
-                         + did_you_mean(m["op"], symbols))
+                         + did_you_mean(m["op"], [(names or {}).get(k, k) for k in symbols]))
     if op.kind != "bit" or op.area not in ("I", "PI", "Q", "PQ"):
         raise UsageError(f"--force {text!r}: only input (I, PI) and output (Q, PQ) bits "
                          "can be forced")

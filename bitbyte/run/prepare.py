@@ -122,7 +122,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
             _one_cell_per_condition(program, part, channels or config.channels)
     else:
         words, pool = encode_words(program, config), constant_pool(program)
-    stim = (load_stimulus(stimulus, program.symbols, config) if stimulus
+    stim = (load_stimulus(stimulus, program.symbols, config, program.symbol_names) if stimulus
             else no_stimulus(config))
     watch_list = [w for w in watch.split(",") if w.strip()] if watch else []
     try:
