@@ -32,7 +32,7 @@ from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import parse_clock_mhz, prepare
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
-from bitbyte.run.status import block_status_text
+from bitbyte.run.status import block_status_text, parallel_block_status_text
 from bitbyte.run.summary import summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
 from bitbyte.sim.gtkw import WaveLayoutError, write_gtkw
@@ -187,7 +187,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="print the block status of scan SCAN (from 0) after the summary: "
                         "per program line the RLO after it, the operand bit it read, "
                         "ACCU1/ACCU2 after word instructions, or 'not executed' "
-                        "(serial mode)")
+                        "(serial and parallel mode)")
     r.add_argument("--force", action="append", default=[], metavar="OP=V[@FROM-TO]",
                    help="force an input or output bit (I, PI, Q, PQ or its symbol) to 0 "
                         "or 1 in scans FROM..TO (default: all; @K: scan K only; @K-: "
@@ -353,8 +353,9 @@ def cmd_run(args) -> int:
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
     if args.status is not None:
-        if args.mode != "serial":
-            raise UsageError("--status: serial mode only, for now (docs/toolchain.md)")
+        if args.mode == "free":
+            raise UsageError("--status: serial and parallel mode (in free-running mode the "
+                             "two sides' scans are not the same scans)")
         if args.status < 0 or (args.scans is not None and args.status >= args.scans):
             raise UsageError(f"--status {args.status}: not a scan of this run "
                              f"(scans 0..{(args.scans or 1) - 1})")
@@ -381,8 +382,13 @@ def cmd_run(args) -> int:
         if len(records) <= args.status and not faulted:
             raise UsageError(f"--status {args.status}: the run ended after "
                              f"{len(records)} scans")
-        print(block_status_text(prep.listing, stats.block_status or {}, args.status,
-                                args.sim, ended_by_watchdog=faulted), end="")
+        if args.mode == "parallel":
+            print(parallel_block_status_text(prep.listing, stats.block_status or {},
+                                             prep.byte_listing, stats.byte_status or {},
+                                             args.status, args.sim, faulted), end="")
+        else:
+            print(block_status_text(prep.listing, stats.block_status or {}, args.status,
+                                    args.sim, ended_by_watchdog=faulted), end="")
     if fault:
         print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)

@@ -84,6 +84,12 @@ typedef struct bb_state {
   uint32_t   scan_steps;     /* instructions the last bb_run_scan executed */
   int        mw_on_bus;      /* MW n lives in the FPGA at bus address MW(n) (plant core) */
   uint64_t   byte_scans;     /* parallel / free-running: byte scans reported (SCAN_DONE) */
+  /* parallel / free-running: the byte program's last completed instruction, as it was
+   * when it completed (a host's block status: bitbyte run --status); END_B not noted */
+  uint64_t   ret_seq;        /* instructions completed so far */
+  uint32_t   ret_pc;         /* its address in the byte program */
+  int        ret_rlo;        /* F_B after it */
+  int32_t    ret_accu1, ret_accu2;
   void      *hal_ctx;        /* the first argument of every HAL call (bb_set_hal_ctx) */
 } bb_state;
 
@@ -201,6 +207,13 @@ int      bb_counter_status(const bb_state *s, unsigned n);
 uint32_t bb_flags(const bb_state *s);   /* BB_FLAG_ARITH | ILLEGAL | RUNAWAY */
 int32_t  bb_accu1(const bb_state *s);
 int32_t  bb_accu2(const bb_state *s);
+/* The byte program's last completed instruction (parallel / free-running): how many
+ * have completed, its address, F_B and the accumulators right after it. */
+uint64_t bb_ret_seq(const bb_state *s);
+uint32_t bb_ret_pc(const bb_state *s);
+int      bb_ret_rlo(const bb_state *s);
+int32_t  bb_ret_accu1(const bb_state *s);
+int32_t  bb_ret_accu2(const bb_state *s);
 uint32_t bb_overruns(const bb_state *s);
 uint64_t bb_executed(const bb_state *s);
 uint64_t bb_byte_scans(const bb_state *s);

@@ -271,10 +271,16 @@ int bb_run_scan(bb_state *s) {
       bb_raise_flag(s, BB_FLAG_RUNAWAY);
       break;
     }
+    const uint32_t at = s->pc;
     const uint32_t instr = s->prog[s->pc++];     /* a taken jump overwrites the PC */
     s->scan_steps++;
     bb_step(s, instr, &rlo);
     if (s->last_class == BB_CL_END) break;
+    s->ret_pc = at;                              /* the block status's record */
+    s->ret_rlo = rlo;
+    s->ret_accu1 = s->accu1;
+    s->ret_accu2 = s->accu2;
+    s->ret_seq++;
   }
   const uint64_t taken = hal_now(s->hal_ctx) - t0;
   return taken > (uint64_t)INT_MAX ? INT_MAX : (int)taken;
@@ -333,6 +339,11 @@ int bb_counter_status(const bb_state *s, unsigned n) {
 uint32_t bb_flags(const bb_state *s) { return s->flags; }
 int32_t bb_accu1(const bb_state *s) { return s->accu1; }
 int32_t bb_accu2(const bb_state *s) { return s->accu2; }
+uint64_t bb_ret_seq(const bb_state *s) { return s->ret_seq; }
+uint32_t bb_ret_pc(const bb_state *s) { return s->ret_pc; }
+int bb_ret_rlo(const bb_state *s) { return s->ret_rlo; }
+int32_t bb_ret_accu1(const bb_state *s) { return s->ret_accu1; }
+int32_t bb_ret_accu2(const bb_state *s) { return s->ret_accu2; }
 uint32_t bb_overruns(const bb_state *s) { return s->overruns; }
 uint64_t bb_executed(const bb_state *s) { return s->executed; }
 uint64_t bb_byte_scans(const bb_state *s) { return s->byte_scans; }

@@ -170,15 +170,31 @@ struct Run {
   // chosen scan (its RLO after, the operand bit, the firmware's accumulators after it)
   // and how often the address retired in that scan.
   struct Status { uint64_t count = 0; unsigned rlo = 0, opnd = 0; int32_t accu1 = 0, accu2 = 0; };
-  std::map<uint32_t, Status> status;
+  std::map<uint32_t, Status> status, byte_status;  // the bit processor's; the byte part's
+  uint64_t byte_seq = 0;                              // byte-part instructions seen completed
   void observe_retirement() {
-    if (int64_t(scans) != rf->status_scan || !top->dbg_ret_valid_o) return;
-    Status& s = status[top->dbg_ret_pc_o];
-    ++s.count;
-    s.rlo = top->dbg_rlo_o;
-    s.opnd = top->dbg_ret_opnd_o;
-    s.accu1 = bb_accu1(bb);
-    s.accu2 = bb_accu2(bb);
+    if (int64_t(scans) != rf->status_scan) {
+      byte_seq = bb_ret_seq(bb);
+      return;
+    }
+    if (top->dbg_ret_valid_o) {
+      Status& s = status[top->dbg_ret_pc_o];
+      ++s.count;
+      s.rlo = top->dbg_rlo_o;
+      s.opnd = top->dbg_ret_opnd_o;
+      s.accu1 = bb_accu1(bb);
+      s.accu2 = bb_accu2(bb);
+    }
+    // parallel mode: the firmware's record of its byte part's last completed
+    // instruction (every instruction but END_B takes a clock: none is missed)
+    if (rf->parallel && bb_ret_seq(bb) != byte_seq) {
+      byte_seq = bb_ret_seq(bb);
+      Status& s = byte_status[bb_ret_pc(bb)];
+      ++s.count;
+      s.rlo = unsigned(bb_ret_rlo(bb));
+      s.accu1 = bb_ret_accu1(bb);
+      s.accu2 = bb_ret_accu2(bb);
+    }
   }
   // --force: the host's writes of the force table (FORCE_*, docs/byte-bus.md) go over
   // the byte bus in clocks the byte processor leaves it idle (idle_clock), the table
@@ -493,6 +509,9 @@ int main(int argc, char** argv) {
   for (const auto& [pc, s] : run.status)  // with `status K` only: the block status
     std::printf("status %u %llu %u %u %d %d\n", pc, (unsigned long long)s.count, s.rlo,
                 s.opnd, s.accu1, s.accu2);
+  for (const auto& [pc, s] : run.byte_status)  // ... of the byte part (parallel mode)
+    std::printf("bstatus %u %llu %u %d %d\n", pc, (unsigned long long)s.count, s.rlo,
+                s.accu1, s.accu2);
   std::printf("stat wall_s %.6f\n", wall);
   return fault ? 3 : 0;
 }

@@ -127,3 +127,14 @@ class Program:
     symbols: dict[str, Operand] = field(default_factory=dict)
     globals: list[GlobalVar] = field(default_factory=list)
     symbol_names: dict[str, str] = field(default_factory=dict)  # upper-case -> as declared
+
+
+def display_text(instr: Instr) -> str:
+    """An instruction as a listing shows it: its source line without the comment, and
+    for a transfer the partitioning compiler made (`= FBY 0` for the enable of
+    `SD Timer`, `READ FBY 0` on the byte side) the transfer, then the line it serves."""
+    text = " ".join(instr.source.split("//")[0].split()) or instr.mnemonic
+    op = instr.operand
+    if op is not None and op.area in ("FBI", "FBY"):
+        return f"{instr.mnemonic} {op.area} {op.index}  ({text})"
+    return text

@@ -65,6 +65,7 @@ class Prepared:
     stimulus: Stimulus
     config: Config
     listing: list = field(default_factory=list)   # the bit processor's program, word by word
+    byte_listing: list = field(default_factory=list)   # parallel: the byte part's
 
 
 def prepare_run(program_path: str, **settings):
@@ -146,7 +147,8 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
                  byte_prog=byte_words)
     return Prepared(program, columns, job, f, stim.changes(f), stim, config,
-                    list(part.bit) if mode in ("parallel", "free") else list(program.instrs))
+                    list(part.bit) if mode in ("parallel", "free") else list(program.instrs),
+                    list(part.byte) if mode in ("parallel", "free") else [])
 
 
 def _one_cell_per_condition(program, part, cells: int) -> None:

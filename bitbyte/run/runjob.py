@@ -98,6 +98,7 @@ class RunResult:
     queue_losses: tuple[int, int] | None = None   # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
     byte_flags: int = 0                  # bb_flags()
     block_status: dict | None = None     # --status: address -> (count, rlo, operand, accu1, accu2)
+    byte_status: dict | None = None      # ... of the byte part (parallel mode)
 
     def to_json(self) -> str:
         return json.dumps(asdict(self))

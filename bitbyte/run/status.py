@@ -12,7 +12,7 @@ reference interpreter, which the tests compare them with."""
 from __future__ import annotations
 
 from bitbyte.encoding.isa import READ_OPS, is_byte_instruction
-from bitbyte.lang.program import Instr
+from bitbyte.lang.program import Instr, display_text
 from bitbyte.run.summary import Retired
 
 SOURCE_WIDTH = 34
@@ -41,19 +41,45 @@ def block_status_text(listing: list[Instr], status: dict[int, Retired], scan: in
                else "")
             + "): RLO after each line, STA the operand bit it read, ACCU1/ACCU2 after "
             "word instructions")
-    lines = [head, f"{'line':>5}  {'instruction':<{SOURCE_WIDTH}} {'RLO':>3} {'STA':>3} "
-                   f"{'ACCU1':>7} {'ACCU2':>7}"]
+    lines = [head] + _rows(listing, status, "RLO")
+    return "\n".join(lines) + "\n"
+
+
+def parallel_block_status_text(listing: list[Instr], status: dict[int, Retired],
+                               byte_listing: list[Instr], byte_status: dict[int, Retired],
+                               scan: int, where: str, ended_by_watchdog: bool = False) -> str:
+    """Parallel mode: the bit part's lines with F_b (the bit processor's RLO), then the
+    byte part's with F_B (the byte processor's) and the accumulators, from the
+    firmware's record of each completed byte-part instruction."""
+    head = (f"block status of scan {scan} ({where}, parallel mode"
+            + ("; ended by the scan watchdog: the lines up to then" if ended_by_watchdog
+               else "") + ")")
+    lines = [head, "bit part: F_b after each line, STA the operand bit it read"]
+    lines += _rows(listing, status, "F_b")
+    lines += ["byte part: F_B and ACCU1/ACCU2 after each line"]
+    lines += _rows(byte_listing, byte_status, "F_B", byte_part=True)
+    return "\n".join(lines) + "\n"
+
+
+def _rows(listing: list[Instr], status: dict[int, Retired], rlo_name: str,
+          byte_part: bool = False) -> list[str]:
+    lines = [f"{'line':>5}  {'instruction':<{SOURCE_WIDTH}} {rlo_name:>3} {'STA':>3} "
+             f"{'ACCU1':>7} {'ACCU2':>7}"]
     for pc, instr in enumerate(listing):
-        text = " ".join(instr.source.split("//")[0].split()) or instr.mnemonic
+        text = display_text(instr)
         if len(text) > SOURCE_WIDTH:
             text = text[:SOURCE_WIDTH - 1] + "~"
         row = f"{instr.line:>5}  {text:<{SOURCE_WIDTH}}"
         r = status.get(pc)
+        if byte_part and instr.mnemonic == "END_B":
+            lines.append(f"{row} (the byte part's end)")
+            continue
         if r is None:
             lines.append(f"{row} not executed")
             continue
-        sta = str(r.operand) if _reads_bit(instr) else ""
-        accus = (f"{r.accu1:>7} {r.accu2:>7}" if _is_word(instr) else f"{'':>7} {'':>7}")
+        sta = str(r.operand) if not byte_part and _reads_bit(instr) else ""
+        accus = (f"{r.accu1:>7} {r.accu2:>7}" if byte_part or _is_word(instr)
+                 else f"{'':>7} {'':>7}")
         times = f"  ({r.count} times)" if r.count > 1 else ""
         lines.append(f"{row} {r.rlo:>3} {sta:>3} {accus}{times}".rstrip())
-    return "\n".join(lines) + "\n"
+    return lines

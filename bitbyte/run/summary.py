@@ -22,6 +22,7 @@ class RunStats:
     wall_s: float | None = None                  # the simulator's own run time
     wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
     block_status: dict | None = None             # --status: address -> Retired
+    byte_status: dict | None = None              # ... of the byte part (parallel mode)
 
 
 @dataclass(frozen=True)
@@ -36,14 +37,16 @@ class Retired:
     accu2: int
 
 
-def parse_block_status(stdout: str) -> dict[int, Retired]:
-    """A harness's `status PC COUNT RLO OPERAND ACCU1 ACCU2` lines (sim/README.md)."""
+def parse_block_status(stdout: str, key: str = "status") -> dict[int, Retired]:
+    """A harness's `status PC COUNT RLO OPERAND ACCU1 ACCU2` lines (sim/README.md), or
+    its byte part's `bstatus PC COUNT RLO ACCU1 ACCU2` (operand 0)."""
     out = {}
     for line in stdout.splitlines():
         words = line.split()
-        if len(words) == 7 and words[0] == "status":
-            pc, *rest = (int(w) for w in words[1:])
-            out[pc] = Retired(*rest)
+        if words and words[0] == key and len(words) in (6, 7):
+            pc, count, rlo, *rest = (int(w) for w in words[1:])
+            operand = rest[0] if len(rest) == 3 else 0
+            out[pc] = Retired(count, rlo, operand, rest[-2], rest[-1])
     return out
 
 

@@ -120,7 +120,10 @@ def load_firmware(path):
         "bb_run_step": ([vp, ctypes.c_int], ctypes.c_int), "bb_run": ([vp, ctypes.c_int], None),
         "bb_mw": ([vp, uint], ctypes.c_int16), "bb_flags": ([vp], ctypes.c_uint32),
         "bb_byte_scans": ([vp], ctypes.c_uint64),
-        "bb_accu1": ([vp], ctypes.c_int32), "bb_accu2": ([vp], ctypes.c_int32)}
+        "bb_accu1": ([vp], ctypes.c_int32), "bb_accu2": ([vp], ctypes.c_int32),
+        "bb_ret_seq": ([vp], ctypes.c_uint64), "bb_ret_pc": ([vp], ctypes.c_uint32),
+        "bb_ret_rlo": ([vp], ctypes.c_int), "bb_ret_accu1": ([vp], ctypes.c_int32),
+        "bb_ret_accu2": ([vp], ctypes.c_int32)}
     lib = ctypes.CDLL(str(path))
     for name, (args, result) in signatures.items():
         fn = getattr(lib, name)
@@ -170,6 +173,13 @@ class Firmware:
 
     def accus(self) -> tuple[int, int]:
         return int(self._lib.bb_accu1(self.state)), int(self._lib.bb_accu2(self.state))
+
+    def retired(self) -> tuple[int, int, int, int, int]:
+        """The byte part's last completed instruction: (count so far, its address,
+        F_B, ACCU1, ACCU2 after it) — bb_ret_* (parallel mode)."""
+        lib, s = self._lib, self.state
+        return (int(lib.bb_ret_seq(s)), int(lib.bb_ret_pc(s)), int(lib.bb_ret_rlo(s)),
+                int(lib.bb_ret_accu1(s)), int(lib.bb_ret_accu2(s)))
 
     def stats(self) -> dict:
         """The firmware's part of the run summary (bitbyte.run.summary.RunStats)."""
@@ -314,11 +324,15 @@ async def run_job(dut, job: RunJob) -> dict:
     firmware.clock0_ns = get_sim_time("ns")
     fw_thread = cocotb.start_soon(bridge(firmware.run_until_stopped)())
     status: dict[int, list[int]] = {}
-    monitor = (cocotb.start_soon(_block_status(dut, job.status_scan, firmware, status))
+    byte_status: dict[int, list[int]] = {}
+    monitor = (cocotb.start_soon(_block_status(dut, job.status_scan, firmware, status,
+                                               byte_status if job.mode == "parallel" else None))
                if job.status_scan is not None else None)
     try:
         result = await _scans(dut, job, firmware)
         result["block_status"] = status if monitor is not None else None
+        result["byte_status"] = (byte_status if monitor is not None and job.mode == "parallel"
+                                 else None)
         if monitor is not None:
             monitor.cancel()
     finally:
@@ -330,12 +344,13 @@ async def run_job(dut, job: RunJob) -> dict:
 
 
 async def _block_status(dut, status_scan: int, firmware: Firmware,
-                        out: dict[int, list[int]]) -> None:
+                        out: dict[int, list[int]],
+                        byte_out: dict[int, list[int]] | None) -> None:
     """bitbyte run --status, as the C++ harness keeps it: after every clock edge of
     scan `status_scan`, the instruction that retired in that clock (the bit
     processor's retirement port), its RLO after, its operand bit, and the firmware's
     accumulators (the firmware thread waits inside the HAL call spanning the clock)."""
-    scan = 0
+    scan, byte_seq = 0, 0
     while scan <= status_scan:
         await RisingEdge(dut.clk_i)
         await ReadOnly()
@@ -344,6 +359,12 @@ async def _block_status(dut, status_scan: int, firmware: Firmware,
             count = out[pc][0] + 1 if pc in out else 1
             out[pc] = [count, int(dut.dbg_rlo_o.value), int(dut.dbg_ret_opnd_o.value),
                        *firmware.accus()]
+        if byte_out is not None:                # parallel mode: the byte part's record
+            seq, pc, rlo, accu1, accu2 = firmware.retired()
+            if scan == status_scan and seq != byte_seq:
+                count = byte_out[pc][0] + 1 if pc in byte_out else 1
+                byte_out[pc] = [count, rlo, 0, accu1, accu2]
+            byte_seq = seq
         if int(dut.scan_done_o.value):
             scan += 1
 

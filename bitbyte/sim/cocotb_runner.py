@@ -131,7 +131,9 @@ def run_jobs(jobs, sim: str = "icarus"):
                       byte_scans=d["byte_scans"], byte_flags=d["byte_flags"],
                       queue_losses=tuple(d["queue_losses"]) if d["queue_losses"] else None,
                       block_status={int(pc): tuple(v) for pc, v in d["block_status"].items()}
-                      if d.get("block_status") is not None else None)
+                      if d.get("block_status") is not None else None,
+                      byte_status={int(pc): tuple(v) for pc, v in d["byte_status"].items()}
+                      if d.get("byte_status") is not None else None)
             for d in data]
 
 
@@ -155,5 +157,7 @@ def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
     stats = RunStats(clocks=result.clocks, stalls=result.stalls, byte_scans=result.byte_scans,
                      queue_losses=result.queue_losses, byte_flags=result.byte_flags,
                      block_status={pc: Retired(*v) for pc, v in result.block_status.items()}
-                     if result.block_status is not None else None)
+                     if result.block_status is not None else None,
+                     byte_status={pc: Retired(*v) for pc, v in result.byte_status.items()}
+                     if result.byte_status is not None else None)
     return records, result.fault, stats

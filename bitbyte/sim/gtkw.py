@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-from bitbyte.lang.program import Instr, Operand, Program
+from bitbyte.lang.program import Instr, Operand, Program, display_text
 
 ROOT = Path(__file__).resolve().parents[2]
 CPU = "TOP.bitbyte_cpu"
@@ -104,14 +104,8 @@ def scan_states(scan_ctrl_v: Path = SCAN_CTRL_V) -> dict[int, str]:
 
 
 def instruction_text(instr: Instr) -> str:
-    """`line: source text` of an instruction (the source line without its comment).
-    An instruction the partitioning compiler made (a channel transfer, `= FBY 0` for
-    the enable of `SD Timer`) shows itself and then the line it serves."""
-    text = " ".join(instr.source.split("//")[0].split()) or instr.mnemonic
-    op = instr.operand
-    if op is not None and op.area in ("FBI", "FBY"):
-        return f"{instr.line}: {instr.mnemonic} {op.area} {op.index}  ({text})"
-    return f"{instr.line}: {text}"
+    """`line: source text` of an instruction (bitbyte.lang.program.display_text)."""
+    return f"{instr.line}: {display_text(instr)}"
 
 
 def filter_text(rows: dict[int, str]) -> str:

@@ -90,5 +90,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      byte_flags=st["byte_flags"], wall_s=st["wall_s"],
                      wave_t0_ps=st.get("wave_t0_ps"),
                      block_status=parse_block_status(proc.stdout)
-                     if job.status_scan is not None else None)
+                     if job.status_scan is not None else None,
+                     byte_status=parse_block_status(proc.stdout, "bstatus")
+                     if job.status_scan is not None and job.mode == "parallel" else None)
     return records, proc.returncode == HARNESS_WATCHDOG, stats
