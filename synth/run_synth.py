@@ -103,6 +103,7 @@ SWEEP = [
 # after the other (only the parameters the top has) until nextpnr can place it.
 # Block RAM overuse halves the program memory first.
 SHRINK = [
+    {"ForceBits": 16},              # forcing is a debugging aid: a small board forces fewer pins
     {"InWords": 4, "OutWords": 4},
     {"StatusBits": 32},
     {"InBytes": 8, "OutBytes": 8},
