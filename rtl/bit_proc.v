@@ -407,19 +407,27 @@ module bit_proc #(
   wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);
   wire o_is_c = o_area == `AREA_C;
   wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);
-  // the input unit latches at this clock's edge (scan start or REFRESH): the image
-  // takes the pins and the pending edges; the selection comes first, the latch last
+  // The input unit latches at this clock's edge (scan start or REFRESH): the image
+  // takes the pins and the pending edges. A REFRESH executing now (refresh_o) is the
+  // latest signal here (it waits for exec_i and the wait slot): the I/IR/IF operand is
+  // selected for all three cases from registers and pins — no latch, one latch, two
+  // (a REFRESH in the latch clock: no edge since the scan start's, IR/IF 0) — and
+  // refresh_o picks one last, after the wide selects.
   wire latching  = latch_i || refresh_o;
   wire o_pin_bit = |(pins_i & o_sel_in);
-  wire o_rp_bit  = |(rise_pend_i & o_sel_in);
+  wire o_rp_bit  = |(rise_pend_i & o_sel_in);   // what one latch takes
   wire o_fp_bit  = |(fall_pend_i & o_sel_in);
-  wire o_i_bit   = latching ? o_pin_bit : |(pii_i & o_sel_in);
-  wire o_ir_bit  = latching ? o_rp_bit  : |(rise_i & o_sel_in);
-  wire o_if_bit  = latching ? o_fp_bit  : |(fall_i & o_sel_in);
   wire o_q_bit  = q_fwd ? out_wr_val_o : |(pio_i & o_sel_out);
   wire o_t_bit  = tc_fwd ? tc_val_i : |(timer_status_i & o_sel_tc);
   wire o_c_bit  = tc_fwd ? tc_val_i : |(counter_status_i & o_sel_tc);
-  wire o_opnd   = |(o_asel_q & {o_c_bit, o_t_bit, o_q_bit, o_if_bit, o_ir_bit, o_i_bit});
+  wire o_tcq    = |(o_asel_q[5:3] & {o_c_bit, o_t_bit, o_q_bit});
+  wire o_in_keep = |(o_asel_q[2:0] & {|(fall_i & o_sel_in), |(rise_i & o_sel_in),
+                                      |(pii_i & o_sel_in)});
+  wire o_in_one  = |(o_asel_q[2:0] & {o_fp_bit, o_rp_bit, o_pin_bit});
+  wire o_in_two  = o_asel_q[0] && o_pin_bit;
+  wire o_in_bit  = refresh_o ? (latch_i ? o_in_two : o_in_one)
+                             : (latch_i ? o_in_one : o_in_keep);
+  wire o_opnd   = o_tcq || o_in_bit;
   // updated in the execute clock: the bits are cleared at the end of the latch clock,
   // a write sets one; an instruction executing in the latch clock sees none (start_i)
   wire o_upd = (!latch_i && |((o_is_c ? counter_updated_i : timer_updated_i) & o_sel_tc)) ||
@@ -442,11 +450,17 @@ module bit_proc #(
   // (not a byte instruction: its operand field is no bit operand, and a compare's
   // zero field reads as I 0 in the latch clock — the live path would drop its RLO)
   wire o_live  = !o_op[`OP_BYTE_BIT] && ((o_area == `AREA_PI) || (start_i && o_on_io));
-  wire o_lacc  = !latching && ((o_area == `AREA_IR) ? o_rp_bit : o_fp_bit);
+  // The accumulator after this clock is empty if the unit latches now: both cases are
+  // worked out from registers and pins, and `latching` (late, refresh_o) picks last.
+  wire o_lacc  = (o_area == `AREA_IR) ? o_rp_bit : o_fp_bit;   // no latch now
   wire o_ir_l  = start_i && (o_area == `AREA_IR);
   wire o_if_l  = start_i && (o_area == `AREA_IF);
-  wire o_live1 = o_ir_l ? (o_lacc | !o_pin_bit) : o_if_l ? o_lacc : 1'b1;
-  wire o_live0 = o_ir_l ? o_lacc : o_if_l ? (o_lacc | o_pin_bit) : 1'b0;
+  wire o_live1_n = o_ir_l ? (o_lacc | !o_pin_bit) : o_if_l ? o_lacc : 1'b1;
+  wire o_live0_n = o_ir_l ? o_lacc : o_if_l ? (o_lacc | o_pin_bit) : 1'b0;
+  wire o_live1_l = o_ir_l ? !o_pin_bit : !o_if_l;              // a latch now
+  wire o_live0_l = !o_ir_l && o_if_l && o_pin_bit;
+  wire o_live1 = latching ? o_live1_l : o_live1_n;
+  wire o_live0 = latching ? o_live0_l : o_live0_n;
 
   // ---------------------------------------------------------------- operand in execute
   // The live pin enters last: the RLO is worked out for the pin at 1 and at 0 from

@@ -25,8 +25,11 @@ module input_unit #(
   output reg  [InBits-1:0] pii_o,    // I b.n (the image register)
   output reg  [InBits-1:0] rise_o,   // IR b.n: rose since the previous latch
   output reg  [InBits-1:0] fall_o,   // IF b.n: fell since the previous latch
-  // The edges since the previous latch, this clock's included: what the (last) latch
-  // in this clock takes into IR/IF (the bit processor's operand stage reads them).
+  // The edges since the previous latch, this clock's included: what a single latch in
+  // this clock takes into IR/IF (the bit processor's operand stage reads them). A
+  // second latch in the clock (REFRESH in the latch clock) takes none instead: the
+  // reader applies that after its bit select, so that refresh_i (late: it comes from
+  // the instruction executing now) does not run through the wide select.
   output wire [InBits-1:0] rise_pend_o,
   output wire [InBits-1:0] fall_pend_o
 );
@@ -41,8 +44,8 @@ module input_unit #(
 
   wire latch  = latch_i || refresh_i;
   wire twice  = latch_i && refresh_i;  // the REFRESH sees no edge since the scan start
-  assign rise_pend_o = (rise_acc_q | rise_now) & {InBits{!twice}};
-  assign fall_pend_o = (fall_acc_q | fall_now) & {InBits{!twice}};
+  assign rise_pend_o = rise_acc_q | rise_now;
+  assign fall_pend_o = fall_acc_q | fall_now;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -57,8 +60,8 @@ module input_unit #(
       if (latch) begin
         // The latch clock's own edge belongs to this latch ("up to and including").
         pii_o      <= pins_i;
-        rise_o     <= rise_pend_o;
-        fall_o     <= fall_pend_o;
+        rise_o     <= rise_pend_o & {InBits{!twice}};
+        fall_o     <= fall_pend_o & {InBits{!twice}};
         rise_acc_q <= {InBits{1'b0}};
         fall_acc_q <= {InBits{1'b0}};
       end else begin
