@@ -20,6 +20,7 @@
 `define OP_CLR               8'h04     // "CLR"
 `define OP_CLOSE             8'h05     // ")"
 `define OP_REFRESH           8'h06     // "REFRESH"
+`define OP_REFRESH_Q         8'h07     // "REFRESH Q"
 `define OP_ASSIGN            8'h18     // "="
 `define OP_SETBIT            8'h19     // "S"
 `define OP_RESETBIT          8'h1A     // "R"
@@ -51,6 +52,8 @@
 `define AREA_T               4'd7      // T
 `define AREA_C               4'd8      // C
 `define AREA_FB              4'd9      // FBI
+`define AREA_QR              4'd13     // QR
+`define AREA_QF              4'd14     // QF
 `define AREA_IW              4'd10     // IW
 `define AREA_QW              4'd11     // QW
 `define AREA_MW              4'd12     // MW

@@ -70,6 +70,9 @@ module bit_proc #(
   input  wire [InBits-1:0]            fall_pend_i, // clock's included (what a latch takes)
   input  wire [OutBits-1:0]           pio_i,       // Q/PQ: the PIO register (its only writer
                                                    // is this processor: forwarded here)
+  input  wire [OutBits-1:0]           out_pins_i,  // the output unit's pins (registers)
+  input  wire [OutBits-1:0]           q_rise_i,    // QR / QF: what the last PIO update
+  input  wire [OutBits-1:0]           q_fall_i,    // changed (registers)
   input  wire [StatusBits-1:0]        timer_status_i,    // the status buffer (registers)
   input  wire [StatusBits-1:0]        counter_status_i,
   input  wire [StatusBits-1:0]        timer_updated_i,   // written this scan (parallel)
@@ -101,6 +104,7 @@ module bit_proc #(
   output wire [$clog2(OutBits)-1:0]   out_wr_idx_o,
   output wire                         out_wr_val_o,
   output wire                         out_wr_direct_o,
+  output wire                         out_update_o,   // PIO -> pins now (END, REFRESH Q)
   // marker copy port (plant cores: the copy engine, between scans, while the
   // processor idles; tie copy_en_i to 0 in a single CPU)
   input  wire                         copy_en_i,      // the copy engine owns the marker RAM
@@ -206,12 +210,13 @@ module bit_proc #(
   // one-hot (an index past an image's size selects nothing: the assembler rejects it)
   // and the area one-hot, so that operand selects with AND-OR trees of few levels.
   reg  [SelW-1:0] o_sel_q;
-  reg  [5:0]      o_asel_q;      // I, IR, IF, Q/PQ, T, C
+  reg  [7:0]      o_asel_q;      // I, IR, IF, Q/PQ, T, C, QR, QF
   wire [11:0]     d_index = d_instr[`ISA_INDEX];
   wire [3:0]      d_area  = d_instr[`ISA_AREA];
   wire [SelW-1:0] d_sel   = ((d_index >> $clog2(SelW)) == 12'd0)
       ? ({{(SelW-1){1'b0}}, 1'b1} << d_index[$clog2(SelW)-1:0]) : {SelW{1'b0}};
-  wire [5:0]      d_asel  = {d_area == `AREA_C, d_area == `AREA_T,
+  wire [7:0]      d_asel  = {d_area == `AREA_QF, d_area == `AREA_QR,
+                             d_area == `AREA_C, d_area == `AREA_T,
                              (d_area == `AREA_Q) || (d_area == `AREA_PQ),
                              d_area == `AREA_IF, d_area == `AREA_IR, d_area == `AREA_I};
   wire [InBits-1:0]     o_sel_in = o_sel_q[InBits-1:0];
@@ -225,6 +230,7 @@ module bit_proc #(
   // decoded in operand
   reg e_logic_q, e_open_q, e_close_q, e_fp_q, e_fn_q, e_not_q, e_set_q, e_clr_q;
   reg e_assign_q, e_setbit_q, e_rstbit_q, e_edge_q, e_byte_q, e_end_q, e_refresh_q;
+  reg e_refresh_q_q;                    // REFRESH Q
   reg e_ju_q, e_jc_q, e_jcn_q;
   reg e_on_m_q, e_on_q_q, e_on_pq_q, e_on_fb_q, e_on_tc_q, e_tcw_q;
   reg [Channels-1:0] e_chan_q;          // the channel, one-hot (none if out of range)
@@ -323,6 +329,7 @@ module bit_proc #(
   wire jump_taken = e_act && (e_ju_q || (e_jc_q && rlo_o) || (e_jcn_q && !rlo_o));
   assign end_o     = e_act && e_end_q && !end_hold_i;
   assign refresh_o = e_act && e_refresh_q;
+  assign out_update_o = end_o || (e_act && e_refresh_q_q);
   assign rlo_now_o = rlo_o;     // END leaves 0 for the next scan's first instruction
 
   // ---------------------------------------------------------------- marker memory
@@ -420,7 +427,13 @@ module bit_proc #(
   wire o_q_bit  = q_fwd ? out_wr_val_o : |(pio_i & o_sel_out);
   wire o_t_bit  = tc_fwd ? tc_val_i : |(timer_status_i & o_sel_tc);
   wire o_c_bit  = tc_fwd ? tc_val_i : |(counter_status_i & o_sel_tc);
-  wire o_tcq    = |(o_asel_q[5:3] & {o_c_bit, o_t_bit, o_q_bit});
+  // QR/QF: the output unit's flags, or, when it updates at this clock's edge (END,
+  // REFRESH Q: no PIO write in that clock), the change the update makes
+  wire o_qpio_bit = |(pio_i & o_sel_out);
+  wire o_qpin_bit = |(out_pins_i & o_sel_out);
+  wire o_qr_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_rise_i & o_sel_out);
+  wire o_qf_bit = out_update_o ? (!o_qpio_bit && o_qpin_bit) : |(q_fall_i & o_sel_out);
+  wire o_tcq    = |(o_asel_q[7:3] & {o_qf_bit, o_qr_bit, o_c_bit, o_t_bit, o_q_bit});
   wire o_in_keep = |(o_asel_q[2:0] & {|(fall_i & o_sel_in), |(rise_i & o_sel_in),
                                       |(pii_i & o_sel_in)});
   wire o_in_one  = |(o_asel_q[2:0] & {o_fp_bit, o_rp_bit, o_pin_bit});
@@ -586,7 +599,7 @@ module bit_proc #(
       d_valid_q <= 1'b0;
       o_instr_q <= 32'd0;
       o_sel_q   <= {SelW{1'b0}};
-      o_asel_q  <= 6'd0;
+      o_asel_q  <= 8'd0;
       o_pc_q    <= {PcW{1'b0}};
       o_valid_q <= 1'b0;
       o_first_q <= 1'b0;
@@ -616,6 +629,7 @@ module bit_proc #(
       e_valid_q <= 1'b0;
       {e_logic_q, e_open_q, e_close_q, e_fp_q, e_fn_q, e_not_q, e_set_q, e_clr_q} <= 8'd0;
       {e_assign_q, e_setbit_q, e_rstbit_q, e_edge_q, e_byte_q, e_end_q, e_refresh_q} <= 7'd0;
+      e_refresh_q_q <= 1'b0;
       {e_ju_q, e_jc_q, e_jcn_q} <= 3'd0;
       {e_on_m_q, e_on_q_q, e_on_pq_q, e_on_fb_q, e_on_tc_q, e_tcw_q} <= 6'd0;
       e_chan_q     <= {Channels{1'b0}};
@@ -646,6 +660,7 @@ module bit_proc #(
         e_byte_q    <= o_op[`OP_BYTE_BIT];
         e_end_q     <= o_op == `OP_END;
         e_refresh_q <= o_op == `OP_REFRESH;
+        e_refresh_q_q <= o_op == `OP_REFRESH_Q;
         e_ju_q      <= o_op == `OP_JU;
         e_jc_q      <= o_op == `OP_JC;
         e_jcn_q     <= o_op == `OP_JCN;
@@ -745,7 +760,7 @@ module bit_proc #(
   // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
   // (its PIO register) and T/C status buffer (written by the byte side at any time)
   wire [InBits-1:0]     f_pii, f_rise, f_fall, f_rpend, f_fpend;
-  wire [OutBits-1:0]    f_pio;
+  wire [OutBits-1:0]    f_pio, f_opins, f_qrise, f_qfall;
   wire [StatusBits-1:0] f_tst, f_cst, f_tupd, f_cupd;
   // verilator lint_off PINCONNECTEMPTY
   input_unit #(.InBits(InBits)) f_in (
@@ -754,8 +769,10 @@ module bit_proc #(
     .rise_pend_o(f_rpend), .fall_pend_o(f_fpend));
   output_unit #(.OutBits(OutBits)) f_out (
     .clk_i(clk_i), .rst_ni(rst_ni), .wr_en_i(out_wr_en_o), .wr_idx_i(out_wr_idx_o),
-    .wr_val_i(out_wr_val_o), .wr_direct_i(out_wr_direct_o), .update_i(end_o),
-    .fault_i(1'b0), .pio_o(f_pio), .pins_o());
+    .wr_val_i(out_wr_val_o), .wr_direct_i(out_wr_direct_o),
+    .update_i(e_done && (e_instr_q[`ISA_OPCODE] == `OP_END ||
+                         e_instr_q[`ISA_OPCODE] == `OP_REFRESH_Q)), .fault_i(1'b0), .pio_o(f_pio), .pins_o(f_opins),
+    .rise_o(f_qrise), .fall_o(f_qfall));
   tc_status #(.StatusBits(StatusBits)) f_tc (
     .clk_i(clk_i), .rst_ni(rst_ni), .status_we_i(tc_we_i),
     .status_is_counter_i(tc_is_counter_i), .status_idx_i(tc_idx_i),
@@ -767,7 +784,8 @@ module bit_proc #(
   always @(*) begin
     assume (pii_i == f_pii && rise_i == f_rise && fall_i == f_fall);
     assume (rise_pend_i == f_rpend && fall_pend_i == f_fpend);
-    assume (pio_i == f_pio);
+    assume (pio_i == f_pio && out_pins_i == f_opins);
+    assume (q_rise_i == f_qrise && q_fall_i == f_qfall);
     assume (timer_status_i == f_tst && counter_status_i == f_cst);
     assume (timer_updated_i == f_tupd && counter_updated_i == f_cupd);
   end
@@ -789,7 +807,8 @@ module bit_proc #(
       f_in_range = 1'b1;
       if (!w[24 + `OP_BYTE_BIT] && (w[`ISA_OPCODE] & 8'hE0) != 8'h20) begin  // an operand
         if ((a <= `AREA_IF) && i >= InBits) f_in_range = 1'b0;
-        if ((a == `AREA_Q || a == `AREA_PQ) && i >= OutBits) f_in_range = 1'b0;
+        if ((a == `AREA_Q || a == `AREA_PQ || a == `AREA_QR || a == `AREA_QF) &&
+            i >= OutBits) f_in_range = 1'b0;
         if ((a == `AREA_M) && i >= MarkerBits) f_in_range = 1'b0;
         if ((a == `AREA_T || a == `AREA_C) && i >= StatusBits) f_in_range = 1'b0;
         if ((a == `AREA_FB) && i >= Channels) f_in_range = 1'b0;
@@ -841,6 +860,7 @@ module bit_proc #(
   wire f_isfn    = f_op == `OP_FN;
   wire f_isend   = f_op == `OP_END;
   wire f_isref   = f_op == `OP_REFRESH;
+  wire f_isrefq  = f_op == `OP_REFRESH_Q;
   wire f_isassign = f_op == `OP_ASSIGN;
   wire f_isset   = f_op == `OP_SETBIT;
   wire f_isrst   = f_op == `OP_RESETBIT;
@@ -880,6 +900,8 @@ module bit_proc #(
       `AREA_IR: f_x = latch_i ? f_rpend[f_ii] : f_rise[f_ii];
       `AREA_IF: f_x = latch_i ? f_fpend[f_ii] : f_fall[f_ii];
       `AREA_Q, `AREA_PQ: f_x = f_pio[f_qi];
+      `AREA_QR: f_x = f_qrise[f_qi];
+      `AREA_QF: f_x = f_qfall[f_qi];
       `AREA_M:  f_x = f_m_hit ? f_m : m_opnd;
       `AREA_T:  f_x = f_tst[f_ti];
       `AREA_C:  f_x = f_cst[f_ti];
@@ -973,6 +995,7 @@ module bit_proc #(
     end
     assert (end_o == (e_done && f_isend));
     assert (refresh_o == (e_done && f_isref));
+    assert (out_update_o == (e_done && (f_isend || f_isrefq)));
     assert (byte_req_o == ((e_act && f_isbyte) || (w_busy && fw_isbyte)));
     if (byte_req_o) assert (byte_instr_o == (w_busy ? w_instr_q : e_instr_q));
     // a byte instruction's clocks are no stall
@@ -1111,6 +1134,9 @@ module bit_proc #(
     cover (e_done && latch_i && f_area == `AREA_IR && f_x);
     // REFRESH, then an I read of the new image; a copy-port write read by a scan
     cover (e_done && f_isref && f_x);
+    // an output edge read right behind the update that sets it (REFRESH Q, END)
+    cover (e_done && f_area == `AREA_QR && f_x && $past(out_update_o && !end_o));
+    cover (e_done && f_area == `AREA_QF && f_x && $past(end_o));
     // REFRESH as a scan's first instruction (a second latch in the latch clock), then
     // an I read of the image it took
     cover (e_done && f_area == `AREA_I && f_x && $past(latch_i && refresh_o));
@@ -1127,11 +1153,11 @@ module bit_proc #(
     d_sel_of = ((w[`ISA_INDEX] >> $clog2(SelW)) == 12'd0)
         ? ({{(SelW-1){1'b0}}, 1'b1} << w[$clog2(SelW)-1:0]) : {SelW{1'b0}};
   endfunction
-  function automatic [5:0] d_asel_of(input [31:0] w);
+  function automatic [7:0] d_asel_of(input [31:0] w);
     reg [3:0] a;
     begin
       a = w[`ISA_AREA];
-      d_asel_of = {a == `AREA_C, a == `AREA_T, (a == `AREA_Q) || (a == `AREA_PQ),
+      d_asel_of = {a == `AREA_QF, a == `AREA_QR, a == `AREA_C, a == `AREA_T, (a == `AREA_Q) || (a == `AREA_PQ),
                    a == `AREA_IF, a == `AREA_IR, a == `AREA_I};
     end
   endfunction
@@ -1162,7 +1188,8 @@ module bit_proc #(
     assert (e_not_q == (f_op == `OP_NOT) && e_set_q == (f_op == `OP_SET) &&
             e_clr_q == (f_op == `OP_CLR));
     assert (e_assign_q == f_isassign && e_setbit_q == f_isset && e_rstbit_q == f_isrst);
-    assert (e_byte_q == f_isbyte && e_end_q == f_isend && e_refresh_q == f_isref);
+    assert (e_byte_q == f_isbyte && e_end_q == f_isend && e_refresh_q == f_isref &&
+            e_refresh_q_q == f_isrefq);
     assert (e_ju_q == (f_op == `OP_JU) && e_jc_q == (f_op == `OP_JC) &&
             e_jcn_q == (f_op == `OP_JCN));
     assert (e_on_m_q == f_on_m && e_on_q_q == f_on_q && e_on_pq_q == (f_area == `AREA_PQ));

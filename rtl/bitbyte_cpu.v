@@ -95,7 +95,8 @@ module bitbyte_cpu #(
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
   wire [InBits-1:0]  pii, rise, fall, rise_pend, fall_pend;
-  wire [OutBits-1:0] pio;
+  wire [OutBits-1:0] pio, q_rise, q_fall;
+  wire               out_update;
   wire                       out_wr_en, out_wr_val, out_wr_direct;
   wire [$clog2(OutBits)-1:0] out_wr_idx;
   wire [31:0] cycle_now;
@@ -188,10 +189,12 @@ module bitbyte_cpu #(
     .wr_idx_i   (out_wr_idx),
     .wr_val_i   (out_wr_val),
     .wr_direct_i(out_wr_direct),
-    .update_i   (end_exec),
+    .update_i   (out_update),
     .fault_i    (fault_o),
     .pio_o      (pio),
-    .pins_o     (out_unit_pins)
+    .pins_o     (out_unit_pins),
+    .rise_o     (q_rise),
+    .fall_o     (q_fall)
   );
 
   bit_proc #(
@@ -221,6 +224,9 @@ module bitbyte_cpu #(
     .rise_pend_i     (rise_pend),
     .fall_pend_i     (fall_pend),
     .pio_i           (pio),
+    .out_pins_i      (out_unit_pins),
+    .q_rise_i        (q_rise),
+    .q_fall_i        (q_fall),
     .timer_status_i  (timer_status),
     .counter_status_i(counter_status),
     .timer_updated_i (timer_updated),
@@ -248,6 +254,7 @@ module bitbyte_cpu #(
     .out_wr_idx_o    (out_wr_idx),
     .out_wr_val_o    (out_wr_val),
     .out_wr_direct_o (out_wr_direct),
+    .out_update_o    (out_update),
     .copy_en_i       (mcopy_en_i),
     .copy_we_i       (mcopy_we_i),
     .copy_addr_i     (mcopy_addr_i),

@@ -10,11 +10,10 @@ mode and exchange that hardware run used.
 
 The legal bins come from the parser's instruction signatures (bitbyte.lang.parser
 SIGNATURES, spec §3's operand table), not from what the generator happens to emit:
-every mnemonic with every area it accepts, in every mode.  Spec §3 names operands the
-toolchain does not take yet (`QR b.n` / `QF b.n` reads, `REFRESH I` / `REFRESH Q`,
-issue 16): `SPEC_NOT_BUILT` lists them, docs/soak.md shows them as not built (not as
-hit, not as a pass).  Left out, and said so in docs/soak.md: the channel operands (`FBI k`, `FBY k`, `READ`, `WRITE`), which only the
-partitioning compiler or hand-partitioned sections write.
+every mnemonic with every area it accepts, in every mode (the output edges `QR`/`QF`
+and `REFRESH Q` included since issue 16).  Left out, and said so in docs/soak.md: the
+channel operands (`FBI k`, `FBY k`, `READ`, `WRITE`), which only the partitioning
+compiler or hand-partitioned sections write.
 """
 from __future__ import annotations
 
@@ -29,14 +28,6 @@ from bitbyte.ref.refsim import RefSim
 MODES = (("serial", "-"), ("parallel", "handshake"), ("parallel", "queue"))
 CHANNEL_AREAS = ("FBI", "FBY")
 CHANNEL_MNEMONICS = ("READ", "WRITE")
-
-
-# Spec §3 bins the parser rejects today (issue 16 builds them): bit reads of the output
-# edges QR / QF ("as I": every instruction that reads I), REFRESH with an operand.
-SPEC_NOT_BUILT = sorted(
-    {(m, area, mode, ex) for m in SIGNATURES if SIGNATURES[m].accepts and "I" in
-     SIGNATURES[m].accepts for area in ("QR", "QF") for mode, ex in MODES} |
-    {("REFRESH", area, mode, ex) for area in ("I", "Q") for mode, ex in MODES})
 
 
 def operand_kind(ins) -> str:

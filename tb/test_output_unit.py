@@ -1,4 +1,5 @@
-"""Output unit (paper Fig. 1): PIO, output register at END, direct PQ writes, fault."""
+"""Output unit (paper Fig. 1): PIO, output register at a PIO update (END, REFRESH Q),
+direct PQ writes, fault, and the update's edge flags (QR rose / QF fell)."""
 from __future__ import annotations
 
 import random
@@ -32,6 +33,29 @@ async def clock(dut, wr=None, direct=False, update=False, fault=False):
 
 def state(dut):
     return int(dut.pio_o.value), int(dut.pins_o.value)
+
+
+def edges(dut):
+    return int(dut.rise_o.value), int(dut.fall_o.value)
+
+
+@cocotb.test()
+async def update_flags_the_pins_it_changes(dut):
+    """QR / QF: the pins the last update changed, held until the next update; a PQ
+    write moves its pin outside an update, so the update after it sees no change."""
+    await reset(dut)
+    await clock(dut, wr=(2, 1))
+    await clock(dut, wr=(4, 1))
+    assert edges(dut) == (0, 0)                # no update yet
+    await clock(dut, update=True)
+    assert edges(dut) == (0b10100, 0)
+    await clock(dut, wr=(2, 0))
+    await clock(dut, wr=(7, 1), direct=True)   # pin 7 now, PIO 7 too
+    assert edges(dut) == (0b10100, 0)          # held between updates
+    await clock(dut, update=True)
+    assert edges(dut) == (0, 0b100)            # 2 fell; 7 moved before the update
+    await clock(dut, update=True)
+    assert edges(dut) == (0, 0)                # nothing changed
 
 
 @cocotb.test()
@@ -74,7 +98,7 @@ async def fault_forces_zero(dut):
 async def random_against_model(dut):
     rng = random.Random(99)
     await reset(dut)
-    pio = pins = 0
+    pio = pins = rise = fall = 0
     for _ in range(500):
         wr = (rng.randrange(OUT_BITS), rng.randrange(2)) if rng.random() < 0.6 else None
         direct = rng.random() < 0.3
@@ -85,12 +109,14 @@ async def random_against_model(dut):
         else:
             new_pio = pio
         if update:
+            rise, fall = pio & ~pins, pins & ~pio
             pins = pio
         elif wr and direct:
             pins = (pins & ~(1 << wr[0])) | (wr[1] << wr[0])
         pio = new_pio
         await clock(dut, wr, direct, update)
         assert state(dut) == (pio, pins)
+        assert edges(dut) == (rise, fall)
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)

@@ -1,7 +1,7 @@
 """Random bit-only IL programs and stimuli for the differential tests.
 
 Programs are made of top-level blocks (logic chains with nested parentheses,
-assignments, edge detection, jumps, REFRESH); jumps and labels sit between blocks, so
+assignments, edge detection, jumps, REFRESH I / Q, output edges QR / QF); jumps and labels sit between blocks, so
 a jump never enters or leaves a parenthesis. A few backward jumps loop for a while
 (or forever: then both the hardware and the reference must report the watchdog).
 """
@@ -13,7 +13,7 @@ import re
 
 from bitbyte.lang.config import DEFAULT
 
-READ_AREAS = ["I", "I", "I", "PI", "IR", "IF", "Q", "PQ", "M", "M", "M", "T", "C"]
+READ_AREAS = ["I", "I", "I", "PI", "IR", "IF", "Q", "QR", "QF", "PQ", "M", "M", "M", "T", "C"]
 WRITE_AREAS = ["Q", "Q", "PQ", "M", "M"]
 COMBINE = ["A", "AN", "O", "ON", "X", "XN"]
 OPENS = ["A(", "AN(", "O(", "ON(", "X(", "XN("]
@@ -119,8 +119,10 @@ class Gen:
             label = f"L{self.nlabels}"
             self.nlabels += 1
             self.lines += [f"{label}:", f"  LD {_bit(rng, 'I')}", f"  JC {label}"]
+        elif r < 0.89:
+            self.lines.append(f"  {rng.choice(['REFRESH', 'REFRESH I'])}")
         elif r < 0.92:
-            self.lines.append("  REFRESH")
+            self.lines.append("  REFRESH Q")
         else:
             self.chain(0)
             self.lines.append(f"  = {_bit(rng, 'PQ')}")

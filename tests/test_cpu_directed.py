@@ -61,6 +61,29 @@ CASES = [
      ["01", "01"]),
     ("refresh_after_nop", "NOP\nREFRESH\nLD IR0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
      "scan,I0.0\n0,1\n", 2, ["01", "01"]),
+    # REFRESH Q and the output edges QR / QF (issue 16 item 3, spec §3), by hand; the
+    # pins start at 0. Q0.0 := I0.0, REFRESH Q, Q1.0 := QR0.0 (the read right after the
+    # update: forwarded), Q0.0 := NOT I0.0, REFRESH Q (Q1.0 goes out too), Q1.1 :=
+    # QF0.0, Q0.0 := I0.0, END. I0.0 = 0, 1, 1, 0, 0. Scan 1: the first update raises
+    # Q0.0 (QR), the second drops it (QF). Scan 2: Q0.0 stayed 1 from scan 1's END, the
+    # first update changes nothing (QR 0), the second drops it. Scan 3: END left 1, the
+    # first update drops it (no QR), the second raises it (no QF).
+    ("refresh_q", "LD I0.0\n= Q0.0\nREFRESH Q\nLD QR0.0\n= Q1.0\nLDN I0.0\n= Q0.0\n"
+     "REFRESH q\nLD QF 0.0\n= Q1.1\nLD I0.0\n= Q0.0\nREFRESH I\n",
+     "scan,I0.0\n0,0\n1,1\n3,0\n", 5, ["000", "111", "101", "000", "000"]),
+    # QR / QF of END's update, read in the next scan (its first instruction, while the
+    # pipeline still holds END's update). I0.0 = 1, 1, 0, 0: END 0 raises Q0.0 only,
+    # END 1 raises Q1.0 only (QR0.0 back to 0), END 2 drops Q0.0 (QF0.0) and Q1.0.
+    ("end_edges", "LD QR0.0\n= Q1.0\nLD QF0.0\n= Q1.1\nLD I0.0\n= Q0.0\n",
+     "scan,I0.0\n0,1\n2,0\n", 4, ["100", "110", "000", "001"]),
+    # a PQ write moves the pin at once: the update after it sees no change (QR0.0 0)
+    ("pq_no_edge", "SET\n= PQ0.0\nREFRESH Q\nLD QR0.0\n= Q1.0\n", "", 2, ["10", "10"]),
+    # REFRESH Q as the scan's first instruction: the pins are the PIO since END, the
+    # update changes nothing and clears END's flags (scan 1: Q1.0 0, with a NOP 1)
+    ("refresh_q_first", "REFRESH Q\nLD QR0.0\n= Q1.0\nLD I0.0\n= Q0.0\n",
+     "scan,I0.0\n0,1\n", 2, ["10", "10"]),
+    ("refresh_q_first_nop", "NOP\nLD QR0.0\n= Q1.0\nLD I0.0\n= Q0.0\n",
+     "scan,I0.0\n0,1\n", 2, ["10", "11"]),
     ("direct_input", "NOP\nNOP\nNOP\nLD PI0.0\n= Q0.0\nLD I0.0\n= Q0.1\n",
      "t_us,I0.0\n0.03,1\n", 1, ["10"]),
     ("end_mid_program", "SET\n= Q0.0\nEND\nCLR\n= Q0.0\n", "", 1, ["1"]),

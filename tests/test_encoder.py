@@ -40,6 +40,8 @@ def single(text: str) -> int:
     ("SET", 0x03000000),
     ("CLR", 0x04000000),
     ("REFRESH", 0x06000000),
+    ("REFRESH I", 0x06000000),
+    ("REFRESH Q", 0x07000000),
     # loads and combines: 0x08 | f<<1 | n with f = 00 load, 01 AND, 10 OR, 11 XOR
     ("LD I0.0", 0x08000000),
     ("LDN I0.0", 0x09000000),
@@ -55,6 +57,8 @@ def single(text: str) -> int:
     ("LD IF15.7", 0x0800307F),
     ("LD Q0.1", 0x08004001),
     ("LD PQ2.2", 0x08005012),
+    ("A QR1.3", 0x0A00D00B),
+    ("ON QF15.7", 0x0D00E07F),
     ("LD M255.7", 0x080067FF),
     ("LD M 16.0", 0x08006080),
     ("LD T63", 0x0800703F),

@@ -133,6 +133,13 @@ MUTATIONS = [
     ("bit_proc", "bit_proc.v", "wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);",
      "wire q_fwd = 1'b0;"),                                # = Q read back stale (5)
     ("bit_proc", "bit_proc.v",
+     "wire o_qr_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_rise_i & o_sel_out);",
+     "wire o_qr_bit = |(q_rise_i & o_sel_out);"),         # QR right after the update stale
+    ("bit_proc", "bit_proc.v",
+     "wire o_qf_bit = out_update_o ? (!o_qpio_bit && o_qpin_bit) : |(q_fall_i & o_sel_out);",
+     "wire o_qf_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_fall_i & o_sel_out);"),
+                                                            # QF forwarded as QR
+    ("bit_proc", "bit_proc.v",
      "wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);",
      "wire tc_fwd = 1'b0;"),                               # a T/C status write missed (5)
     ("bit_proc", "bit_proc.v", "if (e_tc_fwd) e_opnd_q <= tc_val_i;",

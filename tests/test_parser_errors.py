@@ -85,6 +85,7 @@ def test_unknown_mnemonic(text, line, col):
     ("LD IF0.9", 4), ("= Q16.0", 3), ("= PQ16.0", 3), ("S M256.0", 3),
     ("LD T64", 4), ("LD C 64", 4), ("LD FBI4", 4), ("= FBY 4", 3), ("L IW16", 3),
     ("T QW16", 3), ("T MW256", 3), ("LD I99999999999999999999999999999999.0", 4),
+    ("LD QR16.0", 4), ("A QF0.8", 3),
 ])
 def test_operand_out_of_range(text, col):
     check("NOP\n" + text + "\n", 2, col, "operand out of range")
@@ -94,7 +95,8 @@ def test_operand_out_of_range_follows_the_configuration():
     small = Config(in_bytes=2, out_bytes=1, marker_bytes=4, timers=8, counters=8,
                    channels=2, in_words=2, out_words=2, data_words=16)
     parse("t.il", "LD I1.7\n= Q0.7\nS M3.7\nLD T7\nLD C7\nLD FBI1\n", small)
-    for text in ("LD I2.0", "= Q1.0", "S M4.0", "LD T8", "LD C8", "LD FBI2",
+    parse("t.il", "LD QR0.7\nA QF0.7\n", small)
+    for text in ("LD I2.0", "= Q1.0", "LD QR1.0", "A QF1.0", "S M4.0", "LD T8", "LD C8", "LD FBI2",
                  "= FBY2", "L IW2", "T QW2", "T MW16"):
         check(text, 1, text.index(" ") + 2, "operand out of range", small)
 
@@ -200,6 +202,7 @@ def test_missing_operand(text, line, col):
     ("LD I0.0 I0.1\n", 1, 9), ("NOT I0.0\n", 1, 5), ("A( LD I0.0\n", 1, 4),
     (")  Q0.0\n", 1, 4), ("+I MW0\n", 1, 4), ("JU lbl lbl\nlbl:\n", 1, 8),
     ("LD I 0.0 1\n", 1, 10), ("VAR x1 AT I0.0 y1; END_VAR\n", 1, 16),
+    ("REFRESH Q Q\n", 1, 11), ("REFRESH I Q0.0\n", 1, 11),
 ])
 def test_extra_operand(text, line, col):
     check(text, line, col, "extra operand")
@@ -215,6 +218,10 @@ def test_extra_operand(text, line, col):
     ("JU I0.0", 4), ("JC 5", 4), ("JCN T1", 5), ("JU Start", 4),
     ("SD C1", 4), ("SS M0.0", 4), ("CU T1", 4), ("CD 3", 4),
     ("READ FBI0", 6), ("WRITE FBY0", 7), ("READ M0.0", 6),
+    # the output edges are read only; REFRESH names an image (I or Q) or nothing
+    ("= QR0.0", 3), ("S QF0.0", 3), ("R QR1.1", 3), ("FP QR0.0", 4), ("FN QF0.0", 4),
+    ("L QR0.0", 3), ("T QF0.0", 3), ("REFRESH M", 9), ("REFRESH Q0.0", 9),
+    ("REFRESH IW0", 9), ("REFRESH 5", 9), ("REFRESH Start", 9),
 ])
 def test_operand_of_the_wrong_kind(text, col):
     check("VAR Start AT I0.0; END_VAR\n" + text + "\n", 2, col, "wrong kind")

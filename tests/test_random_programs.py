@@ -96,8 +96,8 @@ def test_generator_covers_the_instruction_set(cases):
     areas = {i.operand.area for c in cases for i in c.program.instrs if i.operand}
     assert {"LD", "LDN", "A", "AN", "O", "ON", "X", "XN", "NOT", "SET", "CLR", "=",
             "S", "R", "FP", "FN", "A(", "XN(", ")", "JU", "JC", "JCN", "NOP",
-            "REFRESH", "END"} <= mnemonics
-    assert {"I", "PI", "IR", "IF", "Q", "PQ", "M", "T", "C"} <= areas
+            "REFRESH", "REFRESH Q", "END"} <= mnemonics
+    assert {"I", "PI", "IR", "IF", "Q", "QR", "QF", "PQ", "M", "T", "C"} <= areas
     assert any(c.fault for c in cases) and not all(c.fault for c in cases)
 
 

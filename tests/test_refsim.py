@@ -14,7 +14,9 @@ from bitbyte.lang.definition import DEF
 from bitbyte.lang.program import Instr, Operand, Program
 from bitbyte.ref.refsim import RefSim, RefSimError, refsim_trace
 from bitbyte.lang.stimulus import parse_stimulus
+from bitbyte.lang.parser import parse
 from bitbyte.lang.trace import trace_columns, trace_text
+from test_cpu_directed import CASES as DIRECTED
 
 # --- helpers --------------------------------------------------------------------------
 
@@ -50,6 +52,8 @@ def prog(src, symbols=None):
         parts = line.split(None, 1)
         mn = parts[0].upper()
         arg = parts[1].strip() if len(parts) > 1 else None
+        if mn == "REFRESH" and arg:                   # REFRESH I / REFRESH Q
+            mn, arg = ("REFRESH Q" if arg.upper() == "Q" else "REFRESH"), None
         instrs.append(Instr(mn, _operand(mn, arg), n, 1, line))
     if not instrs or instrs[-1].mnemonic != "END":
         instrs.append(Instr("END", None, 0, 0))
@@ -428,6 +432,30 @@ def test_pq_read_sees_the_pio():
     recs = sim.run(scans=1)
     assert sim.output_events == [(3, 0b010), (6, 0b111)]
     assert column(recs, "Q0.2") == [1]
+
+
+def test_refresh_q_moves_the_pins_mid_scan():
+    # SET@0 =Q0.0@1 REFRESH Q@2 (the pin rises) CLR@3 =Q0.0@4 END@5 (it falls)
+    sim = RefSim(prog("SET\n= Q0.0\nREFRESH Q\nCLR\n= Q0.0"), Config())
+    (rec,) = sim.run(scans=1)
+    assert sim.output_events == [(2, 0b1), (5, 0b0)]
+    assert rec.cycles == 6 and (sim.qr, sim.qf) == (0, 1)
+
+
+def test_refresh_i_is_refresh():
+    assert [i.mnemonic for i in parse("t.il", "REFRESH I\nREFRESH\nREFRESH Q").instrs[:3]] == \
+        ["REFRESH", "REFRESH", "REFRESH Q"]
+
+
+@pytest.mark.parametrize("name", [c[0] for c in DIRECTED])
+def test_directed_cases_by_hand(name):
+    """The hand-worked CPU cases (tests/test_cpu_directed.py) hold here too."""
+    _, text, stim_text, scans, expect = next(c for c in DIRECTED if c[0] == name)
+    s = stim(stim_text) if stim_text else None
+    columns, records, fault = refsim_trace(parse("t.il", text), Config(), s, (), scans=scans)
+    assert not fault
+    q = [c.header for c in columns if c.header.startswith("Q")]
+    assert ["".join(str(r.values[h]) for h in q) for r in records] == expect
 
 
 # --- hooks and watched words ------------------------------------------------------------

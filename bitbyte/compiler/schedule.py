@@ -53,7 +53,7 @@ def _segments(bit: list[PartInstr], lo: int, hi: int, fby_no: dict, fbi_no: dict
             depth -= 1
         if depth < 0:
             return None
-        if m in JUMPS or m in ("END", "NOP", "REFRESH") or \
+        if m in JUMPS or m in ("END", "NOP", "REFRESH", "REFRESH Q") or \
                 (op is not None and op.kind not in ("bit", "index", "label")) or \
                 (op is not None and op.kind != "label" and op.area not in _SCHED_AREAS):
             seg.barrier = True

@@ -32,6 +32,7 @@ class Config:
         return {
             "I": self.in_bytes, "PI": self.in_bytes, "IR": self.in_bytes,
             "IF": self.in_bytes, "Q": self.out_bytes, "PQ": self.out_bytes,
+            "QR": self.out_bytes, "QF": self.out_bytes,
             "M": self.marker_bytes, "T": self.timers, "C": self.counters,
             "FBI": self.channels, "FBY": self.channels, "IW": self.in_words,
             "QW": self.out_words, "MW": self.data_words,

@@ -10,7 +10,7 @@ logic instruction, or the first after a label reached only from there.  It is a
 warning, not an error: the program is valid IL.  `= x` followed by `A y` stays silent
 when an instruction before the `=` set the RLO (the paper's Fig. 14 does it).
 
-Instructions that leave the scan-start RLO as it is: `NOP`, `REFRESH`, `=`, `S`, `R`,
+Instructions that leave the scan-start RLO as it is: `NOP`, `REFRESH` (I or Q), `=`, `S`, `R`,
 the jumps, `END` and the byte instructions that do not write the RLO (`L`, `T`,
 arithmetic, timers, counters, `WRITE`).  Every other instruction sets it (loads,
 combines, `NOT`, `SET`, `CLR`, parentheses, `FP`/`FN`, compares, `READ`).
@@ -21,8 +21,8 @@ from __future__ import annotations
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import COMBINES, JUMPS, Program
 
-KEEPS_RLO = frozenset(("NOP", "REFRESH", "=", "S", "R", "END", "L", "T", "+I", "-I",
-                       "*I", "/I", "MOD", "SD", "SS", "SP", "SF", "CU", "CD", "WRITE")
+KEEPS_RLO = frozenset(("NOP", "REFRESH", "REFRESH Q", "=", "S", "R", "END", "L", "T",
+                       "+I", "-I", "*I", "/I", "MOD", "SD", "SS", "SP", "SF", "CU", "CD", "WRITE")
                       + JUMPS)
 WARNED = tuple(m for m, (func, _) in COMBINES.items() if func is not None)
 

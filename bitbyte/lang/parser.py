@@ -18,7 +18,8 @@ The way through this module is one direction:
 Canonical mnemonics (Instr.mnemonic), all upper case:
 
 * bit side: LD LDN A AN O ON X XN, A( AN( O( ON( X( XN( (also written `A (`), `)`,
-  NOT SET CLR, = S R, FP FN, JU JC JCN, NOP REFRESH END;
+  NOT SET CLR, = S R, FP FN, JU JC JCN, NOP REFRESH "REFRESH Q" END (`REFRESH I` is
+  REFRESH: the image is named only to tell it from the output's);
 * byte side: L, T, +I -I *I /I MOD, ==I <>I >I <I >=I <=I, the compare-and-combine
   forms "A ==I" "A <>I" "A >I" "A <I" "A >=I" "A <=I" and "O ==I" ... "O <=I"
   (the logic letter, one blank, the compare: as the spec writes them), SD SS SP SF,
@@ -74,7 +75,7 @@ from bitbyte.lang.suggest import did_you_mean
 # Vocabulary
 # --------------------------------------------------------------------------------------
 
-BIT_ADDR_AREAS = ("I", "PI", "IR", "IF", "Q", "PQ", "M")      # byte.bit
+BIT_ADDR_AREAS = ("I", "PI", "IR", "IF", "Q", "QR", "QF", "PQ", "M")   # byte.bit
 INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW")      # number
 AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 
@@ -102,8 +103,8 @@ class Sig:
 
 
 NO_OPERAND = Sig(())
-BIT_READ = Sig(("I", "PI", "IR", "IF", "Q", "PQ", "M", "T", "C", "FBI"),
-               "a bit (I, PI, IR, IF, Q, PQ, M, T, C or FBI)")
+BIT_READ = Sig(("I", "PI", "IR", "IF", "Q", "QR", "QF", "PQ", "M", "T", "C", "FBI"),
+               "a bit (I, PI, IR, IF, Q, QR, QF, PQ, M, T, C or FBI)")
 ASSIGN = Sig(("Q", "PQ", "M", "FBY"), "a target Q, PQ, M or FBY")
 SET = Sig(("Q", "PQ", "M", "FBY", "C"), "a target Q, PQ, M, FBY or a counter C n")
 RESET = Sig(("Q", "PQ", "M", "FBY", "T", "C"),
@@ -120,7 +121,7 @@ SIGNATURES: dict[str, Sig] = {
     **{m: BIT_READ for m in ("LD", "LDN", "A", "AN", "O", "ON", "X", "XN")},
     **{m + "(": NO_OPERAND for m in PAREN_OPENERS},
     ")": NO_OPERAND, "NOT": NO_OPERAND, "SET": NO_OPERAND, "CLR": NO_OPERAND,
-    "NOP": NO_OPERAND, "REFRESH": NO_OPERAND, "END": NO_OPERAND,
+    "NOP": NO_OPERAND, "REFRESH": NO_OPERAND, "REFRESH Q": NO_OPERAND, "END": NO_OPERAND,
     "=": ASSIGN, "S": SET, "R": RESET, "FP": EDGE, "FN": EDGE,
     "JU": JUMP, "JC": JUMP, "JCN": JUMP,
     # byte instructions
@@ -684,10 +685,23 @@ class Parser:
                                       "compare combines with A or O only")
             self.next()
             return combined
+        if word == "REFRESH" and not nxt.ends_statement:
+            return self.refresh_of(tok, nxt)
         if word not in MNEMONICS:
             raise self.error(tok, f"unknown mnemonic `{tok.text}`"
                                   + did_you_mean(tok.text, MNEMONICS))
         return word
+
+    def refresh_of(self, tok: Token, nxt: Token) -> str:
+        """`REFRESH I` (= `REFRESH`, the input image) or `REFRESH Q` (the output image
+        to the pins, paper Fig. 1); the image letter is consumed."""
+        image = nxt.text.upper() if nxt.kind == "WORD" else ""
+        if image not in ("I", "Q"):
+            raise self.error(nxt, f"operand of the wrong kind: `{tok.text}` refreshes "
+                                  f"the image `I` or `Q` (or, alone, `I`), not "
+                                  f"`{nxt.text}`")
+        self.next()
+        return "REFRESH Q" if image == "Q" else "REFRESH"
 
     # -- operands -------------------------------------------------------------------
 

@@ -73,7 +73,7 @@ class Instr:
 
     mnemonic is canonical upper case: "LD", "LDN", "A", "AN", "O", "ON", "X", "XN",
     "A(", "AN(", "O(", "ON(", "X(", "XN(", ")", "NOT", "SET", "CLR", "=", "S", "R",
-    "FP", "FN", "JU", "JC", "JCN", "NOP", "REFRESH", "END", and the byte mnemonics
+    "FP", "FN", "JU", "JC", "JCN", "NOP", "REFRESH", "REFRESH Q", "END", and the byte mnemonics
     ("L", "T", "+I", ... "SD", "CU", "READ", "WRITE", ...).
     line/col are 1-based and point at the mnemonic; source is the whole source line.
     section is "" in an ordinary (mixed) program, "BIT" or "BYTE" for an instruction

@@ -270,7 +270,7 @@ def _at(instrs: list[Instr], pc: int, end: str) -> Instr:
 def state_snapshot(sim: RefSim) -> tuple:
     """Everything a scan leaves that serial and parallel mode must agree on."""
     return (
-        sim.outputs, sim.pio, sim.markers,
+        sim.outputs, sim.pio, sim.qr, sim.qf, sim.markers,
         tuple(sorted((k, v) for k, v in sim.mw.items() if v)),
         tuple(sorted((k, v) for k, v in sim.qw.items() if v)),
         tuple((t.status, t.elapsed, t.start, t.edge) for t in sim.timers),

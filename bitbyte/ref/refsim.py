@@ -163,6 +163,7 @@ class RefSim:
         # process images, markers, output pins
         self.pii = self.ir = self.if_ = 0
         self.pio = self.outputs = 0
+        self.qr = self.qf = 0        # outputs that rose / fell at the last PIO update
         self.markers = 0
         self.latched_pins = 0        # pins at the previous latch (0 before the first)
         self.last_latch = -1         # clock of the previous latch, -1 = none yet
@@ -263,7 +264,7 @@ class RefSim:
     def _end_scan(self, end: int, cycles: int) -> ScanRecord:
         """END in clock `end`: PIO -> outputs, the scan's record; the next scan starts
         in the clock after."""
-        self._set_outputs(self.pio, end)
+        self._update_outputs(end)
         rec = ScanRecord(self.scan, end + 1, cycles, self._values(end))
         self.scan += 1
         self.clock = end + 1
@@ -340,6 +341,8 @@ class RefSim:
             # also in the scan's latch clock (a scan's first instruction): a second
             # latch there finds no edge since the first, IR/IF become 0 (spec §4)
             self._latch(clock)
+        elif m == "REFRESH Q":
+            self._update_outputs(clock)
         else:
             return False
         return True
@@ -488,6 +491,10 @@ class RefSim:
             return _bit(self.if_, op.bit_number)
         if area in ("Q", "PQ"):                 # a PQ read sees the PIO
             return _bit(self.pio, op.bit_number)
+        if area == "QR":
+            return _bit(self.qr, op.bit_number)
+        if area == "QF":
+            return _bit(self.qf, op.bit_number)
         if area == "M":
             return _bit(self.markers, op.bit_number)
         if area == "T":
@@ -511,6 +518,12 @@ class RefSim:
             self.write_fby(op.index, value)
         else:
             raise RefSimError(f"cannot write {op.address()}")
+
+    def _update_outputs(self, clock: int) -> None:
+        """A PIO update (END, REFRESH Q): the pins take the PIO; QR/QF flag the pins
+        that change with it (a PQ write changed its pin already: no flag)."""
+        self.qr, self.qf = self.pio & ~self.outputs, self.outputs & ~self.pio
+        self._set_outputs(self.pio, clock)
 
     def _set_outputs(self, value: int, clock: int) -> None:
         if value != self.outputs:

@@ -193,9 +193,11 @@ def _operands(program: Program) -> list[tuple[str, Operand]]:
 
 # The image vector each bit area is shown from: the PII and its edge flags, the pins
 # as the CPU reads them (PI: read directly; after the force table), the output pins
-# (what the PIO update drives, after the force table).
+# (what the PIO update drives, after the force table) and the output unit's edge flags
+# of the last PIO update (QR / QF: the unit's own pins, before the force table).
 BIT_VECTORS = {"I": "pii", "PI": "in_pins", "IR": "rise", "IF": "fall",
-               "Q": "out_pins_o", "PQ": "out_pins_o"}
+               "Q": "out_pins_o", "PQ": "out_pins_o", "QR": "q_rise", "QF": "q_fall"}
+OUTPUT_AREAS = ("Q", "PQ", "QR", "QF")
 
 
 def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *,
@@ -233,7 +235,7 @@ def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *
         alias = name if name == op.address() else f"{name} {op.address()}"
         alias = f"{pre}{alias}"
         if op.kind == "bit" and op.area in BIT_VECTORS:
-            group = "Outputs" if op.area in ("Q", "PQ") else "Inputs"
+            group = "Outputs" if op.area in OUTPUT_AREAS else "Inputs"
             kinds[group] += lay.bit(f"{cpu}.{BIT_VECTORS[op.area]}", op.bit_number, alias)
         elif op.kind == "bit" and op.area == "M":
             kinds["Markers"] += lay.trace(
