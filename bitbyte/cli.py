@@ -29,7 +29,7 @@ from bitbyte.lang.firstcheck import first_check_warnings
 from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
-from bitbyte.run.prepare import parse_clock_mhz, prepare
+from bitbyte.run.prepare import MODES, parse_clock_mhz, prepare
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
 from bitbyte.run.status import block_status_text, parallel_block_status_text
@@ -142,7 +142,7 @@ def _parser() -> argparse.ArgumentParser:
                                    "also be a plant file PLANT.toml (section 7)."))
     r.add_argument("program", metavar="PROG.il",
                    help="the source (IL or .awl), or a plant file PLANT.toml")
-    r.add_argument("--mode", choices=["serial", "parallel", "free"], default="serial",
+    r.add_argument("--mode", choices=MODES, default="serial",
                    help="serial: the byte processor waits for its dispatched "
                         "instructions; parallel: both processors run their part of each "
                         "scan at once; free: each side scans at its own pace "

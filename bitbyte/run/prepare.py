@@ -34,21 +34,30 @@ def parse_clock_mhz(text: str) -> Fraction:
     return f
 
 
+# The exchange circuits each mode runs with, its default first (spec §2, §4): the one
+# place that says which `--exchange` goes with which `--mode` (the single CPU's `run`,
+# a plant core's `mode` / `exchange`, the benches).  Serial mode uses no exchange
+# circuit and ignores the setting; a plant core runs in serial or parallel mode only.
+MODE_EXCHANGES: dict[str, tuple[str, ...]] = {
+    "serial": ("handshake",),
+    "parallel": ("handshake", "queue"),        # strict: the writer or reader waits
+    "free": ("marker", "queue-free"),          # free-running: nobody waits
+}
+MODES = tuple(MODE_EXCHANGES)
+PLANT_MODES = ("serial", "parallel")   # the plant harnesses run no free-running core
+
+
 def check_mode(mode: str, exchange: str | None) -> str:
-    """The exchange setting for a run: parallel mode defaults to handshake; serial
-    mode ignores --exchange (spec §4); free-running mode takes marker or queue-free."""
-    if mode == "serial":
-        return "handshake"
-    if mode == "free":
-        exchange = exchange or "marker"
-        if exchange not in ("marker", "queue-free"):
-            raise UsageError(f"--exchange {exchange}: free-running processors never wait; "
-                             "use marker or queue-free")
-        return exchange
-    exchange = exchange or "handshake"
-    if exchange not in ("handshake", "queue"):
-        raise UsageError(f"--exchange {exchange}: parallel mode runs with handshake or "
-                         "queue (free-running exchanges need --mode free)")
+    """The exchange setting for a run: the mode's default (MODE_EXCHANGES) when none
+    is given; serial mode ignores --exchange (spec §4)."""
+    allowed = MODE_EXCHANGES[mode]
+    if mode == "serial" or exchange is None:
+        return allowed[0]
+    if exchange not in allowed:
+        use = " or ".join(allowed)
+        why = (f"free-running processors never wait; use {use}" if mode == "free" else
+               f"{mode} mode runs with {use} (free-running exchanges need --mode free)")
+        raise UsageError(f"--exchange {exchange}: {why}")
     return exchange
 
 

@@ -68,6 +68,7 @@ from cocotb.utils import get_sim_steps, get_sim_time
 
 from bitbyte.lang.definition import DEF
 from bitbyte.sim.cocotb_driver import hal_callbacks, load_firmware
+from bitbyte.run.prepare import PLANT_MODES
 from bitbyte.run.runjob import RunJob
 from bitbyte.lang.trace import format_decimal
 
@@ -152,8 +153,8 @@ class CoreFirmware:
         if job.pool:
             words = (ctypes.c_uint32 * len(job.pool))(*job.pool)
             lib.bb_load_pool(self.state, words, len(job.pool))
-        if job.mode not in ("serial", "parallel"):
-            raise RuntimeError("a plant core runs in serial or parallel mode")
+        if job.mode not in PLANT_MODES:
+            raise RuntimeError(f"a plant core runs in {' or '.join(PLANT_MODES)} mode")
         self.parallel = job.mode == "parallel"
         if self.parallel:
             words = (ctypes.c_uint32 * max(1, len(job.byte_prog)))(*job.byte_prog)
