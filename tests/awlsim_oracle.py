@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from tracecmp import transitions
+
 BITS = range(8)
 
 
@@ -159,44 +161,6 @@ LATCH = "@latch_s"
 def latch_times(rows: list[dict[str, int]]) -> list[float]:
     """The scans' latch times (s) of a bitbyte_scans result, for awlsim's cpu.now."""
     return [float(row[LATCH]) for row in rows]
-
-
-def transitions(rows: list[dict[str, int]], column: str) -> list[tuple[int, int]]:
-    """(scan, new value) of every change of `column`, from the reset value 0."""
-    out, last = [], 0
-    for k, row in enumerate(rows):
-        if row[column] != last:
-            out.append((k, row[column]))
-            last = row[column]
-    return out
-
-
-def transition_difference(expected, got, slack: int = 1):
-    """None if every column makes the same transitions in both, each within `slack`
-    scans (spec §9: timer programs), else (column, awlsim's, bitbyte's).  A
-    transition in the last `slack` scans may be missing from the other trace (it
-    would come after its end)."""
-    end = len(expected) - slack
-    for column in expected[0]:
-        if column[0] == "@":
-            continue
-        a, b = transitions(expected, column), transitions(got, column)
-        longer = a[len(b):] + b[len(a):]
-        if any(k < end for k, _ in longer) or any(
-                va != vb or abs(ka - kb) > slack for (ka, va), (kb, vb) in zip(a, b)):
-            return column, a, b
-    return None
-
-
-def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]]):
-    """(scan, {column: (awlsim, bitbyte)}) of the first scan that differs, or None."""
-    if len(expected) != len(got):
-        return (min(len(expected), len(got)), {"scans": (len(expected), len(got))})
-    for k, (a, b) in enumerate(zip(expected, got)):
-        diff = {c: (a[c], b[c]) for c in a if a[c] != b.get(c) and c[0] != "@"}
-        if diff:
-            return k, diff
-    return None
 
 
 def timer_busy(rows: list[dict[str, int]]) -> set[int]:

@@ -16,14 +16,14 @@ from pathlib import Path
 
 import pytest
 
-from awlsim_oracle import (awlsim_scans, bitbyte_scans, first_difference, latch_times,
-                           timer_scans, transition_difference, transitions)
+from awlsim_oracle import awlsim_scans, bitbyte_scans, latch_times, timer_scans
 from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
 from stlgen import (IN_WORDS, WORDS, random_inputs, random_program, slow_inputs,
                     symbol_table, with_symbols)
+from tracecmp import first_difference, transition_difference, transitions
 
 PROGRAMS = int(os.environ.get("BITBYTE_STL_PROGRAMS", "200"))
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))

@@ -1,0 +1,58 @@
+"""Two traces compared scan by scan: the oracle comparisons of the tests, one helper
+for all (awlsim against bitbyte, spec §9, tests/awlsim_oracle.py; a parallel-mode
+plant against the serial plant, spec §7, tests/test_plant_parallel.py).
+
+A trace is a list of rows, one per scan, each {column: value}.  Columns whose name
+starts with `@` are a run's own bookkeeping (awlsim_oracle's latch time), and
+`ignore` names more that are not compared (a plant's `t_us`, `cycles`, ...).
+"""
+from __future__ import annotations
+
+
+def numeric(rows: list[dict[str, str]]) -> list[dict[str, int]]:
+    """Rows as csv.DictReader gives them (bitbyte.plant.run's) with integer values."""
+    return [{c: int(v) for c, v in row.items()} for row in rows]
+
+
+def transitions(rows: list[dict[str, int]], column: str) -> list[tuple[int, int]]:
+    """(scan, new value) of every change of `column`, from the reset value 0."""
+    out, last = [], 0
+    for k, row in enumerate(rows):
+        if row[column] != last:
+            out.append((k, row[column]))
+            last = row[column]
+    return out
+
+
+def transition_difference(expected, got, slack: int = 1):
+    """None if every column makes the same transitions in both, each within `slack`
+    scans (spec §9: timer programs), else (column, expected's, got's).  A
+    transition in the last `slack` scans may be missing from the other trace (it
+    would come after its end)."""
+    end = len(expected) - slack
+    for column in expected[0]:
+        if column[0] == "@":
+            continue
+        a, b = transitions(expected, column), transitions(got, column)
+        longer = a[len(b):] + b[len(a):]
+        if any(k < end for k, _ in longer) or any(
+                va != vb or abs(ka - kb) > slack for (ka, va), (kb, vb) in zip(a, b)):
+            return column, a, b
+    return None
+
+
+def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]],
+                     ignore=()):
+    """(scan, {column: (expected, got)}) of the first scan that differs in a compared
+    column, or None.  Different numbers of scans, or of compared columns, differ at
+    the first scan one trace lacks (as "scans" / "columns")."""
+    if len(expected) != len(got):
+        return (min(len(expected), len(got)), {"scans": (len(expected), len(got))})
+    for k, (a, b) in enumerate(zip(expected, got)):
+        columns = [c for c in a if c[0] != "@" and c not in ignore]
+        if k == 0 and set(columns) != {c for c in b if c[0] != "@" and c not in ignore}:
+            return 0, {"columns": (list(a), list(b))}
+        diff = {c: (a[c], b[c]) for c in columns if a[c] != b[c]}
+        if diff:
+            return k, diff
+    return None
