@@ -492,7 +492,8 @@ TOML_TOKENS = ["[[core]]", "[core]", "[[core", "name", "program", "period_us",
                '"p2"', '"p1.il"', '"p2.il"', '"compact"', '"random"', '"none"', "10000",
                "-1", "1.5", "1e999", "nan", "true", "[", "]", "{", "}", ",", "\n", "\n",
                "\n", '"""', "'''", "#", "x", ".", "'", '"', "1979-05-27", "\t", " ",
-               "\r\n", "\r", "\x00", "é", "9" * 5000, "core.name"]
+               "\r\n", "\r", "\x00", "é", "9" * 5000, "core.name", "mode", "exchange",
+               '"parallel"', '"free"', '"queue"', '"marker"']
 POSITION = re.compile(r"^.+?:\d+:\d+: \S")
 
 

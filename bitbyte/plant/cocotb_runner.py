@@ -80,7 +80,7 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
         with open(path, newline="") as f:
             rows[core.name] = list(csv.DictReader(f))
     summary = plant_summary_text(plant.protection, jobs[0].clock_hz, res["clocks"],
-                                 [(c.name, rows[c.name], res["skips"][c.name])
+                                 [(c.name, c.mode_text, rows[c.name], res["skips"][c.name])
                                   for c in plant.cores])
     summary += res["stderr"] if res["status"] == 3 else ""
     return res["status"], summary, rows

@@ -46,6 +46,7 @@ from bitbyte.lang.config import Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError, read_utf8
 from bitbyte.lang.program import GlobalVar, Program
+from bitbyte.run.prepare import MODE_EXCHANGES, PLANT_MODES, check_mode
 
 try:
     import tomllib
@@ -56,9 +57,11 @@ except ModuleNotFoundError:                  # Python 3.10: the same parser as t
         tomllib = None
 
 PLANT_KEYS = ("clock_mhz", "layout", "protection", "core")
-CORE_KEYS = ("name", "program", "period_us", "stimulus")
+CORE_KEYS = ("name", "program", "period_us", "stimulus", "mode", "exchange")
 LAYOUTS = ("compact", "random")
 PROTECTIONS = DEF.protections
+PLANT_EXCHANGES = tuple(dict.fromkeys(      # what a plant core's `exchange` may say: a
+    e for m in PLANT_MODES for e in MODE_EXCHANGES[m]))   # serial core ignores it
 DEFAULT_CLOCK_MHZ = 100
 MAX_CLOCK_MHZ = 10_000        # sanity bounds (docs/multicore.md)
 MAX_PERIOD_US = 2 ** 31 - 1
@@ -78,7 +81,9 @@ class CoreSpec:
 
     program / stimulus: paths resolved against the plant file's folder (as the
     user would type them from the current directory); program_text: as written.
-    line/col: the `[[core]]` header (1:1 for an inline table).
+    line/col: the `[[core]]` header (1:1 for an inline table).  mode: serial or
+    parallel; exchange: the one it runs with (as `run --mode --exchange` resolves
+    them: bitbyte.run.prepare.check_mode; handshake for a serial core).
     """
 
     name: str
@@ -88,6 +93,13 @@ class CoreSpec:
     line: int = 0
     col: int = 0
     program_text: str = ""
+    mode: str = "serial"
+    exchange: str = "handshake"
+
+    @property
+    def mode_text(self) -> str:
+        """`serial`, or `parallel/handshake` with the exchange (the run summary)."""
+        return self.mode if self.mode == "serial" else f"{self.mode}/{self.exchange}"
 
 
 @dataclass
@@ -264,8 +276,8 @@ def load_plant(path: str) -> Plant:
             raise text.at_name(key, f"unknown key `{key}` in the plant file (known: "
                                     f"{', '.join(PLANT_KEYS)})")
     clock = _clock(text, data.get("clock_mhz", DEFAULT_CLOCK_MHZ))
-    layout = _choice(text, data, "layout", LAYOUTS)
-    protection = _choice(text, data, "protection", PROTECTIONS)
+    layout = _choice(text, (), data, "layout", LAYOUTS)
+    protection = _choice(text, (), data, "protection", PROTECTIONS)
     tables = data.get("core")
     if tables is None:
         raise text.error(1, 1, "no [[core]] in the plant file: a plant needs at least "
@@ -311,14 +323,18 @@ def _clock(text: _TomlText, value) -> Fraction:
     return f
 
 
-def _choice(text: _TomlText, data: dict, key: str, allowed: tuple[str, ...]) -> str:
+def _choice(text: _TomlText, ctx: tuple, data: dict, key: str, allowed: tuple[str, ...],
+            other: tuple[tuple[str, ...], str] = ((), "")) -> str:
+    """The value of `key` in table ctx: one of `allowed`, the first when absent.
+    other: (values the single CPU takes there but a plant does not, why not)."""
     value = data.get(key, allowed[0])
     if not isinstance(value, str):
-        raise text.at_key((), key, f"`{key}` must be a string ({' | '.join(allowed)}), "
-                                   f"not {_type_name(value)}", value=True)
+        raise text.at_key(ctx, key, f"`{key}` must be a string ({' | '.join(allowed)}), "
+                                    f"not {_type_name(value)}", value=True)
     if value not in allowed:
-        raise text.at_key((), key, f"bad value `{value}` for `{key}`: "
-                                   f"{' | '.join(allowed)}", value=True)
+        why = f" ({other[1]})" if value in other[0] else ""
+        raise text.at_key(ctx, key, f"bad value `{value}` for `{key}`: "
+                                    f"{' | '.join(allowed)}{why}", value=True)
     return value
 
 
@@ -363,8 +379,14 @@ def _core(text: _TomlText, ctx: tuple, table: dict, base: str) -> CoreSpec:
     stimulus = None
     if "stimulus" in table:
         stimulus = _existing(text, ctx, "stimulus", string("stimulus"), base, "stimulus")
+    mode = _choice(text, ctx, table, "mode", PLANT_MODES,
+                   (tuple(MODE_EXCHANGES), "free-running plant cores are not built"))
+    exchange = _choice(text, ctx, table, "exchange", PLANT_EXCHANGES,
+                       (DEF.exchanges, "a free-running exchange: a plant core runs in "
+                                       "serial or parallel mode"))
     header = text.headers.get(ctx, (1, 1))
-    return CoreSpec(name, program, period, stimulus, header[0], header[1], program_text)
+    return CoreSpec(name, program, period, stimulus, header[0], header[1], program_text,
+                    mode, check_mode(mode, exchange if "exchange" in table else None))
 
 
 def _existing(text: _TomlText, ctx: tuple, key: str, written: str, base: str,
@@ -684,9 +706,9 @@ def format_map(shared: SharedMap) -> str:
     out = [f"plant {plant.path}: {len(plant.cores)} core{'s' if len(plant.cores) != 1 else ''}"
            f", layout {plant.layout}, protection {plant.protection}, clock "
            f"{_mhz(plant.clock_mhz)} MHz", ""]
-    out += _table(["core", "program", "period_us", "stimulus"],
-                  [[c.name, c.program, str(c.period_us), c.stimulus or "-"]
-                   for c in plant.cores])
+    out += _table(["core", "program", "period_us", "stimulus", "mode", "exchange"],
+                  [[c.name, c.program, str(c.period_us), c.stimulus or "-", c.mode,
+                    "-" if c.mode == "serial" else c.exchange] for c in plant.cores])
     out += ["", f"shared memory: {len(shared.variables)} variable"
                 f"{'s' if len(shared.variables) != 1 else ''} in {shared.size_words} "
                 f"word{'s' if shared.size_words != 1 else ''} (32 bits each)"]

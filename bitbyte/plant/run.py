@@ -26,9 +26,8 @@ from bitbyte.plant.plans import (MAX_CORES, SHARED_WORDS, PlantRunError, encode_
                                  period_clocks)
 from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
-from bitbyte.run.prepare import prepare_run
+from bitbyte.run.prepare import prepare
 from bitbyte.run.summary import parse_stats, plant_summary_text
-from bitbyte.lang.parser import parse_file
 from bitbyte.sim.gtkw import WaveLayoutError, write_plant_gtkw
 from bitbyte.sim.verilator import progress_fd
 
@@ -69,9 +68,11 @@ def split_watch(watch: str, core_names: list[str]) -> dict[str, list[str]]:
 def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
                   watchdog: int = 100_000, costs: str = "paper"):
     """Link the plant and prepare one RunJob per core (bitbyte.run.prepare does the
-    program, stimulus and trace columns, as for a single CPU).
+    program, stimulus and trace columns, as for a single CPU, in the core's mode:
+    a parallel core's program partitioned as `run --mode parallel` does).
 
-    Returns (shared_map, jobs, columns, plans, until_clock)."""
+    Returns (shared_map, jobs, preps, plans, until_clock): preps the cores'
+    bitbyte.run.prepare.Prepared (program, trace columns, listing), in plant order."""
     plant = load_plant(plant_path)
     shared_map = link(plant)
     if not 2 <= len(plant.cores) <= MAX_CORES:
@@ -82,25 +83,25 @@ def prepare_plant(plant_path: str, *, until_us: str, watch: str = "",
                           f"the shared memory ({SHARED_WORDS} words)")
     plans = encode_plans(shared_map)
     watches = split_watch(watch, [c.name for c in plant.cores])
-    jobs, columns = [], []
+    preps = []
     clock_text = str(plant.clock_mhz)
     for core in plant.cores:
         try:
-            _, cols, job, _ = prepare_run(core.program, stimulus=core.stimulus,
-                                          watch=",".join(watches[core.name.upper()]),
-                                          until_us=until_us, watchdog=watchdog,
-                                          clock_mhz=clock_text, costs=costs)
+            preps.append(prepare(core.program, stimulus=core.stimulus,
+                                 watch=",".join(watches[core.name.upper()]),
+                                 until_us=until_us, watchdog=watchdog,
+                                 clock_mhz=clock_text, costs=costs,
+                                 mode=core.mode, exchange=core.exchange))
         except UsageError as e:                     # name the core a watch belongs to
             text = str(e)
             if text.startswith("--watch: "):
                 raise UsageError(f"--watch: core {core.name}: {text[9:]}") from None
             raise
-        jobs.append(job)
-        columns.append(cols)
+    jobs = [p.job for p in preps]
     until_clock = jobs[0].until_clock
     if until_clock >= 2 ** 62:
         raise UsageError("--until-us: too far (at most 2^62 clocks)")
-    return shared_map, jobs, columns, plans, until_clock
+    return shared_map, jobs, preps, plans, until_clock
 
 
 def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Path,
@@ -118,8 +119,13 @@ def run_file_text(shared_map: SharedMap, jobs, plans, until_clock: int, tmp: Pat
         plan_path.write_text("".join(f"{w:08x}\n" for w in plan.words))
         trace = (f"{trace_base}.{core.name}.csv" if trace_base
                  else str(tmp / f"trace.{core.name}.csv"))
+        byte_prog = None
+        if job.mode == "parallel":                      # the byte part of the program
+            byte_prog = tmp / f"{core.name}.byte.hex"
+            byte_prog.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
         job.until_clock, job.scans = None, None
-        text = job.to_harness_text(str(prog), trace, None)
+        text = job.to_harness_text(str(prog), trace, None,
+                                   str(byte_prog) if byte_prog else None)
         lines += [f"core {i}", f"name {core.name}", f"plan {plan_path}",
                   f"period {period_clocks(core.period_us, plant.clock_mhz)}",
                   f"pre_len {plan.pre_len}", f"post_base {plan.post_base}",
@@ -136,12 +142,13 @@ def trace_base_of(trace: str) -> str:
     return trace[:-4] if trace.lower().endswith(".csv") else trace
 
 
-def _plant_layout(plant, waves: str) -> str:
+def _plant_layout(plant, waves: str, preps) -> str:
     """W.gtkw beside the plant's waves: every core's project in its own names, the
     semaphore's owner by core name (bitbyte.sim.gtkw); the first view two periods of
-    the slowest core."""
+    the slowest core.  preps: the cores' Prepared (program, bit processor listing)."""
     gtkw = str(Path(waves).with_suffix(".gtkw"))
-    cores = [(c.name, parse_file(c.program, plant.config())) for c in plant.cores]
+    cores = [(c.name, p.program, p.listing, c.mode == "serial")
+             for c, p in zip(plant.cores, preps)]
     view = 2 * max(c.period_us for c in plant.cores) * plant.clock_mhz
     try:
         write_plant_gtkw(gtkw, waves, cores, clock_mhz=plant.clock_mhz,
@@ -165,7 +172,7 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     if sim != "verilator" and waves:
         raise UsageError("--waves is written by the Verilator plant harness; "
                          "use --sim verilator")
-    shared_map, jobs, _, plans, until_clock = prepare_plant(
+    shared_map, jobs, preps, plans, until_clock = prepare_plant(
         plant_path, until_us=until_us, watch=watch, watchdog=watchdog, costs=costs)
     if trace:          # every trace file writable before the run (OSError: exit 1)
         for core in shared_map.plant.cores:
@@ -219,8 +226,8 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     plant = shared_map.plant
     summary = plant_summary_text(
         plant.protection, jobs[0].clock_hz, st["clocks"],
-        [(c.name, rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
-        (waves, _plant_layout(plant, waves)) if waves else None)
+        [(c.name, c.mode_text, rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
+        (waves, _plant_layout(plant, waves, preps)) if waves else None)
     if proc.returncode == 3:
         summary += proc.stderr
     return proc.returncode, summary, rows

@@ -173,18 +173,19 @@ def _response_lines(response: Responses, clock_mhz: Fraction) -> list[str]:
 
 
 def plant_summary_text(protection: str, clock_hz: int, clocks: int,
-                       cores: list[tuple[str, list[dict[str, str]], int]],
+                       cores: list[tuple[str, str, list[dict[str, str]], int]],
                        waves: tuple[str, str] | None = None) -> str:
-    """A plant run (spec §7): cores = (name, its trace rows as csv.DictReader gives them,
-    skips_o at its last traced scan); the other figures are the rows' (pre, post,
-    sem_wait, overrun, copy_fail: the trace header of bitbyte.plant.run)."""
+    """A plant run (spec §7): cores = (name, its mode (CoreSpec.mode_text), its trace
+    rows as csv.DictReader gives them, skips_o at its last traced scan); the other
+    figures are the rows' (pre, post, sem_wait, overrun, copy_fail: the trace header
+    of bitbyte.plant.run)."""
     def us(clocks_num: int, n: int = 1) -> str:
         return format_decimal(Fraction(clocks_num * 1_000_000, n * clock_hz))
 
     out = [_label("plant") + f"{len(cores)} cores, protection {protection}, clock "
            f"{format_decimal(Fraction(clock_hz, 1_000_000))} MHz"]
-    for name, rows, skips in cores:
-        line = f"core {name:<11} scans {len(rows)}"
+    for name, mode, rows, skips in cores:
+        line = f"core {name:<11} {mode}, scans {len(rows)}"
         if rows:
             cyc = [int(r["cycles"]) for r in rows]
             lo, hi, total = min(cyc), max(cyc), sum(cyc)

@@ -305,16 +305,17 @@ def core_seq_states(core_seq_v: Path = ROOT / "rtl" / "core_seq.v") -> dict[int,
 
 
 def write_plant_gtkw(gtkw_path: str | Path, wave_file: str | Path,
-                     cores: list[tuple[str, Program]], *, clock_mhz: Fraction,
-                     view_clocks: int) -> list[str]:
+                     cores: list[tuple[str, Program, list[Instr], bool]], *,
+                     clock_mhz: Fraction, view_clocks: int) -> list[str]:
     """A plant's layout (spec §7): the plant (time, the semaphore and its owner by core
     name, each core's sequencer state by name), then per core its CPU's groups with the
-    project's symbols (shared variables among them; MW from the core's word RAM)."""
+    project's symbols (shared variables among them; MW from the core's word RAM).
+    cores: (name, program, its bit processor's listing, serial mode?) as write_gtkw."""
     gtkw_path = Path(gtkw_path)
     stem = gtkw_path.name.removesuffix(".gtkw")
     filter_dir = gtkw_path.resolve().parent
     lay = Layout(read_signal_names(wave_file))
-    names = {i: name for i, (name, _) in enumerate(cores)}
+    names = {i: core[0] for i, core in enumerate(cores)}
     rows = [*lay.trace(DEC, f"{PLANT}.time_o[63:0]", "plant clock"),
             *lay.trace(BIN, f"{PLANT}.locked_o", "semaphore locked")]
     owner = f"{PLANT}.lock_owner_o"        # a vector from three cores on
@@ -322,16 +323,16 @@ def write_plant_gtkw(gtkw_path: str | Path, wave_file: str | Path,
     rows += [DEC_FILTERED, f"^1 {filter_dir / (stem + '.owner.txt')}",
              f"+{{lock owner}} {owner}"]
     lay.filters[f"{stem}.owner.txt"] = filter_text(names)
-    for i, (name, _) in enumerate(cores):
+    for i, name in names.items():
         rows += lay.filtered(f"{PLANT}.g_core[{i}].u_core.u_seq.state_q[2:0]",
                              f"{name}: sequencer", f"{stem}.seq.txt", core_seq_states(),
                              filter_dir)
     lay.group("Plant", rows)
-    for i, (name, program) in enumerate(cores):
+    for i, (name, program, listing, serial) in enumerate(cores):
         core = f"{PLANT}.g_core[{i}].u_core"
-        _cpu_groups(lay, f"{core}.u_cpu", program, list(program.instrs), serial=True,
+        _cpu_groups(lay, f"{core}.u_cpu", program, listing, serial=serial,
                     stem=f"{stem}.{name}", filter_dir=filter_dir, title=name,
                     mw_ram=f"{core}.u_mw_ram")
-    _write(lay, gtkw_path, wave_file, "plant " + ", ".join(n for n, _ in cores), filter_dir,
+    _write(lay, gtkw_path, wave_file, "plant " + ", ".join(names.values()), filter_dir,
            clock_mhz, 0, view_clocks)
     return lay.named
