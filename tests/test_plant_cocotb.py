@@ -7,8 +7,10 @@ cocotb (bitbyte/sim/cocotb_plant.py) on Icarus and on Verilator: every core's tr
 the summary must be the same text. Variants: ping-pong, the random layout, periods
 shorter than the scans (overruns, skipped precycles, copy_fail) with a scan-keyed
 stimulus and input / output words, the scan watchdog, every clock clocked from Python
-(no fast-forward), a three-core plant (plc_system built with Cores = 3), and a
-four-core plant whose cores all run on one loaded copy of the firmware library.
+(no fast-forward), a three-core plant (plc_system built with Cores = 3), a
+four-core plant whose cores all run on one loaded copy of the firmware library, and
+both projects in parallel mode (issue 16 item 4: the serial plant's traces but for
+the timing columns).
 """
 from __future__ import annotations
 
@@ -21,6 +23,8 @@ import pytest
 
 from bitbyte.plant.run import prepare_plant, run_plant
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
+from test_plant_parallel import PARALLEL, TIMING, with_core_keys
+from tracecmp import first_difference, numeric
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "plant_6_1"
@@ -98,6 +102,31 @@ def test_cocotb_traces_equal_plant_harness(tmp_path, sim, protection, layout):
     _same_traces(tmp_path, "C")
     assert rows == ref_rows
     assert summary == ref_summary
+
+
+def test_parallel_plant_equals_serial_plant(tmp_path):
+    """Issue 16 item 4 on cocotb: both projects in parallel mode give on Icarus the
+    plant harness's traces, and those are the serial plant's but for the timing
+    columns (tests/test_plant_parallel.py runs the full-length plant on the plant
+    harness).  The C320's cost table makes a parallel scan longer than a serial one,
+    so the equal traces show the mode reached the simulator; longer periods (and a
+    longer run) keep those scans inside them."""
+    plant = _plant(tmp_path, periods=(600, 2000))
+    run = dict(until_us="10000", watch=WATCH, costs="c320")
+    _, _, serial = run_plant(str(plant), **run)
+    assert any(r["M0.1"] == "1" for r in serial["p2"]) and serial["p1"][-1]["MW20"] == "0"
+    parallel = tmp_path / "parallel.toml"
+    parallel.write_text(with_core_keys(plant.read_text(), [PARALLEL, PARALLEL]))
+    _, ref_summary, _ = run_plant(str(parallel), trace=str(tmp_path / "H.csv"), **run)
+    status, summary, rows = run_plant(str(parallel), trace=str(tmp_path / "C.csv"),
+                                      sim="icarus", **run)
+    assert status == 0, summary
+    _same_traces(tmp_path, "C")
+    assert summary == ref_summary and summary.count("parallel/handshake") == 2
+    timing = TIMING + ("PI0.0",)       # the pin at the scan's end: when that is
+    for core in ("p1", "p2"):
+        assert serial[core][0]["cycles"] != rows[core][0]["cycles"]
+        assert first_difference(numeric(serial[core]), numeric(rows[core]), timing) is None
 
 
 def test_clock_by_clock_equals_plant_harness(tmp_path):
