@@ -428,12 +428,15 @@ module bit_proc #(
   wire o_t_bit  = tc_fwd ? tc_val_i : |(timer_status_i & o_sel_tc);
   wire o_c_bit  = tc_fwd ? tc_val_i : |(counter_status_i & o_sel_tc);
   // QR/QF: the output unit's flags, or, when it updates at this clock's edge (END,
-  // REFRESH Q: no PIO write in that clock), the change the update makes
+  // REFRESH Q: no PIO write in that clock), the change the update makes. Both are
+  // worked out from registers; out_update_o (late: it waits for exec_i, the wait slot
+  // and, for END, the byte side) picks one last, after the wide selects.
   wire o_qpio_bit = |(pio_i & o_sel_out);
   wire o_qpin_bit = |(out_pins_i & o_sel_out);
-  wire o_qr_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_rise_i & o_sel_out);
-  wire o_qf_bit = out_update_o ? (!o_qpio_bit && o_qpin_bit) : |(q_fall_i & o_sel_out);
-  wire o_tcq    = |(o_asel_q[7:3] & {o_qf_bit, o_qr_bit, o_c_bit, o_t_bit, o_q_bit});
+  wire o_qe_keep  = |(o_asel_q[7:6] & {|(q_fall_i & o_sel_out), |(q_rise_i & o_sel_out)});
+  wire o_qe_upd   = |(o_asel_q[7:6] & {!o_qpio_bit && o_qpin_bit, o_qpio_bit && !o_qpin_bit});
+  wire o_tcq    = |(o_asel_q[5:3] & {o_c_bit, o_t_bit, o_q_bit}) ||
+                  (out_update_o ? o_qe_upd : o_qe_keep);
   wire o_in_keep = |(o_asel_q[2:0] & {|(fall_i & o_sel_in), |(rise_i & o_sel_in),
                                       |(pii_i & o_sel_in)});
   wire o_in_one  = |(o_asel_q[2:0] & {o_fp_bit, o_rp_bit, o_pin_bit});

@@ -70,6 +70,8 @@ module bitbyte_cpu #(
   output wire [InBytes*8-1:0]         dbg_pii_o,         // I: the input image of the last latch
   output wire [InBytes*8-1:0]         dbg_rise_o,        // IR: rising edges at that latch
   output wire [InBytes*8-1:0]         dbg_fall_o,        // IF: falling edges
+  output wire [OutBytes*8-1:0]        dbg_q_rise_o,      // QR: outputs the last PIO
+  output wire [OutBytes*8-1:0]        dbg_q_fall_o,      // QF: update raised / dropped
   output wire [StatusBits-1:0]        dbg_timer_status_o,    // T n as the bit side reads it
   output wire [StatusBits-1:0]        dbg_counter_status_o,  // C n
   output wire [31:0]                  dbg_queue_overflows_o, // as bus QUEUE_OVERFLOWS
@@ -123,6 +125,8 @@ module bitbyte_cpu #(
   assign dbg_rlo_o              = rlo;
   assign dbg_rise_o             = rise;
   assign dbg_fall_o             = fall;
+  assign dbg_q_rise_o           = q_rise;
+  assign dbg_q_fall_o           = q_fall;
   assign dbg_timer_status_o     = timer_status;
   assign dbg_counter_status_o   = counter_status;
   assign dbg_queue_overflows_o  = queue_overflows;

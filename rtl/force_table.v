@@ -25,7 +25,7 @@ module force_table #(
   input  wire [31:0]        bus_wdata_i,
   input  wire               bus_we_i,
   input  wire               run_i,       // 0: not running, the table applies at once
-  input  wire               swap_i,      // the PIO update (END): pending -> active
+  input  wire               swap_i,      // END's PIO update (not REFRESH Q's): pending -> active
   input  wire               fault_i,     // watchdog fault: forced outputs drop too
   input  wire [InBits-1:0]  in_pins_i,   // the pins as wired
   input  wire [OutBits-1:0] out_pins_i,  // the output unit's pins

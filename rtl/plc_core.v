@@ -83,6 +83,8 @@ module plc_core #(
   output wire [InBytes*8-1:0]          dbg_pii_o,     // I, IR, IF of the last latch
   output wire [InBytes*8-1:0]          dbg_rise_o,
   output wire [InBytes*8-1:0]          dbg_fall_o,
+  output wire [OutBytes*8-1:0]         dbg_q_rise_o,
+  output wire [OutBytes*8-1:0]         dbg_q_fall_o,
   output wire [StatusBits-1:0]         dbg_timer_status_o,   // T n
   output wire [StatusBits-1:0]         dbg_counter_status_o, // C n
   input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,   // M bit to look at ...
@@ -202,6 +204,8 @@ module plc_core #(
     .dbg_pii_o            (dbg_pii_o),
     .dbg_rise_o           (dbg_rise_o),
     .dbg_fall_o           (dbg_fall_o),
+    .dbg_q_rise_o         (dbg_q_rise_o),
+    .dbg_q_fall_o         (dbg_q_fall_o),
     .dbg_timer_status_o   (dbg_timer_status_o),
     .dbg_counter_status_o (dbg_counter_status_o),
     .dbg_queue_overflows_o (queue_overflows),

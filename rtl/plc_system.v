@@ -73,6 +73,8 @@ module plc_system #(
   output wire [Cores*InBytes*8-1:0]        dbg_pii_o,        // I
   output wire [Cores*InBytes*8-1:0]        dbg_rise_o,       // IR
   output wire [Cores*InBytes*8-1:0]        dbg_fall_o,       // IF
+  output wire [Cores*OutBytes*8-1:0]       dbg_q_rise_o,     // QR
+  output wire [Cores*OutBytes*8-1:0]       dbg_q_fall_o,     // QF
   output wire [Cores*StatusBits-1:0]       dbg_timer_status_o,   // T n
   output wire [Cores*StatusBits-1:0]       dbg_counter_status_o, // C n
   input  wire [Cores*$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,
@@ -212,6 +214,8 @@ module plc_system #(
         .dbg_pii_o           (dbg_pii_o[c*InBytes*8 +: InBytes*8]),
         .dbg_rise_o          (dbg_rise_o[c*InBytes*8 +: InBytes*8]),
         .dbg_fall_o          (dbg_fall_o[c*InBytes*8 +: InBytes*8]),
+        .dbg_q_rise_o        (dbg_q_rise_o[c*OutBytes*8 +: OutBytes*8]),
+        .dbg_q_fall_o        (dbg_q_fall_o[c*OutBytes*8 +: OutBytes*8]),
         .dbg_timer_status_o  (dbg_timer_status_o[c*StatusBits +: StatusBits]),
         .dbg_counter_status_o(dbg_counter_status_o[c*StatusBits +: StatusBits]),
         .dbg_m_addr_i        (dbg_m_addr_i[c*MaW +: MaW]),

@@ -359,6 +359,8 @@ int main(int argc, char** argv) {
     else if (c.kind == "i") srcs.push_back(wide_bit(top.dbg_pii_o, c.index, c));
     else if (c.kind == "ir") srcs.push_back(wide_bit(top.dbg_rise_o, c.index, c));
     else if (c.kind == "if") srcs.push_back(wide_bit(top.dbg_fall_o, c.index, c));
+    else if (c.kind == "qr") srcs.push_back(wide_bit(top.dbg_q_rise_o, c.index, c));
+    else if (c.kind == "qf") srcs.push_back(wide_bit(top.dbg_q_fall_o, c.index, c));
     else if (c.kind == "t") srcs.push_back(wide_bit(top.dbg_timer_status_o, c.index, c));
     else if (c.kind == "c") srcs.push_back(wide_bit(top.dbg_counter_status_o, c.index, c));
     else if (c.kind == "qw") srcs.push_back(word16(top.out_words_o, c.index, c));

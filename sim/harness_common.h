@@ -261,8 +261,8 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
     const size_t nw = w.size();
     std::string header = line.substr(at[1], at[nw - 2] - at[1]);
     header.erase(header.find_last_not_of(" \t") + 1);
-    static const char* kinds[] = {"q", "i", "pi", "ir", "if", "m", "t", "c", "mw", "qw",
-                                  "iw", "zero"};
+    static const char* kinds[] = {"q", "qr", "qf", "i", "pi", "ir", "if", "m", "t", "c",
+                                  "mw", "qw", "iw", "zero"};
     bool ok = false;
     for (const char* kk : kinds) ok |= (w[nw - 2] == kk);
     if (!ok) die("unknown column kind '%s'", w[nw - 2].c_str());

@@ -233,7 +233,7 @@ static_assert(16 * BB_HW_OUT_WORDS == kWordBits, "out_words_o per core as in_wor
 
 // The elements a trace column kind can address (run-file `col`).
 static unsigned col_range(const std::string& kind) {
-  if (kind == "q") return kOutPins;
+  if (kind == "q" || kind == "qr" || kind == "qf") return kOutPins;
   if (kind == "i" || kind == "pi" || kind == "ir" || kind == "if") return kInPins;
   if (kind == "qw" || kind == "iw") return kInWords;
   if (kind == "t" || kind == "c") return BB_HW_STATUS_BITS;
@@ -405,6 +405,8 @@ int main(int argc, char** argv) {
     if (col.kind == "iw") return int16_t(get_field(top.in_words_i, kWordBits * c + 16 * n, 16));
     if (col.kind == "i") return int(get_field(top.dbg_pii_o, kInPins * c + n, 1));
     if (col.kind == "ir") return int(get_field(top.dbg_rise_o, kInPins * c + n, 1));
+    if (col.kind == "qr") return int(get_field(top.dbg_q_rise_o, kOutPins * c + n, 1));
+    if (col.kind == "qf") return int(get_field(top.dbg_q_fall_o, kOutPins * c + n, 1));
     if (col.kind == "if") return int(get_field(top.dbg_fall_o, kInPins * c + n, 1));
     if (col.kind == "t") return int(get_field(top.dbg_timer_status_o, BB_HW_STATUS_BITS * c + n, 1));
     if (col.kind == "c") return int(get_field(top.dbg_counter_status_o, BB_HW_STATUS_BITS * c + n, 1));

@@ -778,7 +778,7 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
       "decode fetches address 0, through one AND per address bit). What sits in that "
       "clock besides the combine itself is what the paths above show:")
     w("")
-    w("* the operand select: the area (I, PI, IR, IF, Q, M, T, C, FBI) times a 128-bit "
+    w("* the operand select: the area (I, PI, IR, IF, Q, QR, QF, M, T, C, FBI) times a 128-bit "
       "index; the four-stage pipeline (docs/isa.md) takes it one stage before execute "
       "from the decoded word, so execute keeps only the combine, the stack and the live "
       "PI pin's choice between two precomputed RLOs;")

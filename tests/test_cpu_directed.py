@@ -207,3 +207,35 @@ def test_every_pin_harness(view, tmp_path):
     q_at = {h: i for i, h in enumerate(header) if h.startswith("Q")}
     got = [sum(int(r[q_at[f"Q{b}"]]) << i for i, b in enumerate(names)) for r in rows]
     assert got == _pins_expected(view), view
+
+
+# `--watch QR b.n / QF b.n` (spec §4: values after the scan's PIO update): the flags END
+# leaves, by hand for the `end_edges` case above (I0.0 = 1, 1, 0, 0): END 0 raises Q0.0,
+# END 1 raises Q1.0, END 2 drops Q0.0 and Q1.0 (and raises nothing), END 3 raises Q1.1
+# only. Watched as addresses and through a symbol, on both hardware runners and the
+# reference (the hardware reads the output unit's flags, the reference its own).
+EDGE_WATCH = ["QR0.0", "QF0.0", "QR1.0", "Fell10"]
+EDGE_WATCH_EXPECT = [[1, 0, 0, 0], [0, 0, 1, 0], [0, 1, 0, 1], [0, 0, 0, 0]]
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus", "reference"])
+def test_watched_output_edges(sim, tmp_path):
+    text = next(c[1] for c in CASES if c[0] == "end_edges")
+    il, stim, trace = tmp_path / "edges.il", tmp_path / "edges.csv", tmp_path / "t.csv"
+    il.write_text("VAR Fell10 AT QF1.0; END_VAR\n" + text)
+    stim.write_text("scan,I0.0\n0,1\n2,0\n")
+    if sim == "reference":
+        from bitbyte.lang.parser import parse_file
+        from bitbyte.lang.stimulus import parse_stimulus
+        from bitbyte.ref.refsim import refsim_trace
+        program = parse_file(str(il))
+        columns, records, _ = refsim_trace(
+            program, stimulus=parse_stimulus(stim.read_text(), str(stim), program.symbols),
+            watch=EDGE_WATCH, scans=4)
+        got = [[r.values[h] for h in EDGE_WATCH] for r in records]
+    else:
+        assert cli.main(["run", str(il), "--scans", "4", "--stimulus", str(stim), "--sim",
+                         sim, "--watch", ",".join(EDGE_WATCH), "--trace", str(trace)]) == 0
+        header, *rows = [line.split(",") for line in trace.read_text().splitlines()]
+        got = [[int(r[header.index(h)]) for h in EDGE_WATCH] for r in rows]
+    assert got == EDGE_WATCH_EXPECT

@@ -132,13 +132,12 @@ MUTATIONS = [
      "wire          m_hit_base = o_first_q ? 1'b0 : o_mfwd_q;"),  # write at the read's edge lost (5)
     ("bit_proc", "bit_proc.v", "wire q_fwd = out_wr_en_o && (out_wr_idx_o == o_out);",
      "wire q_fwd = 1'b0;"),                                # = Q read back stale (5)
+    ("bit_proc", "bit_proc.v", "(out_update_o ? o_qe_upd : o_qe_keep);",
+     "o_qe_keep;"),                                        # QR/QF right after the update stale
     ("bit_proc", "bit_proc.v",
-     "wire o_qr_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_rise_i & o_sel_out);",
-     "wire o_qr_bit = |(q_rise_i & o_sel_out);"),         # QR right after the update stale
-    ("bit_proc", "bit_proc.v",
-     "wire o_qf_bit = out_update_o ? (!o_qpio_bit && o_qpin_bit) : |(q_fall_i & o_sel_out);",
-     "wire o_qf_bit = out_update_o ? (o_qpio_bit && !o_qpin_bit) : |(q_fall_i & o_sel_out);"),
-                                                            # QF forwarded as QR
+     "wire o_qe_upd   = |(o_asel_q[7:6] & {!o_qpio_bit && o_qpin_bit, o_qpio_bit && !o_qpin_bit});",
+     "wire o_qe_upd   = |(o_asel_q[7:6] & {o_qpio_bit && !o_qpin_bit, !o_qpio_bit && o_qpin_bit});"),
+                                                            # QF forwarded as QR and back
     ("bit_proc", "bit_proc.v",
      "wire tc_fwd = tc_we_i && (tc_idx_i == o_tc) && (tc_is_counter_i == o_is_c);",
      "wire tc_fwd = 1'b0;"),                               # a T/C status write missed (5)

@@ -107,8 +107,9 @@ Rules (source instruction -> rows):
   waits for the byte side (an FBI read, a bit-16 status read) -- only writes to the
   byte side move up past reads from it; when either reads T n / C n and the other
   holds a transfer (the status ordering above counts on those positions); and
-  around barriers (jumps, END, REFRESH, NOP, PI / PQ, a block's first rung when it
-  continues an RLO, a block's last rung: the code after a label may continue its RLO).  So every rung computes what it computes serially, and
+  around barriers (jumps, END, REFRESH, REFRESH Q, NOP, PI / PQ, QR / QF, a block's
+  first rung when it continues an RLO, a block's last rung: the code after a label may
+  continue its RLO).  So every rung computes what it computes serially, and
   serial-equivalence is kept.  Among the orders allowed, a list schedule driven by
   a timing model of the straight-line path (bit: 1 clock per instruction, byte: the
   cost table; `_Timing`) takes the rungs a pending `= FBY` depends on when the byte

@@ -94,8 +94,8 @@ def _seg_preds(segs: list[_Seg]) -> list[set[int]]:
     the byte side never waits for a write placed after a read that waits for it; only
     `= FBY` writes move up past FBI reads.  A T n / C n read keeps its place among the
     rungs that hold transfers (the syncs the compiler chose count on it); barriers
-    (jumps, END, REFRESH, NOP, PI/PQ, a block's first rung when it continues the RLO
-    and its last rung) keep theirs among all."""
+    (jumps, END, REFRESH, REFRESH Q, NOP, PI/PQ, QR/QF, a block's first rung when it
+    continues the RLO and its last rung) keep theirs among all."""
     preds: list[set[int]] = [set() for _ in segs]
     for j, b in enumerate(segs):
         for i in range(j):

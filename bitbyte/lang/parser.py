@@ -68,14 +68,14 @@ from dataclasses import dataclass, replace
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
-from bitbyte.lang.program import GlobalVar, Instr, Operand, Program
+from bitbyte.lang.program import BIT_AREAS, GlobalVar, Instr, Operand, Program
 from bitbyte.lang.suggest import did_you_mean
 
 # --------------------------------------------------------------------------------------
 # Vocabulary
 # --------------------------------------------------------------------------------------
 
-BIT_ADDR_AREAS = ("I", "PI", "IR", "IF", "Q", "QR", "QF", "PQ", "M")   # byte.bit
+BIT_ADDR_AREAS = BIT_AREAS                                    # byte.bit
 INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW")      # number
 AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 

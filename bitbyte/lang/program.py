@@ -9,8 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-# Bit areas addressed as byte.bit
-BIT_AREAS = ("I", "PI", "IR", "IF", "Q", "PQ", "M")
+from bitbyte.lang.definition import DEF
+
+# Bit areas addressed as byte.bit (I PI IR IF Q PQ M QR QF: definition.toml, form "bit")
+BIT_AREAS = DEF.bit_form_areas
 # Bit areas addressed by a number (status bits and exchange channels)
 INDEXED_BIT_AREAS = ("T", "C", "FBI", "FBY")
 # Word areas (byte processor)

@@ -33,8 +33,6 @@ _ADDRESS_RE = re.compile(
     re.IGNORECASE,
 )
 
-_OUTPUT_EDGE_RE = re.compile(r"^Q[RF]\s*\d+\.\d+$", re.IGNORECASE)
-
 
 @dataclass(frozen=True)
 class Column:
@@ -155,10 +153,6 @@ def _watch_column(text: str, symbols: dict[str, Operand], config: Config | None,
                   names: dict[str, str] | None = None) -> Column:
     header = text.strip()
     op = resolve_operand(header, symbols)
-    if op is None and _OUTPUT_EDGE_RE.match(header.strip('"')):
-        raise ValueError(f"'{header}': the output edges QR/QF are not traced (they hold "
-                         "until the next PIO update); copy one to a marker "
-                         "(LD QR0.0 / = M0.0) and watch that")
     if op is None or op.kind not in ("bit", "index"):
         raise ValueError(f"'{header}' is neither an address nor a bit/word symbol"
                          + (did_you_mean(header, [(names or {}).get(k, k) for k in symbols])

@@ -1,8 +1,9 @@
 """Response time: from an input change to the PIO update that shows it (spec §4's
 "response-time figures where inputs changed"; the definition is docs/toolchain.md's).
 
-A scan's outputs reach the pins in its END clock, so an output change shows at the
-scan's end, end_clock (= the next scan's latch clock; t_us = end_clock / f).  The
+A scan's outputs reach the pins in its END clock (a `= PQ` write or a `REFRESH Q`
+moves them earlier; measured here at the scan end all the same, an upper bound), so an
+output change shows at the scan's end, end_clock (= the next scan's latch clock; t_us = end_clock / f).  The
 response to an input change at clock c (exact: a t_us row may fall between two clock
 edges) is end_clock - c of the first scan that ends after c and shows it
 (`responding_scan`).  What "shows it" means is causal for the run summary

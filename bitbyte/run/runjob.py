@@ -13,7 +13,8 @@ from dataclasses import asdict, dataclass, field
 from bitbyte.lang.program import Operand
 
 # Hardware column kinds understood by both runners.
-_BIT_KINDS = {"Q": "q", "PQ": "q", "I": "i", "PI": "pi", "IR": "ir", "IF": "if", "M": "m"}
+_BIT_KINDS = {"Q": "q", "PQ": "q", "QR": "qr", "QF": "qf", "I": "i", "PI": "pi", "IR": "ir",
+              "IF": "if", "M": "m"}
 _INDEX_KINDS = {"T": "t", "C": "c", "MW": "mw", "QW": "qw", "IW": "iw"}
 WORD_KINDS = ("mw", "qw", "iw")          # traced as signed decimal
 

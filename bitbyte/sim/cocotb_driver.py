@@ -80,6 +80,7 @@ def _reader(dut, kind: str, index: int, mw=None, look=None):
     if kind == "pi":
         return lambda: (int(dut.in_pins_i.value) >> index) & 1
     ports = {"i": dut.dbg_pii_o, "ir": dut.dbg_rise_o, "if": dut.dbg_fall_o,
+             "qr": dut.dbg_q_rise_o, "qf": dut.dbg_q_fall_o,
              "t": dut.dbg_timer_status_o, "c": dut.dbg_counter_status_o}
     if kind in ports:
         sig = ports[kind]

@@ -330,7 +330,8 @@ class Plant:
             sig = dut.dbg_m_o
             return lambda: self.look_up("m", c, n, lambda: str(_slice(sig.value, c, 1)))
         vectors = {"i": (dut.dbg_pii_o, IN_BITS), "ir": (dut.dbg_rise_o, IN_BITS),
-                   "if": (dut.dbg_fall_o, IN_BITS), "t": (dut.dbg_timer_status_o,
+                   "if": (dut.dbg_fall_o, IN_BITS), "qr": (dut.dbg_q_rise_o, OUT_BITS),
+                   "qf": (dut.dbg_q_fall_o, OUT_BITS), "t": (dut.dbg_timer_status_o,
                                                           self.status_bits),
                    "c": (dut.dbg_counter_status_o, self.status_bits)}
         if kind in vectors:
