@@ -39,6 +39,14 @@ def test_bit_proc_wide_proof_passes(tmp_path):
     assert "successful proof by k-induction" in proc.stdout
 
 
+def test_marker_region_writer_first_proof_passes(tmp_path):
+    """The block-RAM marker region's proof with the read port the writer's first (the
+    bit side writing FBY cells; the default task proves the reader-first one)."""
+    proc = sby(FORMAL / "marker_region.sby", tmp_path, "prove_writer_first")
+    assert proc.returncode == 0, proc.stdout[-3000:]
+    assert "successful proof by k-induction" in proc.stdout
+
+
 # (sby file, rtl file, original text, mutated text): each breaks one guarantee
 MUTATIONS = [
     # cond_ff: against the shadow of conditions taken and given (f_held, f_data)
@@ -87,6 +95,17 @@ MUTATIONS = [
      "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
     ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
      "byte_pub_q <= byte_work_d;"),                         # publishes half a scan
+    # marker_region (issue 16 item 2): every read against the shadow snapshot (f_snap)
+    ("marker_region", "marker_region.v",
+     "wire [1:0] w_slot = busy[w_of_w] ? free_slot : w_of_w;",
+     "wire [1:0] w_slot = w_of_w;", "rd_data_o == f_snap"),   # a write tears the snapshot
+    ("marker_region", "marker_region.v",
+     "wire [WordBits-1:0] read_word = byp_q ? byp_data_q : ram_q;",
+     "wire [WordBits-1:0] read_word = ram_q;", "rd_data_o == f_snap"),  # merge loses a write
+    ("marker_region", "marker_region.v", "(write_buffer_i ? (3'b001 << w_p) : 3'b000)",
+     "3'b000", "rd_data_o == f_snap"),                     # the write buffer overwritten
+    ("marker_region", "marker_region.v", "wire [1:0] r_of_r = r_next[2*r_word +: 2];",
+     "wire [1:0] r_of_r = r_q[2*r_word +: 2];", "rd_data_o == f_snap"),  # update a clock late
     # hsem: against the shadow of the lock (f_held, f_holder) and the grants counted
     ("hsem", "hsem.v", "wire grant_any = !locked_o && any_req;",
      "wire grant_any = any_req;", "if (f_held) assert (grant_o"),   # grant while held
