@@ -153,6 +153,13 @@ def _parser() -> argparse.ArgumentParser:
                         "(FIFOs), queue-free (FIFOs, losses counted instead of waits), "
                         "marker (Fig. 17's marker area). Default: handshake in parallel "
                         "mode, marker in free mode; serial mode ignores it")
+    r.add_argument("--marker-write-buffer", action="store_true",
+                   help="marker exchange: each side publishes its cells at its own scan "
+                        "end, so the other side's snapshot (taken at its scan start) "
+                        "holds whole scans of the writer, never half of one; without it "
+                        "the snapshot takes the cells as they are (Fig. 17 as drawn: "
+                        "the conditions of one writer scan may be split between two "
+                        "reader scans)")
     r.add_argument("--stimulus", metavar="STIM.csv",
                    help="input pins over time: first column scan or t_us, then one "
                         "column per input (I0.0, IW3 or a symbol); unnamed inputs are 0")
@@ -349,7 +356,8 @@ def cmd_run(args) -> int:
         until_us=args.until_us, watchdog=args.watchdog, clock_mhz=args.clock_mhz,
         costs=args.costs, mode=args.mode, exchange=args.exchange,
         channels=args.channels, lang=args.lang, mnemonics=args.mnemonics,
-        profile=args.profile, symbols=args.symbols)
+        profile=args.profile, symbols=args.symbols,
+        marker_write_buffer=args.marker_write_buffer)
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
     if args.status is not None:
@@ -414,6 +422,7 @@ def cmd_run_plant(args) -> int:
         raise UsageError("running a plant needs --until-us T")
     for opt, given in (("--mode", args.mode != "serial"), ("--exchange", args.exchange),
                        ("--stimulus", args.stimulus), ("--channels", args.channels),
+                       ("--marker-write-buffer", args.marker_write_buffer),
                        ("--clock-mhz", args.clock_mhz != "100"),
                        ("--status", args.status is not None), ("--force", args.force)):
         if given:

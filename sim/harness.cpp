@@ -453,6 +453,7 @@ int main(int argc, char** argv) {
   top.parallel_i = rf.parallel;
   top.free_i = rf.free_running;
   top.exchange_i = rf.exchange;
+  top.marker_write_buffer_i = rf.marker_write_buffer;
   top.run_i = 1;
   d.tick();  // IDLE sees run_i: the next clock is clock 0, the latch of scan 0
   const uint64_t t0_ps = d.t_ps;  // waveform time of clock 0 (the layout's first view)

@@ -147,6 +147,7 @@ struct RunFile {
   bool parallel = false;                                           // mode parallel
   bool free_running = false;                                       // mode free
   unsigned exchange = 0;                                           // 0 handshake, 1 queue, 2 queue-free
+  bool marker_write_buffer = false;                                // marker: publish at scan end
   std::string byte_prog;                                           // its byte part (.hex)
   int64_t status_scan = -1;                                        // block status of this scan
   // --force: the force table (in mask, in values, out mask, out values) a host writes
@@ -245,6 +246,10 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
     want(1);
     static const char* const kExchanges[] = BB_EXCHANGE_NAMES;
     rf.exchange = setting_code("exchange", kExchanges, w[1]);
+  } else if (k == "marker_write_buffer") {
+    want(1);
+    if (w[1] != "0" && w[1] != "1") die("marker_write_buffer must be 0 or 1");
+    rf.marker_write_buffer = w[1] == "1";
   } else if (k == "byte_prog") {
     want(1);
     rf.byte_prog = w[1];

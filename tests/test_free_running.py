@@ -96,3 +96,69 @@ def test_marker_needs_a_cell_per_condition(tmp_path):
     il.write_text(TWO_COMPARES * 3)
     assert cli.main(["run", str(il), "--mode", "free", "--channels", "4"]) == cli.EXIT_SOURCE
     assert cli.main(["run", str(il), "--mode", "free", "--exchange", "queue-free"]) == 0
+
+
+# The byte side counts its scans in MW0 and hands "MW0 is even" to the bit side twice
+# in one scan, word work between the two crossings; the bit side sets Q0.0 for good
+# when the two disagree, i.e. when its snapshot holds one crossing of a byte scan and
+# not the other, and shows the first in Q0.1.
+TWO_OF_ONE_SCAN = """\
+      L     MW0
+      L     1
+      +I
+      T     MW0
+      L     MW0
+      L     2
+      MOD
+      L     0
+      ==I
+      =     M0.0
+      L     MW1
+      L     MW2
+      *I
+      T     MW3
+      L     MW0
+      L     2
+      MOD
+      L     0
+      ==I
+      =     M0.1
+      LD    M0.0
+      X     M0.1
+      S     Q0.0
+      LD    M0.0
+      =     Q0.1
+"""
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_marker_write_buffer_gives_whole_scans(tmp_path, sim):
+    """--marker-write-buffer (issue 16 item 2): without it the bit side's snapshot,
+    taken at its scan start (every 8 clocks here), falls between the byte side's two
+    WRITE FBI of one scan (40 clocks of word work apart) and mixes them: Q0.0 goes to 1.
+    With it the byte side publishes at its scan end, and no snapshot ever mixes; the
+    conditions still arrive (Q0.1 follows MW0's parity both ways)."""
+    il = tmp_path / "w.il"
+    il.write_text(TWO_OF_ONE_SCAN)
+    rows = {}
+    for wb in (False, True):
+        trace = tmp_path / f"w{int(wb)}.csv"
+        argv = ["run", str(il), "--mode", "free", "--sim", sim, "--scans", "300",
+                "--trace", str(trace), "--watch", "MW0"]
+        assert cli.main(argv + (["--marker-write-buffer"] if wb else [])) == 0
+        assert trace.read_text().splitlines()[0] == "scan,t_us,cycles,Q0.0,Q0.1,MW0"
+        rows[wb] = [[int(v) for v in line.split(",")[3:]]
+                    for line in trace.read_text().splitlines()[1:]]
+    for wb in (False, True):
+        assert rows[wb][-1][2] >= 8                          # byte scans went by
+        assert {q1 for _, q1, _ in rows[wb]} == {0, 1}       # the conditions arrive
+    assert rows[False][-1][0] == 1                           # a mixed snapshot
+    assert all(q0 == 0 for q0, _, _ in rows[True])           # whole scans only
+
+
+def test_marker_write_buffer_needs_the_marker_exchange(tmp_path, capsys):
+    il = tmp_path / "w.il"
+    il.write_text(TWO_OF_ONE_SCAN)
+    for extra in (["--mode", "free", "--exchange", "queue-free"], ["--mode", "parallel"]):
+        assert cli.main(["run", str(il), "--marker-write-buffer", *extra]) == cli.EXIT_USAGE
+        assert "--marker-write-buffer" in capsys.readouterr().err

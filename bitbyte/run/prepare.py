@@ -89,7 +89,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 mode: str = "serial", exchange: str | None = None,
                 channels: int | None = None, lang: str | None = None,
                 mnemonics: str | None = None, profile: str | None = None,
-                symbols: str | None = None):
+                symbols: str | None = None, marker_write_buffer: bool = False):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     f is the clock in MHz as a Fraction.  The differential tests call this too (as
@@ -116,6 +116,9 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
     if costs not in COST_TABLES:
         raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
     exchange = check_mode(mode, exchange)
+    if marker_write_buffer and exchange != "marker":
+        raise UsageError("--marker-write-buffer: the marker exchange's option "
+                         "(--mode free, --exchange marker)")
     program = parse_file(program_path, config, lang=lang, mnemonics=mnemonics,
                          symbols=symbols)
     byte_words: list[int] = []
@@ -154,7 +157,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                  stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
-                 byte_prog=byte_words)
+                 marker_write_buffer=marker_write_buffer, byte_prog=byte_words)
     return Prepared(program, columns, job, f, stim.changes(f), stim, config,
                     list(part.bit) if mode in ("parallel", "free") else list(program.instrs),
                     list(part.byte) if mode in ("parallel", "free") else [])

@@ -45,6 +45,9 @@ class RunJob:
     pool: list[int] = field(default_factory=list)   # constant pool words
     mode: str = "serial"                 # serial | parallel | free
     exchange: str = "handshake"          # handshake | queue | queue-free | marker
+    # marker exchange: writers publish their cells at their scan end (the write buffer,
+    # --marker-write-buffer), so a snapshot holds whole scans of the other side
+    marker_write_buffer: bool = False
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
     status_scan: int | None = None       # the block status of this scan (--status)
     # --force: (scan, in mask, in values, out mask, out values), the force table a host
@@ -65,6 +68,8 @@ class RunJob:
                  f"exchange {self.exchange}"]
         if byte_prog_path:
             lines.append(f"byte_prog {byte_prog_path}")
+        if self.marker_write_buffer:
+            lines.append("marker_write_buffer 1")
         if self.scans is not None:
             lines.append(f"scans {self.scans}")
         if self.until_clock is not None:

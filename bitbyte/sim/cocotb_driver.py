@@ -317,7 +317,7 @@ async def run_job(dut, job: RunJob) -> dict:
     firmware.queue_force(0)                 # ... then scan 0's, during scan 0
     dut.parallel_i.value = int(job.mode == "parallel")
     dut.free_i.value = int(job.mode == "free")
-    dut.marker_write_buffer_i.value = 0
+    dut.marker_write_buffer_i.value = int(job.marker_write_buffer)
     dut.exchange_i.value = DEF.exchanges.index(job.exchange)
     dut.run_i.value = 1                    # this clock is still IDLE
     await FallingEdge(dut.clk_i)           # now inside clock 0, the latch of scan 0
