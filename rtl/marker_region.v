@@ -13,7 +13,7 @@
 // the size, and a pointer copy, not a data copy. A write never goes to the slots r or
 // p point to, so no snapshot is ever torn: it goes to w if w is neither, else to the
 // slot that is neither (three slots always leave one). The pointers are per word, not
-// per cell, so the flip-flops cost 6 per word (96 for 256 cells), not 2..6 per cell;
+// per cell, so the flip-flops cost 6 per word (48 for 128 cells), not 2..6 per cell;
 // the price is that a write changes one cell of a word and must rewrite the word:
 // it reads the word from w (the read port, one clock) and writes the merged word in
 // the next clock. Writes pipeline, one per clock (a merge reads the one before it
@@ -29,7 +29,7 @@
 // After reset the RAM is cleared, one word a clock (4 * Words clocks): all cells read
 // 0 then, and writes wait (ready_o low).
 module marker_region #(
-  parameter integer Cells       = 256,  // condition cells (a power of two)
+  parameter integer Cells       = 128,  // condition cells (a power of two; 100 crossings fit)
   parameter integer WordBits    = 16,   // cells per RAM word (16: the iCE40's 256 x 16)
   parameter integer ReaderFirst = 1     // 1: the reader has the read port first, 0: the writer
 ) (

@@ -18,7 +18,7 @@ INPUTS = ("wr_req_i", "wr_idx_i", "wr_data_i", "publish_i", "snap_i", "rd_req_i"
 
 
 def cells(dut) -> int:
-    return int(os.environ.get("MR_CELLS", "256"))
+    return int(os.environ.get("MR_CELLS", "128"))
 
 
 async def reset_and_clear(dut, write_buffer: bool) -> None:
@@ -160,7 +160,7 @@ async def random_traffic_write_buffer(dut):
 
 
 CONFIGS = {
-    "default": {},                                            # 256 cells, reader first
+    "default": {},                                            # 128 cells, reader first
     "small_writer_first": {"Cells": 32, "WordBits": 4, "ReaderFirst": 0},
 }
 
@@ -169,7 +169,7 @@ CONFIGS = {
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_marker_region(sim, config):
     params = CONFIGS[config]
-    env = {"MR_CELLS": str(params.get("Cells", 256)),
+    env = {"MR_CELLS": str(params.get("Cells", 128)),
            "MR_WORD_BITS": str(params.get("WordBits", 16)),
            "MR_READER_FIRST": str(params.get("ReaderFirst", 1))}
     run_cocotb(sim, "marker_region", "test_marker_region", parameters=params, extra_env=env)
