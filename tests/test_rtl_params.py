@@ -56,6 +56,11 @@ CPU_CORNERS = [
     {"Exchanges": 6}, {"Exchanges": 2, "Channels": 1}, {"Exchanges": 4, "Channels": 8},
     CPU_MIN, CPU_MAX,
 ]
+# rtl/marker_region.v (issue 16 item 2), on its own until the CPU instantiates it
+REGION_CORNERS = [
+    {}, {"ReaderFirst": 0}, {"Cells": 4, "WordBits": 2}, {"Cells": 16, "WordBits": 8},
+    {"Cells": 32, "WordBits": 16}, {"Cells": 4096},
+]
 PLANT_CORNERS = [
     {},
     {"Cores": 3}, {"Cores": 8},
@@ -72,6 +77,12 @@ def _id(params: dict) -> str:
 @pytest.mark.parametrize("params", CPU_CORNERS, ids=_id)
 def test_cpu_corner_lints_clean(params):
     proc = lint("bitbyte_cpu", params)
+    assert proc.returncode == 0 and proc.stdout + proc.stderr == "", proc.stdout + proc.stderr
+
+
+@pytest.mark.parametrize("params", REGION_CORNERS, ids=_id)
+def test_marker_region_corner_lints_clean(params):
+    proc = lint("marker_region", params)
     assert proc.returncode == 0 and proc.stdout + proc.stderr == "", proc.stdout + proc.stderr
 
 
@@ -99,6 +110,12 @@ BAD = [
     ("bitbyte_cpu", {"InBytes": 513}, "InBytes"),
     ("bitbyte_cpu", {"OutBytes": 0}, "OutBytes"),
     ("bitbyte_cpu", {"MarkerBytes": 1024}, "MarkerBytes"),
+    ("marker_region", {"Cells": 100}, "Cells"),                  # not a power of two
+    ("marker_region", {"Cells": 16, "WordBits": 16}, "Cells"),   # one word only
+    ("marker_region", {"Cells": 8192}, "Cells"),
+    ("marker_region", {"WordBits": 3}, "WordBits"),
+    ("marker_region", {"WordBits": 32}, "WordBits"),
+    ("marker_region", {"ReaderFirst": 2}, "ReaderFirst"),
     ("plc_system", {"Cores": 1}, "Cores"),
     ("plc_system", {"Cores": 9}, "Cores"),
     ("plc_system", {"PlanWords": 1000}, "PlanWords"),
