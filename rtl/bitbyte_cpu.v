@@ -74,8 +74,8 @@ module bitbyte_cpu #(
   output wire [OutBytes*8-1:0]        dbg_q_fall_o,      // QF: update raised / dropped
   output wire [StatusBits-1:0]        dbg_timer_status_o,    // T n as the bit side reads it
   output wire [StatusBits-1:0]        dbg_counter_status_o,  // C n
-  output wire [31:0]                  dbg_queue_overflows_o, // as bus QUEUE_OVERFLOWS
-  output wire [31:0]                  dbg_queue_underflows_o, // as bus QUEUE_UNDERFLOWS
+  output wire [31:0]                  dbg_queue_overflows_o, // bus QUEUE_OVERFLOWS, exact now
+  output wire [31:0]                  dbg_queue_underflows_o, // ... QUEUE_UNDERFLOWS
   input  wire [$clog2(MarkerBytes*8)-1:0] dbg_m_addr_i,  // a marker bit M to look at ...
   output wire                         dbg_m_o,           // ... its value now, without a clock
   output wire                         dbg_ret_valid_o,   // an instruction retired last clock
@@ -118,6 +118,7 @@ module bitbyte_cpu #(
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
   wire [31:0] byte_flags, queue_overflows, queue_underflows;
+  wire [31:0] queue_overflows_now, queue_underflows_now;
   assign byte_next_o = next;
 
   // ---------------------------------------------------------------- observation
@@ -129,8 +130,8 @@ module bitbyte_cpu #(
   assign dbg_q_fall_o           = q_fall;
   assign dbg_timer_status_o     = timer_status;
   assign dbg_counter_status_o   = counter_status;
-  assign dbg_queue_overflows_o  = queue_overflows;
-  assign dbg_queue_underflows_o = queue_underflows;
+  assign dbg_queue_overflows_o  = queue_overflows_now;   // the bus registers may lag a clock
+  assign dbg_queue_underflows_o = queue_underflows_now;
 
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
@@ -309,7 +310,9 @@ module bitbyte_cpu #(
     .fbi_rd_ready_o(fbi_rd_ready),
     .fbi_full_o    (fbi_full),
     .overflows_o   (queue_overflows),
-    .underflows_o  (queue_underflows)
+    .underflows_o  (queue_underflows),
+    .overflows_now_o (queue_overflows_now),
+    .underflows_now_o(queue_underflows_now)
   );
 
   dispatch #(.StatusBits(StatusBits)) u_dispatch (

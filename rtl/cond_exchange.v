@@ -45,9 +45,12 @@ module cond_exchange #(
   output wire [Channels-1:0] fbi_rd_data_o,
   output wire [Channels-1:0] fbi_rd_ready_o,
   output wire [Channels-1:0] fbi_full_o,
-  // free-running losses: {to-bit, to-byte}
+  // free-running losses: {to-bit, to-byte}; up to one clock late, *_now_o exact
+  // (cond_queue.v)
   output wire [31:0]         overflows_o,
-  output wire [31:0]         underflows_o
+  output wire [31:0]         underflows_o,
+  output wire [31:0]         overflows_now_o,
+  output wire [31:0]         underflows_now_o
 );
   localparam [0:0] HasFf     = (Exchanges & 1) != 0;
   localparam [0:0] HasQueue  = (Exchanges & 2) != 0;
@@ -139,7 +142,9 @@ module cond_exchange #(
       .full_o      (q_fby_full),
       .empty_o     (q_fby_empty),
       .overflows_o (overflows_o[15:0]),
-      .underflows_o(underflows_o[15:0])
+      .underflows_o(underflows_o[15:0]),
+      .overflows_now_o (overflows_now_o[15:0]),
+      .underflows_now_o(underflows_now_o[15:0])
     );
     cond_queue #(.Depth(QueueDepth)) u_queue_fbi (
       .clk_i       (clk_i),
@@ -156,14 +161,18 @@ module cond_exchange #(
       .full_o      (q_fbi_full),
       .empty_o     (q_fbi_empty),
       .overflows_o (overflows_o[31:16]),
-      .underflows_o(underflows_o[31:16])
+      .underflows_o(underflows_o[31:16]),
+      .overflows_now_o (overflows_now_o[31:16]),
+      .underflows_now_o(underflows_now_o[31:16])
     );
   end else begin : g_no_queue
     // never selected; no losses to count
     assign {q_fby_wr_ready, q_fby_rd_data, q_fby_rd_ready, q_fby_full, q_fby_empty} = 5'd0;
     assign {q_fbi_wr_ready, q_fbi_rd_data, q_fbi_rd_ready, q_fbi_full, q_fbi_empty} = 5'd0;
-    assign overflows_o  = 32'd0;
-    assign underflows_o = 32'd0;
+    assign overflows_o      = 32'd0;
+    assign underflows_o     = 32'd0;
+    assign overflows_now_o  = 32'd0;
+    assign underflows_now_o = 32'd0;
   end
 
   // ------------------------------------------------------------ marker area

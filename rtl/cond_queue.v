@@ -12,6 +12,12 @@
 //    is `fresh` from its write to its read: writing a fresh slot overwrites it and
 //    counts an overflow, reading a stale one returns its last value and counts an
 //    underflow. The counts are sticky (they saturate).
+//
+// The loss counts lag by one clock (the rule: docs/exchange.md): a loss sets a
+// flip-flop and the counter adds it in the next clock, so the 16-bit increment starts
+// from a flip-flop instead of the other side's request strobe (a byte-bus write into
+// this increment was the FPGA's critical path; issue 20). A queue loses at most one
+// condition per kind and clock, so one flip-flop each holds it until it is counted.
 module cond_queue #(
   parameter integer Depth = 8  // conditions the queue holds (a power of two, >= 2)
 ) (
@@ -28,8 +34,10 @@ module cond_queue #(
   output wire        rd_ready_o,
   output wire        full_o,
   output wire        empty_o,
-  output reg  [15:0] overflows_o,
-  output reg  [15:0] underflows_o
+  output reg  [15:0] overflows_o,     // the loss counts, up to one clock late
+  output reg  [15:0] underflows_o,
+  output wire [15:0] overflows_now_o, // ... with the pending event: exact now
+  output wire [15:0] underflows_now_o
 );
   localparam integer PtrW = $clog2(Depth);
 
@@ -63,6 +71,14 @@ module cond_queue #(
   wire [PtrW:0] wr_ptr_d = wr_restart ? {{PtrW{1'b0}}, do_wr} : wr_ptr_q + {{PtrW{1'b0}}, do_wr};
   wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd};
 
+  // Loss events of this clock, registered; the counters take them in the next clock.
+  wire overflow  = free_i && do_wr && fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot);
+  wire underflow = free_i && do_rd && !fresh_q[rd_slot];
+  reg  overflow_q, underflow_q;
+  // the count with the pending event added (saturating): the counter's next value
+  assign overflows_now_o  = overflows_o + {15'd0, overflow_q && overflows_o != 16'hFFFF};
+  assign underflows_now_o = underflows_o + {15'd0, underflow_q && underflows_o != 16'hFFFF};
+
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       data_q       <= {Depth{1'b0}};
@@ -71,6 +87,8 @@ module cond_queue #(
       rd_ptr_q     <= {(PtrW+1){1'b0}};
       strict_empty <= 1'b1;
       strict_full  <= 1'b0;
+      overflow_q   <= 1'b0;
+      underflow_q  <= 1'b0;
       overflows_o  <= 16'd0;
       underflows_o <= 16'd0;
     end else begin
@@ -81,11 +99,10 @@ module cond_queue #(
         data_q[wr_slot]  <= wr_data_i;
         fresh_q[wr_slot] <= 1'b1;
       end
-      if (free_i && do_wr && fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot) &&
-          overflows_o != 16'hFFFF)
-        overflows_o <= overflows_o + 16'd1;
-      if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)
-        underflows_o <= underflows_o + 16'd1;
+      overflow_q   <= overflow;
+      underflow_q  <= underflow;
+      overflows_o  <= overflows_now_o;
+      underflows_o <= underflows_now_o;
       // pointers: free-running ones return to slot 0 at their owner's scan start
       wr_ptr_q     <= wr_ptr_d;
       rd_ptr_q     <= rd_ptr_d;
@@ -230,14 +247,21 @@ module cond_queue #(
     // every item went out once, was dropped, or is inside
     assert (f_in == f_out + f_dropped + f_inside);
   end
-  // losses counted exactly: each clock's overflow / underflow count grows by the drop /
-  // the read without an item of that clock (saturating at 65535)
+  // losses counted exactly once: each clock's exact overflow / underflow count grows
+  // by the drop / the read without an item of the clock before (saturating at 65535) ...
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && free_i) begin
-    assert (overflows_o == (($past(overflows_o) == 16'hFFFF) ? 16'hFFFF :
-                            $past(overflows_o) + {15'd0, $past(f_drop)}));
-    assert (underflows_o == (($past(underflows_o) == 16'hFFFF) ? 16'hFFFF :
-                             $past(underflows_o) + {15'd0, $past(f_stale)}));
+    assert (overflows_now_o == (($past(overflows_now_o) == 16'hFFFF) ? 16'hFFFF :
+                                $past(overflows_now_o) + {15'd0, $past(f_drop)}));
+    assert (underflows_now_o == (($past(underflows_now_o) == 16'hFFFF) ? 16'hFFFF :
+                                 $past(underflows_now_o) + {15'd0, $past(f_stale)}));
   end
+  // ... and the bus's counts are those of the clock before: one clock late, no more
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    assert (overflows_o == $past(overflows_now_o));
+    assert (underflows_o == $past(underflows_now_o));
+  end
+  // strict: nothing is lost, nothing counted
+  always @(*) if (rst_ni && !free_i) assert (overflows_now_o == 16'd0 && underflows_now_o == 16'd0);
   // the RTL's state is the shadow's
   always @(*) if (rst_ni && free_i) begin
     f_inv_wpos: assert (wr_ptr_q[PtrW-1:0] == f_wpos_q);

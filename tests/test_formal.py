@@ -71,15 +71,29 @@ MUTATIONS = [
      "wire [PtrW:0] rd_ptr_d = rd_restart ? {{PtrW{1'b0}}, do_rd} : rd_ptr_q + {{PtrW{1'b0}}, do_rd && !wr_req_i};"),
                                                             # a read lost: read twice
     # cond_queue free-running: against the shadow queue (f_holds, the followed item f_n_*)
-    ("cond_queue", "cond_queue.v", "fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot) &&",
-     "fresh_q[wr_slot] && !do_rd &&", "assert (overflows_o =="),  # a loss not counted
+    ("cond_queue", "cond_queue.v", "fresh_q[wr_slot] && !(do_rd && rd_slot == wr_slot);",
+     "fresh_q[wr_slot] && !do_rd;", "assert (overflows_now_o =="),  # a loss not counted
     ("cond_queue", "cond_queue.v", "        data_q[wr_slot]  <= wr_data_i;",
      "        if (!free_i || !fresh_q[wr_slot]) data_q[wr_slot]  <= wr_data_i;",
      "rd_data_o == f_n_val"),                  # a dropped write that still advances
     ("cond_queue", "cond_queue.v",
-     "if (free_i && do_rd && !fresh_q[rd_slot] && underflows_o != 16'hFFFF)",
-     "if (free_i && do_rd && !fresh_q[rd_slot] && !do_wr && underflows_o != 16'hFFFF)",
-     "assert (underflows_o =="),               # a stale read (old value again) not counted
+     "wire underflow = free_i && do_rd && !fresh_q[rd_slot];",
+     "wire underflow = free_i && do_rd && !fresh_q[rd_slot] && !do_wr;",
+     "assert (underflows_now_o =="),           # a stale read (old value again) not counted
+    # ... the losses registered and counted a clock later (issue 20): none dropped or
+    # counted twice on the way, the bus's count exactly one clock late
+    ("cond_queue", "cond_queue.v", "overflow_q   <= overflow;",
+     "overflow_q   <= overflow && !overflow_q;",
+     "assert (overflows_now_o =="),            # the second of two losses in a row dropped
+    ("cond_queue", "cond_queue.v", "underflow_q  <= underflow;", "underflow_q  <= 1'b0;",
+     "assert (underflows_now_o =="),           # the registered event never counted
+    ("cond_queue", "cond_queue.v",
+     "overflows_o + {15'd0, overflow_q && overflows_o != 16'hFFFF};",
+     "overflows_o + {15'd0, (overflow_q || overflow) && overflows_o != 16'hFFFF};",
+     "assert (overflows_now_o =="),            # counted in its clock and again a clock later
+    ("cond_queue", "cond_queue.v", "      underflows_o <= underflows_now_o;",
+     "      if (!underflow) underflows_o <= underflows_now_o;",
+     "assert (underflows_o == $past"),          # the bus's count held back by a new loss
     ("cond_queue", "cond_queue.v", "      if (do_rd) fresh_q[rd_slot] <= 1'b0;",
      "      if (do_rd && !free_i) fresh_q[rd_slot] <= 1'b0;",
      "f_holds[f_wpos]"),                       # a read keeps its item: delivered twice
