@@ -40,6 +40,12 @@ module scan_ctrl (
 
   // Clocks this scan will have used once the current clock ends.
   wire [31:0] cycles_now = latch_o ? 32'd1 : cycle_q_o + 32'd1;
+  // cycles_now > scan_cycles_max_o, with the compare straight from the flip-flops: the
+  // increment and the compare in series were the HX8K critical path (issue 20).
+  // cycle_q_o + 1 > max is cycle_q_o >= max, as cycle_q_o + 1 never wraps while the
+  // scan runs (the watchdog ends it before cycle_q_o reaches 2^32 - 1).
+  wire        longest = latch_o ? (scan_cycles_max_o == 32'd0)
+                                : (cycle_q_o >= scan_cycles_max_o);
   // Without END in this clock the scan needs at least one clock more: past the limit?
   wire watchdog_fire = exec_o && !end_i && (cycles_now >= watchdog_limit_i);
   assign start_o = run_i && ((state_q == StIdle) || (exec_o && end_i));
@@ -76,7 +82,7 @@ module scan_ctrl (
           scan_done_o   <= 1'b1;
           scan_count_o  <= scan_count_o + 32'd1;
           scan_cycles_o <= cycles_now;
-          if (cycles_now > scan_cycles_max_o) scan_cycles_max_o <= cycles_now;
+          if (longest) scan_cycles_max_o <= cycles_now;
         end
       end
     end

@@ -147,6 +147,25 @@ async def longest_scan_compares_every_bit(dut):
             assert int(dut.scan_cycles_max_o.value) == (1 << k) + 1, (k, length)
 
 
+@cocotb.test()
+async def longest_scan_by_one_clock(dut):
+    """The longest scan's edge cases: a first scan of one clock (END in the latch
+    clock) and scans one clock longer than the longest so far, each taken; a scan as
+    long as the longest, or a 1-clock one after it, changes nothing (issue 20: the
+    compare reads cycle_q_o >= longest instead of cycle_q_o + 1 > longest)."""
+    await reset(dut)
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+    for length, longest in ((1, 1), (2, 2), (2, 2), (3, 3), (1, 3), (4, 4)):
+        for _ in range(length - 1):
+            await clock(dut)
+        await clock(dut, end=True)
+        assert int(dut.scan_cycles_o.value) == length
+        assert int(dut.scan_cycles_max_o.value) == longest, (length, longest)
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_scan_ctrl(sim):
     run_cocotb(sim, "scan_ctrl", "test_scan_ctrl")
