@@ -200,12 +200,23 @@ module marker_region #(
     end
   end
 
+  // clocks since reset, saturating where the clearing must have ended (a clearing that
+  // stalled would read every cell as 0 and refuse every write, and keep the read claim)
+  reg [AW:0] f_age;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) f_age <= {(AW+1){1'b0}};
+    else if (!f_age[AW]) f_age <= f_age + 1'b1;
+
   always @(*) if (rst_ni) begin
     // the claim: a read returns its cell of the snapshot taken at the last update
     if (f_rd_q) assert (rd_data_o == f_snap[f_ridx_q]);
-    // the arbitration as promised
+    // the clearing takes one clock per RAM address, then ends
+    assert (clear_q == f_age);
+    // the arbitration as promised: the side without priority is served whenever the
+    // other does not ask
     if (ReaderFirst != 0) assert (rd_ready_o);
     if (ReaderFirst == 0 && !clearing) assert (wr_ready_o);
+    if (ReaderFirst == 0) assert (rd_ready_o || wr_req_i);
     if (!clearing) assert (wr_ready_o || rd_req_i);
     // invariants for the induction (f_inv_*: the bmc task drops them, so a mutant
     // must break a claim)

@@ -118,6 +118,8 @@ MUTATIONS = [
      "wire [WordBits-1:0] read_word = ram_q;", "rd_data_o == f_snap"),  # merge loses a write
     ("marker_region", "marker_region.v", "(write_buffer_i ? (3'b001 << w_p) : 3'b000)",
      "3'b000", "rd_data_o == f_snap"),                     # the write buffer overwritten
+    ("marker_region", "marker_region.v", "if (clearing) clear_q <= clear_q + 1'b1;",
+     "if (1'b0) clear_q <= clear_q + 1'b1;", "assert (clear_q == f_age)"),  # never ready
     ("marker_region", "marker_region.v", "wire [1:0] r_of_r = r_next[2*r_word +: 2];",
      "wire [1:0] r_of_r = r_q[2*r_word +: 2];", "rd_data_o == f_snap"),  # update a clock late
     # hsem: against the shadow of the lock (f_held, f_holder) and the grants counted

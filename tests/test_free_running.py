@@ -134,7 +134,7 @@ TWO_OF_ONE_SCAN = """\
 @pytest.mark.parametrize("sim", ["verilator", "icarus"])
 def test_marker_write_buffer_gives_whole_scans(tmp_path, sim):
     """--marker-write-buffer (issue 16 item 2): without it the bit side's snapshot,
-    taken at its scan start (every 8 clocks here), falls between the byte side's two
+    taken at its scan start (every 10 clocks here), falls between the byte side's two
     WRITE FBI of one scan (40 clocks of word work apart) and mixes them: Q0.0 goes to 1.
     With it the byte side publishes at its scan end, and no snapshot ever mixes; the
     conditions still arrive (Q0.1 follows MW0's parity both ways)."""
