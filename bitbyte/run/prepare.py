@@ -38,6 +38,8 @@ def parse_clock_mhz(text: str) -> Fraction:
 # place that says which `--exchange` goes with which `--mode` (the single CPU's `run`,
 # a plant core's `mode` / `exchange`, the benches).  Serial mode uses no exchange
 # circuit and ignores the setting; a plant core runs in serial or parallel mode only.
+# The C++ harnesses (sim/harness.cpp, sim/plant_harness.cpp) accept any mode/exchange
+# pair they are given: this table is the only check.
 MODE_EXCHANGES: dict[str, tuple[str, ...]] = {
     "serial": ("handshake",),
     "parallel": ("handshake", "queue"),        # strict: the writer or reader waits
