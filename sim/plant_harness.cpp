@@ -512,5 +512,13 @@ int main(int argc, char** argv) {
   std::printf("stat clocks %llu\n", (unsigned long long)g_n);
   for (Core& k : g_cores)
     std::printf("stat skips.%s %llu\n", k.cf->name.c_str(), (unsigned long long)k.skips);
+  // each core's mode and exchange as driven on plc_system's parallel_i / exchange_i
+  // (read back from the ports): the summary's mode labels come from these
+  for (Core& k : g_cores) {
+    std::printf("stat parallel.%s %llu\n", k.cf->name.c_str(),
+                (unsigned long long)get_field(top.parallel_i, k.idx, 1));
+    std::printf("stat exchange.%s %llu\n", k.cf->name.c_str(),
+                (unsigned long long)get_field(top.exchange_i, 2 * k.idx, 2));
+  }
   return fault ? 3 : 0;
 }

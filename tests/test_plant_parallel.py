@@ -228,3 +228,46 @@ def test_waves_layout_shows_a_parallel_cores_bit_part(tmp_path):
     assert "{p2: byte busy}" in text
     assert "FBY" in (tmp_path / "w.p1.instr.txt").read_text()
     assert "FBY" not in (tmp_path / "w.p2.instr.txt").read_text()
+
+
+# eight conditions written in a row (CU C0..C7: one to-byte transfer each), then bit
+# work: with 4 handshake channels the fifth write waits for the byte side to read
+# channel 0; the queue (QueueDepth 8) takes all eight, and the bit work goes on at once
+BURST = ("".join(f"      LD    I0.{n}\n      CU    C{n}\n" for n in range(8))
+         + "".join(f"      LD    I1.{n % 8}\n      =     M{n // 8}.{n % 8}\n"
+                   for n in range(40)) + "      END\n")
+IDLE = "      LD    I0.0\n      =     Q0.0\n      END\n"
+
+
+def burst_plant(tmp_path: Path, exchange: str) -> Path:
+    """A plant at 1 MHz: core b runs BURST in parallel mode with `exchange`, core i
+    runs IDLE serially; both every 200 µs."""
+    (tmp_path / "b.il").write_text(BURST)
+    (tmp_path / "i.il").write_text(IDLE)
+    text = ('clock_mhz = 1\n\n[[core]]\nname = "b"\nprogram = "b.il"\nperiod_us = 200\n'
+            '\n[[core]]\nname = "i"\nprogram = "i.il"\nperiod_us = 200\n')
+    path = tmp_path / f"{exchange}.toml"
+    path.write_text(with_core_keys(text, [{"mode": "parallel", "exchange": exchange}, {}]))
+    return path
+
+
+def test_queue_and_handshake_differ_on_the_plant_harness(tmp_path):
+    """The exchange reaches the plant's hardware: a core whose bit part writes more
+    conditions in a row than there are handshake channels scans as long as the single
+    CPU does with that exchange (sim/harness.cpp), and those differ (the handshake
+    stalls, the queue does not); the summary names the exchange the harness drove."""
+    (tmp_path / "b.il").write_text(BURST)
+    want = {}
+    for exchange in ("handshake", "queue"):
+        prep = prepare(str(tmp_path / "b.il"), scans=1, mode="parallel", exchange=exchange)
+        records, fault, _ = run_harness(prep.job, prep.columns)
+        assert not fault
+        want[exchange] = records[0].cycles
+    assert want["handshake"] > want["queue"], want
+    for exchange in ("handshake", "queue"):
+        status, summary, rows = run_plant(str(burst_plant(tmp_path, exchange)),
+                                          until_us="1000")
+        assert status == 0, summary
+        assert {int(r["cycles"]) for r in rows["b"]} == {want[exchange]}, (exchange, want)
+        assert f"core b           parallel/{exchange}, scans 6," in summary, summary
+        assert "core i           serial, scans 6," in summary, summary

@@ -14,7 +14,7 @@ import json
 from pathlib import Path
 
 from bitbyte.plant.plans import PlantRunError, period_clocks
-from bitbyte.run.summary import plant_summary_text
+from bitbyte.run.summary import hw_mode_text, plant_summary_text
 from bitbyte.sim.cocotb_runner import ROOT, build_and_test, build_firmware
 
 FIRMWARE_LIB = ROOT / "firmware_byte" / "build" / "libbyteproc_cb.so"
@@ -80,7 +80,8 @@ def run_plant_cocotb(shared_map, jobs, plans, until_clock: int, sim: str,
         with open(path, newline="") as f:
             rows[core.name] = list(csv.DictReader(f))
     summary = plant_summary_text(plant.protection, jobs[0].clock_hz, res["clocks"],
-                                 [(c.name, c.mode_text, rows[c.name], res["skips"][c.name])
+                                 [(c.name, hw_mode_text(*res["modes"][c.name]), rows[c.name],
+                                   res["skips"][c.name])
                                   for c in plant.cores])
     summary += res["stderr"] if res["status"] == 3 else ""
     return res["status"], summary, rows

@@ -96,11 +96,6 @@ class CoreSpec:
     mode: str = "serial"
     exchange: str = "handshake"
 
-    @property
-    def mode_text(self) -> str:
-        """`serial`, or `parallel/handshake` with the exchange (the run summary)."""
-        return self.mode if self.mode == "serial" else f"{self.mode}/{self.exchange}"
-
 
 @dataclass
 class Plant:

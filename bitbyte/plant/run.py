@@ -27,7 +27,7 @@ from bitbyte.plant.plans import (MAX_CORES, SHARED_WORDS, PlantRunError, encode_
 from bitbyte.lang.errors import SourceError, UsageError
 from bitbyte.plant.cocotb_runner import run_plant_cocotb
 from bitbyte.run.prepare import prepare
-from bitbyte.run.summary import parse_stats, plant_summary_text
+from bitbyte.run.summary import hw_mode_text, parse_stats, plant_summary_text
 from bitbyte.sim.gtkw import WaveLayoutError, write_plant_gtkw
 from bitbyte.sim.verilator import progress_fd
 
@@ -226,7 +226,8 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
     plant = shared_map.plant
     summary = plant_summary_text(
         plant.protection, jobs[0].clock_hz, st["clocks"],
-        [(c.name, c.mode_text, rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
+        [(c.name, hw_mode_text(st[f"parallel.{c.name}"], st[f"exchange.{c.name}"]),
+          rows[c.name], st[f"skips.{c.name}"]) for c in plant.cores],
         (waves, _plant_layout(plant, waves, preps)) if waves else None)
     if proc.returncode == 3:
         summary += proc.stderr

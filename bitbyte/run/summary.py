@@ -172,10 +172,20 @@ def _response_lines(response: Responses, clock_mhz: Fraction) -> list[str]:
             _label("response [us]") + three(x / clock_mhz for x in figures)]
 
 
+def hw_mode_text(parallel: int, exchange: int) -> str:
+    """A plant core's mode label from what the harness drove on plc_system's
+    parallel_i / exchange_i (read back at the end of the run): `serial`, or
+    `parallel/handshake` with the exchange (DEF.exchanges' code)."""
+    if not parallel:
+        return "serial"
+    name = DEF.exchanges[exchange] if exchange < len(DEF.exchanges) else f"#{exchange}"
+    return f"parallel/{name}"
+
+
 def plant_summary_text(protection: str, clock_hz: int, clocks: int,
                        cores: list[tuple[str, str, list[dict[str, str]], int]],
                        waves: tuple[str, str] | None = None) -> str:
-    """A plant run (spec §7): cores = (name, its mode (CoreSpec.mode_text), its trace
+    """A plant run (spec §7): cores = (name, its mode as the harness drove it (hw_mode_text), its trace
     rows as csv.DictReader gives them, skips_o at its last traced scan); the other
     figures are the rows' (pre, post, sem_wait, overrun, copy_fail: the trace header
     of bitbyte.plant.run)."""

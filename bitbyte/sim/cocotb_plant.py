@@ -635,5 +635,10 @@ async def run_plant(dut):
     with open(cfg["results"], "w") as f:
         json.dump({"status": 3 if fault else 0, "clocks": plant.n,
                    "skips": {k.name: k.skips for k in plant.cores},
+                   # each core's mode and exchange as driven on parallel_i / exchange_i
+                   # (read back from the DUT): the summary's mode labels
+                   "modes": {k.name: [_field(int(dut.parallel_i.value), k.idx, 1),
+                                      _field(int(dut.exchange_i.value), 2 * k.idx, 2)]
+                             for k in plant.cores},
                    "stderr": plant.watchdog_text(fault),
                    "firmware_loads": LIB_LOADS, "firmware_mapped": _mapped_copies()}, f)
