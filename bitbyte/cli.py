@@ -285,8 +285,16 @@ def cmd_asm(args) -> int:
     return 0
 
 
+def _plant_warnings(plant) -> None:
+    """A plant file's warnings (bitbyte.plant.link.Plant.warnings): on stderr."""
+    for warning in plant.warnings:
+        print(format_error(warning), file=sys.stderr)
+
+
 def cmd_link(args) -> int:
-    print(format_map(link(load_plant(args.plant))), end="")
+    plant = load_plant(args.plant)
+    _plant_warnings(plant)
+    print(format_map(link(plant)), end="")
     return 0
 
 
@@ -434,6 +442,7 @@ def cmd_run_plant(args) -> int:
                                        costs=args.costs, sim=args.sim)
     except PlantRunError as e:
         raise SimError(str(e)) from None
+    _plant_warnings(load_plant(args.program))      # read and checked by the run
     lines = summary.splitlines(keepends=True)      # the watchdog's words go to stderr
     print("".join(l for l in lines if not l.startswith("scan watchdog")), end="")
     print("".join(l for l in lines if l.startswith("scan watchdog")), end="",

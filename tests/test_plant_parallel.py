@@ -119,6 +119,28 @@ def test_bad_mode_or_exchange_is_an_error_at_the_value(tmp_path, command, line, 
         err.getvalue()
 
 
+@pytest.mark.parametrize("command", ["run", "link"])
+def test_exchange_on_a_serial_core_is_a_warning(tmp_path, command):
+    """`exchange` on a core without `mode = "parallel"` is ignored: a warning at the
+    key, `file:line:col`, on stderr; the exit code and stdout are those without it."""
+    quiet = plant_6_1(tmp_path, "quiet", (PARALLEL, {}))
+    noisy = plant_6_1(tmp_path, "noisy", (PARALLEL, {"exchange": "queue"}))
+    lines = noisy.read_text().splitlines()
+    line = lines.index('exchange = "queue"') + 1      # p2's: the only one in the file
+    args = ["--until-us", "1"] if command == "run" else []
+    results = []
+    for plant in (quiet, noisy):
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
+            code = cli.main([command, str(plant)] + args)
+        results.append((code, out.getvalue().replace(str(plant), "PLANT"), err.getvalue()))
+    (code0, out0, err0), (code1, out1, err1) = results
+    assert code0 == code1 == 0 and out0 == out1 and err0 == ""
+    assert err1.startswith(f"{noisy}:{line}:1: warning: `exchange` is ignored: core `p2` "
+                           "runs in serial mode"), err1
+    assert err1.count("warning:") == 1, err1
+
+
 def test_seed_6_1_parallel_plant_traces_equal_the_serial_plant(tmp_path):
     """Both projects in parallel mode, with either exchange, on the Verilator plant
     harness: the serial plant's traces but for the timing columns."""

@@ -106,6 +106,9 @@ class Plant:
     layout: str
     protection: str
     cores: list[CoreSpec]
+    # `file:line:col: warning: ...` for the caller to print (stderr): an `exchange` on
+    # a serial core, which ignores it
+    warnings: list[SourceError] = field(default_factory=list)
 
     def config(self) -> Config:
         """The build every core's program is checked against."""
@@ -285,9 +288,15 @@ def load_plant(path: str) -> Plant:
                                    "one `[[core]]`")
     base = os.path.dirname(path)
     cores: list[CoreSpec] = []
+    warnings: list[SourceError] = []
     first_line: dict[str, tuple[str, int]] = {}
     for i, table in enumerate(tables):
         core = _core(text, ("core", i), table, base)
+        if "exchange" in table and core.mode == "serial":
+            warnings.append(text.at_key(
+                ("core", i), "exchange",
+                f"warning: `exchange` is ignored: core `{core.name}` runs in serial mode "
+                "(add `mode = \"parallel\"` to use the exchange)"))
         key = core.name.lower()
         if key in first_line:
             first, line = first_line[key]
@@ -297,7 +306,7 @@ def load_plant(path: str) -> Plant:
                               "(case-insensitive)", value=True)
         first_line[key] = (core.name, text.keys.get(("core", i, "name"), (core.line,))[0])
         cores.append(core)
-    return Plant(path, clock, layout, protection, cores)
+    return Plant(path, clock, layout, protection, cores, warnings)
 
 
 def _clock(text: _TomlText, value) -> Fraction:
