@@ -141,6 +141,14 @@ static void transfer_word(bb_state *s, unsigned area, unsigned n) {
  * dispatched, so `now` and IW come from the port's dispatch snapshot (DISPATCH_MS,
  * DISPATCH_IW, both taken in the instruction's first clock); otherwise a timer reads
  * TIME_MS as its first access. Returns the cost class. */
+/* --tc-path status (docs/exchange.md): a timer's enable / a counter's input is bit n of
+ * the status buffer's T_ENABLE / C_PULSE (the bit side's `= T n` / `= C n`), read over
+ * the bus, instead of F_B; one bus read, inside the class's table cost. F_B is left
+ * as it was. lo: the _LO register, _HI follows it (32 bits each). */
+static int status_input(bb_state *s, uint16_t lo, unsigned n) {
+  return (int)((hal_bus_read(s->hal_ctx, (uint16_t)(lo + n / 32u)) >> (n % 32u)) & 1u);
+}
+
 static int is_jump(unsigned op) {
   return op == BB_OP_JU_B || op == BB_OP_JC_B || op == BB_OP_JCN_B;
 }
@@ -189,11 +197,13 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       uint32_t now = 0;
       if (op != BB_OP_RT)
         now = hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
-      bb_proc_timer(s, op, n, r, now);
+      bb_proc_timer(s, op, n, (instr & BB_FROM_STATUS) ?
+                    status_input(s, BB_BUS_T_ENABLE_LO, n) : r, now);
       break;
     }
     case BB_CL_COUNTER:
-      bb_proc_counter(s, op, n, r);
+      bb_proc_counter(s, op, n, (instr & BB_FROM_STATUS) ?
+                      status_input(s, BB_BUS_C_PULSE_LO, n) : r);
       break;
     case BB_CL_BINARY:
       if (is_jump(op)) {

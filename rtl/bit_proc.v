@@ -83,6 +83,12 @@ module bit_proc #(
   input  wire                         tc_is_counter_i,
   input  wire [$clog2(StatusBits)-1:0] tc_idx_i,
   input  wire                         tc_val_i,
+  // `= T n` / `= C n` (parallel and free-running mode, --tc-path status): the enable
+  // of timer n / the input of counter n, into the status buffer (tc_status.v, Fig. 2)
+  output wire                         tcw_we_o,
+  output wire                         tcw_is_counter_o,
+  output wire [$clog2(StatusBits)-1:0] tcw_idx_o,
+  output wire                         tcw_val_o,
   // exchange channels: F_Bb k read by bit instructions, F_bB k written by `= FBY k`
   output wire [Channels-1:0]          fbi_rd_req_o,
   input  wire [Channels-1:0]          fbi_rd_data_i,
@@ -452,6 +458,11 @@ module bit_proc #(
   wire [$clog2(StatusBits)-1:0] e_tc = e_instr_q[$clog2(StatusBits)-1:0];
   wire e_is_c = e_instr_q[`ISA_AREA] == `AREA_C;
   wire e_tc_fwd = e_on_tc_q && tc_we_i && (tc_idx_i == e_tc) && (tc_is_counter_i == e_is_c);
+  // `= T n` / `= C n`: the status buffer's enable / pulse bit, in the clock it executes
+  assign tcw_we_o         = target_we && e_assign_q && e_on_tc_q;
+  assign tcw_is_counter_o = e_is_c;
+  assign tcw_idx_o        = e_tc;
+  assign tcw_val_o        = target_val;
 
   wire [ChW-1:0] o_ch = o_index[ChW-1:0];
   // (the index fits when its bits above a channel number are 0: no wide compare; a
@@ -780,7 +791,9 @@ module bit_proc #(
     .clk_i(clk_i), .rst_ni(rst_ni), .status_we_i(tc_we_i),
     .status_is_counter_i(tc_is_counter_i), .status_idx_i(tc_idx_i),
     .status_val_i(tc_val_i), .ctl_we_i(1'b0), .ctl_is_counter_i(1'b0),
-    .ctl_idx_i({$clog2(StatusBits){1'b0}}), .ctl_val_i(1'b0), .latch_i(latch_i),
+    .ctl_idx_i({$clog2(StatusBits){1'b0}}), .ctl_val_i(1'b0), .parallel_i(1'b1),
+    .bit_we_i(tcw_we_o), .bit_is_counter_i(tcw_is_counter_o), .bit_idx_i(tcw_idx_o),
+    .bit_val_i(tcw_val_o), .latch_i(latch_i),
     .timer_status_o(f_tst), .counter_status_o(f_cst), .timer_enable_o(),
     .counter_pulse_o(), .timer_updated_o(f_tupd), .counter_updated_o(f_cupd));
   // verilator lint_on PINCONNECTEMPTY
@@ -983,6 +996,9 @@ module bit_proc #(
     assert (out_wr_en_o == (e_done && f_writes && f_on_q && !f_isbyte));
     if (out_wr_en_o) assert (out_wr_idx_o == f_qi && out_wr_val_o == f_wval &&
                              out_wr_direct_o == (f_area == `AREA_PQ));
+    assert (tcw_we_o == (e_done && f_isassign && f_on_tc && !f_isbyte));
+    if (tcw_we_o) assert (tcw_idx_o == f_ti && tcw_val_o == f_wval &&
+                          tcw_is_counter_o == (f_area == `AREA_C));
     // channel requests: the acting instruction's, in its first clock from execute, then
     // from the wait slot (a blocked instruction asks for nothing)
     if (w_busy) begin

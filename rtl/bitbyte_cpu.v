@@ -117,6 +117,8 @@ module bitbyte_cpu #(
   wire [1:0]  done_data;
   wire        tc_we, tc_is_counter, tc_val, ctl_we, ctl_is_counter, ctl_val;
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
+  wire        tcw_we, tcw_is_counter, tcw_val;
+  wire [$clog2(StatusBits)-1:0] tcw_idx;
   wire [31:0] byte_flags, queue_overflows, queue_underflows;
   wire [31:0] queue_overflows_now, queue_underflows_now;
   assign byte_next_o = next;
@@ -242,6 +244,10 @@ module bitbyte_cpu #(
     .tc_is_counter_i (tc_is_counter),
     .tc_idx_i        (tc_idx),
     .tc_val_i        (tc_val),
+    .tcw_we_o        (tcw_we),
+    .tcw_is_counter_o(tcw_is_counter),
+    .tcw_idx_o       (tcw_idx),
+    .tcw_val_o       (tcw_val),
     .fbi_rd_req_o    (fbi_rd_req),
     .fbi_rd_data_i   (fbi_rd_data),
     .fbi_rd_ready_i  (fbi_rd_ready),
@@ -352,6 +358,13 @@ module bitbyte_cpu #(
     .ctl_is_counter_i   (ctl_is_counter),
     .ctl_idx_i          (ctl_idx),
     .ctl_val_i          (ctl_val),
+    // the enable / pulse bits: the dispatch in serial mode, the bit processor's
+    // `= T n` / `= C n` otherwise (--tc-path status)
+    .parallel_i         (parallel_i),
+    .bit_we_i           (tcw_we),
+    .bit_is_counter_i   (tcw_is_counter),
+    .bit_idx_i          (tcw_idx),
+    .bit_val_i          (tcw_val),
     .latch_i            (latch),
     .timer_status_o     (timer_status),
     .counter_status_o   (counter_status),

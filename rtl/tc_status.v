@@ -5,8 +5,11 @@
 // instruction executes; the bit processor reads `T n` / `C n` from this buffer in one
 // clock and never waits for the byte processor to look one up. In the other
 // direction the bit side leaves the enable (timers) and count-pulse (counters) bits
-// that the byte procedures read: the RLO at the moment it dispatches an instruction
-// on that timer or counter.
+// that the byte procedures read. Two writers, one per mode (parallel_i selects):
+// serial mode, the dispatch (ctl_*): the RLO at the moment it dispatches an instruction
+// on that timer or counter; parallel and free-running mode, the bit processor's own
+// `= T n` / `= C n` (bit_*, `--tc-path status`, docs/exchange.md): one clock, never a
+// wait, the byte side's flagged SD/SS/SP/SF/CU/CD/S C/R C read the bit over the bus.
 // Parallel mode: an `updated` bit per timer/counter records that the byte side wrote
 // its status since this scan's latch, so a bit instruction marked "after the update"
 // (docs/isa.md, bit 16) waits exactly until the byte side's timer instruction has run.
@@ -20,11 +23,17 @@ module tc_status #(
   input  wire                          status_is_counter_i,
   input  wire [$clog2(StatusBits)-1:0] status_idx_i,
   input  wire                          status_val_i,
-  // bit side: enable / pulse bit written at dispatch
+  // bit side: enable / pulse bit written at a serial dispatch ...
   input  wire                          ctl_we_i,
   input  wire                          ctl_is_counter_i,
   input  wire [$clog2(StatusBits)-1:0] ctl_idx_i,
   input  wire                          ctl_val_i,
+  // ... or by the bit processor's `= T n` / `= C n` (parallel and free-running mode)
+  input  wire                          parallel_i,
+  input  wire                          bit_we_i,
+  input  wire                          bit_is_counter_i,
+  input  wire [$clog2(StatusBits)-1:0] bit_idx_i,
+  input  wire                          bit_val_i,
   input  wire                          latch_i,        // a scan starts: nothing updated yet
   output reg  [StatusBits-1:0]         timer_status_o,
   output reg  [StatusBits-1:0]         counter_status_o,
@@ -35,6 +44,12 @@ module tc_status #(
 );
   `PARAM_CHECK(g_bad_status_bits, StatusBits < 2,
                "tc_status: StatusBits must be at least 2 (an index needs a bit)")
+
+  // the enable / pulse writer of this mode
+  wire                          en_we  = parallel_i ? bit_we_i : ctl_we_i;
+  wire                          en_cnt = parallel_i ? bit_is_counter_i : ctl_is_counter_i;
+  wire [$clog2(StatusBits)-1:0] en_idx = parallel_i ? bit_idx_i : ctl_idx_i;
+  wire                          en_val = parallel_i ? bit_val_i : ctl_val_i;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -54,9 +69,53 @@ module tc_status #(
       if (status_we_i &&  status_is_counter_i) counter_updated_o[status_idx_i] <= 1'b1;
       if (status_we_i && !status_is_counter_i) timer_status_o[status_idx_i]   <= status_val_i;
       if (status_we_i &&  status_is_counter_i) counter_status_o[status_idx_i] <= status_val_i;
-      if (ctl_we_i && !ctl_is_counter_i) timer_enable_o[ctl_idx_i]  <= ctl_val_i;
-      if (ctl_we_i &&  ctl_is_counter_i) counter_pulse_o[ctl_idx_i] <= ctl_val_i;
+      if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;
+      if (en_we &&  en_cnt) counter_pulse_o[en_idx] <= en_val;
     end
   end
+
+`ifdef FORMAL
+  // Properties of the enable / pulse half (Fig. 2, bit -> byte); formal/tc_status.sby
+  // proves them by k-induction. A shadow of the two bit vectors, written from the
+  // ports by the mode's writer (the dispatch in serial mode, the bit processor
+  // otherwise), must equal the outputs: a write is readable on the byte bus the clock
+  // after it (one clock, no handshake), the other writer is ignored, no other bit moves,
+  // and the status half (byte -> bit) never touches them nor they it.
+`include "formal_past.vh"
+  reg [StatusBits-1:0] f_en, f_pulse, f_tst, f_cst;
+  wire f_w_we = parallel_i ? bit_we_i : ctl_we_i;
+  wire f_w_c  = parallel_i ? bit_is_counter_i : ctl_is_counter_i;
+  wire [$clog2(StatusBits)-1:0] f_w_i = parallel_i ? bit_idx_i : ctl_idx_i;
+  wire f_w_v  = parallel_i ? bit_val_i : ctl_val_i;
+  integer f_k;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      f_en <= {StatusBits{1'b0}};  f_pulse <= {StatusBits{1'b0}};
+      f_tst <= {StatusBits{1'b0}}; f_cst <= {StatusBits{1'b0}};
+    end else begin
+      for (f_k = 0; f_k < StatusBits; f_k = f_k + 1) begin
+        if (f_w_we && f_w_i == f_k && !f_w_c) f_en[f_k]    <= f_w_v;
+        if (f_w_we && f_w_i == f_k &&  f_w_c) f_pulse[f_k] <= f_w_v;
+        if (status_we_i && status_idx_i == f_k && !status_is_counter_i) f_tst[f_k] <= status_val_i;
+        if (status_we_i && status_idx_i == f_k &&  status_is_counter_i) f_cst[f_k] <= status_val_i;
+      end
+    end
+  end
+  always @(*) if (rst_ni) begin
+    assert (timer_enable_o == f_en);
+    assert (counter_pulse_o == f_pulse);
+    assert (timer_status_o == f_tst);
+    assert (counter_status_o == f_cst);
+  end
+  // in parallel mode the dispatch's port is dead: a serial-mode-only write never lands
+  always @(posedge clk_i) if (rst_ni && f_past_valid && $past(rst_ni) && $past(parallel_i)
+                              && !$past(bit_we_i))
+    assert (timer_enable_o == $past(timer_enable_o) && counter_pulse_o == $past(counter_pulse_o));
+  // reachable: the bit side sets an enable while a dispatch offers the other value
+  always @(posedge clk_i) if (rst_ni)
+    cover (f_past_valid && $past(parallel_i && bit_we_i && !bit_is_counter_i && bit_val_i
+                                 && ctl_we_i && !ctl_is_counter_i && !ctl_val_i
+                                 && ctl_idx_i == bit_idx_i) && timer_enable_o[$past(bit_idx_i)]);
+`endif
 endmodule
 `default_nettype wire

@@ -129,6 +129,16 @@ MUTATIONS = [
      "end else if (locked_o && |release_i) begin", "locked_o == f_held"),  # anybody frees it
     ("hsem", "hsem.v", "      last_q   <= pick;",
      "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
+    # tc_status: the enable / pulse half (issue 16 item 1), against its shadow f_en/f_pulse
+    ("tc_status", "tc_status.v", "wire                          en_we  = parallel_i ? bit_we_i : ctl_we_i;",
+     "wire                          en_we  = ctl_we_i;",
+     "_o == f_"),                                # the bit side's `= T n` / `= C n` is lost
+    ("tc_status", "tc_status.v", "if (en_we &&  en_cnt) counter_pulse_o[en_idx] <= en_val;",
+     "if (en_we &&  en_cnt) counter_pulse_o[en_idx] <= ctl_val_i;",
+     "counter_pulse_o == f_pulse"),              # a counter input from the wrong writer
+    ("tc_status", "tc_status.v", "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;",
+     "if (en_we) timer_enable_o[en_idx]  <= en_val;",
+     "timer_enable_o == f_en"),                  # a `= C n` also moves T n's enable
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",
@@ -159,6 +169,9 @@ MUTATIONS = [
     ("core_seq", "core_seq.v", "if (!started_q || period_i == 64'd0) nominal_q <= now_m;",
      "nominal_q <= now_m;", "assert (lock_req_o && !cpu_run_o"),  # a late scan shifts the plan
     # bit_proc (issue 20 item 5): the pipeline against the ISA reference model
+    ("bit_proc", "bit_proc.v", "assign tcw_we_o         = target_we && e_assign_q && e_on_tc_q;",
+     "assign tcw_we_o         = e_assign_q && e_on_tc_q;",
+     "tcw_we_o == (e_done"),                     # `= T n` writes while not retiring
     ("bit_proc", "bit_proc.v", "wire          m_hit_now  = m_we && (m_waddr == o_mi);",
      "wire          m_hit_now  = (m_we && !m_target_we) && (m_waddr == o_mi);"),
                                                             # = M not forwarded (5)

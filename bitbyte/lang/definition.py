@@ -65,6 +65,7 @@ class Definition:
         self.word_bits: int = w["bits"]
         self.fields = {k: Field(*w[k]) for k in ("opcode", "area", "index", "target", "imm")}
         self.wait_update_bit: int = w["wait_update"]
+        self.from_status_bit: int = w["from_status"]
         self.byte_bit: int = w["byte_bit"]
 
         tm = raw["timing"]

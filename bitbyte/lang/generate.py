@@ -175,6 +175,8 @@ def c_isa(d: Definition) -> str:
          _cdef("BB_INDEX_MASK", _h(f["index"].mask, 3)),
          _cdef("BB_TARGET_MASK", _h(f["target"].mask, 4)),
          _cdef("BB_IMM_MASK", _h(f["imm"].mask, 6)),
+         _cdef("BB_FROM_STATUS", _h(1 << d.from_status_bit, 5),
+               "T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]
     for op in d.byte_opcode_rows:
         b.append(_cdef(op.c, _h(op.value), op.mnemonic

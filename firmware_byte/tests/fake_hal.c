@@ -110,6 +110,10 @@ uint32_t hal_bus_read(void *ctx, uint16_t addr) {
       case BB_BUS_T_STATUS_HI:    v = (uint32_t)(h->t_status >> 32); break;
       case BB_BUS_C_STATUS_LO:    v = (uint32_t)h->c_status; break;
       case BB_BUS_C_STATUS_HI:    v = (uint32_t)(h->c_status >> 32); break;
+      case BB_BUS_T_ENABLE_LO:    v = (uint32_t)h->t_enable; h->tc_in_reads++; break;
+      case BB_BUS_T_ENABLE_HI:    v = (uint32_t)(h->t_enable >> 32); h->tc_in_reads++; break;
+      case BB_BUS_C_PULSE_LO:     v = (uint32_t)h->c_pulse; h->tc_in_reads++; break;
+      case BB_BUS_C_PULSE_HI:     v = (uint32_t)(h->c_pulse >> 32); h->tc_in_reads++; break;
       case BB_BUS_BYTE_FLAGS:     v = h->byte_flags; break;
       case BB_BUS_STALLS_BYTE:    v = h->stalls_byte; break;
       default:                    v = 0; break;

@@ -49,6 +49,9 @@ typedef struct {
   uint16_t qw[16];
   /* status buffer, as the RTL's tc_status keeps it */
   uint64_t t_status, c_status;
+  /* the enable / pulse half, written by the bit side (`= T n` / `= C n`) */
+  uint64_t t_enable, c_pulse;
+  unsigned tc_in_reads;      /* reads of T_ENABLE_* / C_PULSE_* */
   uint32_t byte_flags;
   /* channels: FBY k (read) returns fby_val[k] after fby_stall[k] not-ready clocks;
    * FBI k (write) takes fbi_stall[k] not-ready clocks, stores fbi_val[k] */

@@ -136,7 +136,44 @@ static void test_range(void) {
   CHECK_EQ(S.flags, BB_FLAG_ILLEGAL);
 }
 
+/* --tc-path status: a flagged CU / CD / S C takes its input from C_PULSE bit n (the bit
+ * side's `= C n`) and counts the rising edges it sees there, F_B left as it was. */
+static void test_from_status(void) {
+  setup();
+  const uint32_t cu = i_ctr(BB_OP_CU, 33) | BB_FROM_STATUS;
+  RLO = 1;                                   /* F_B 1 throughout: ignored */
+  FH.c_pulse = 0;
+  ex(cu);
+  CHECK_EQ(S.counter[33].value, 0);
+  FH.c_pulse = 1ull << 33;
+  ex(cu);
+  CHECK_EQ(S.counter[33].value, 1);          /* 0 -> 1 seen */
+  ex(cu);
+  CHECK_EQ(S.counter[33].value, 1);          /* still 1: no edge */
+  FH.c_pulse = 0;
+  ex(cu);
+  FH.c_pulse = 1ull << 33;
+  ex(cu);
+  CHECK_EQ(S.counter[33].value, 2);
+  CHECK_EQ(CS(33), 1);
+  CHECK_EQ(RLO, 1);
+  /* CD and S C through the buffer too */
+  FH.c_pulse = 0;
+  ex(i_ctr(BB_OP_CD, 33) | BB_FROM_STATUS);
+  FH.c_pulse = 1ull << 33;
+  ex(i_ctr(BB_OP_CD, 33) | BB_FROM_STATUS);
+  CHECK_EQ(S.counter[33].value, 1);
+  L(7);
+  ex(i_ctr(BB_OP_SC, 33) | BB_FROM_STATUS);  /* S edge memory 0 -> input 1: load */
+  CHECK_EQ(S.counter[33].value, 7);
+  RLO = 1;
+  FH.c_pulse = 0;                            /* R C with F_B 1 but input 0: kept */
+  ex(i_ctr(BB_OP_RC, 33) | BB_FROM_STATUS);
+  CHECK_EQ(S.counter[33].value, 7);
+}
+
 void suite_counters(void) {
+  RUN(test_from_status);
   RUN(test_cu);
   RUN(test_cd_and_saturation);
   RUN(test_cu_cd_own_edges);

@@ -264,7 +264,47 @@ static void test_time_wrap(void) {
   CHECK_EQ(u.elapsed, INT32_MAX);
 }
 
+/* --tc-path status: a flagged SD takes its enable from T_ENABLE bit n (the bit side's
+ * `= T n`), not from F_B, which it leaves as it was; n >= 32 is in T_ENABLE_HI. */
+static void test_from_status(void) {
+  setup();
+  const uint32_t sd40 = i_tmr(BB_OP_SD, 40) | BB_FROM_STATUS;
+  S.accu1 = 5;
+  RLO = 0;                                   /* F_B says 0: ignored */
+  FH.t_enable = 1ull << 40;                  /* the bit side enabled T 40 */
+  fh_set_ms(10);
+  ex(sd40);
+  CHECK_EQ(bb_timer_running(&S, 40), 1);     /* rising enable: started at 10 */
+  CHECK_EQ(RLO, 0);                          /* F_B untouched */
+  CHECK_EQ(FH.tc_in_reads, 1u);              /* one bus read */
+  S.accu1 = 5;
+  RLO = 1;
+  fh_set_ms(15);
+  ex(sd40);
+  CHECK_EQ(S.timer[40].status, 1);           /* 5 ms enabled: done */
+  CHECK_EQ(TC(40), 1);
+  FH.t_enable = 0;                           /* the bit side dropped it; F_B says 1 */
+  S.accu1 = 5;
+  fh_set_ms(16);
+  ex(sd40);
+  CHECK_EQ(S.timer[40].status, 0);
+  CHECK_EQ(bb_timer_running(&S, 40), 0);
+  CHECK_EQ(RLO, 1);
+  /* the flag on a timer in T_ENABLE_LO; another bit set there does not count */
+  FH.t_enable = 1ull << 3;
+  S.accu1 = 5;
+  RLO = 1;
+  ex(i_tmr(BB_OP_SD, 2) | BB_FROM_STATUS);
+  CHECK_EQ(bb_timer_running(&S, 2), 0);
+  /* without the flag, nothing is read: F_B as before */
+  const unsigned reads = FH.tc_in_reads;
+  ex(i_tmr(BB_OP_SD, 2));
+  CHECK_EQ(bb_timer_running(&S, 2), 1);
+  CHECK_EQ(FH.tc_in_reads, reads);
+}
+
 void suite_timers(void) {
+  RUN(test_from_status);
   RUN(test_sd);
   RUN(test_sd_preset_instant);
   RUN(test_sd_preset_zero_and_negative);
