@@ -29,7 +29,7 @@ from bitbyte.lang.firstcheck import first_check_warnings
 from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
-from bitbyte.run.prepare import MODES, parse_clock_mhz, prepare
+from bitbyte.run.prepare import MODES, TC_PATHS, parse_clock_mhz, prepare
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
 from bitbyte.run.status import block_status_text, parallel_block_status_text
@@ -160,6 +160,14 @@ def _parser() -> argparse.ArgumentParser:
                         "the snapshot takes the cells as they are (Fig. 17 as drawn: "
                         "the conditions of one writer scan may be split between two "
                         "reader scans)")
+    r.add_argument("--tc-path", choices=TC_PATHS, default="channel",
+                   help="free mode: how a timer's enable / a counter's input reaches the "
+                        "byte side: channel (a condition through the exchange, = FBY k / "
+                        "READ FBY k) or status (the bit side writes it into the "
+                        "timer/counter status buffer, = T n / = C n, and the byte side "
+                        "reads it there like an input: the paper's Fig. 2; "
+                        "docs/exchange.md). Parallel mode keeps the channel; serial mode "
+                        "refuses status (default channel)")
     r.add_argument("--stimulus", metavar="STIM.csv",
                    help="input pins over time: first column scan or t_us, then one "
                         "column per input (I0.0, IW3 or a symbol); unnamed inputs are 0")
@@ -365,7 +373,7 @@ def cmd_run(args) -> int:
         costs=args.costs, mode=args.mode, exchange=args.exchange,
         channels=args.channels, lang=args.lang, mnemonics=args.mnemonics,
         profile=args.profile, symbols=args.symbols,
-        marker_write_buffer=args.marker_write_buffer)
+        marker_write_buffer=args.marker_write_buffer, tc_path=args.tc_path)
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
     if args.status is not None:
@@ -431,6 +439,7 @@ def cmd_run_plant(args) -> int:
     for opt, given in (("--mode", args.mode != "serial"), ("--exchange", args.exchange),
                        ("--stimulus", args.stimulus), ("--channels", args.channels),
                        ("--marker-write-buffer", args.marker_write_buffer),
+                       ("--tc-path", args.tc_path != "channel"),
                        ("--clock-mhz", args.clock_mhz != "100"),
                        ("--status", args.status is not None), ("--force", args.force)):
         if given:

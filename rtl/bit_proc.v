@@ -791,7 +791,7 @@ module bit_proc #(
     .clk_i(clk_i), .rst_ni(rst_ni), .status_we_i(tc_we_i),
     .status_is_counter_i(tc_is_counter_i), .status_idx_i(tc_idx_i),
     .status_val_i(tc_val_i), .ctl_we_i(1'b0), .ctl_is_counter_i(1'b0),
-    .ctl_idx_i({$clog2(StatusBits){1'b0}}), .ctl_val_i(1'b0), .parallel_i(1'b1),
+    .ctl_idx_i({$clog2(StatusBits){1'b0}}), .ctl_val_i(1'b0), .partitioned_i(1'b1),
     .bit_we_i(tcw_we_o), .bit_is_counter_i(tcw_is_counter_o), .bit_idx_i(tcw_idx_o),
     .bit_val_i(tcw_val_o), .latch_i(latch_i),
     .timer_status_o(f_tst), .counter_status_o(f_cst), .timer_enable_o(),

@@ -360,7 +360,7 @@ module bitbyte_cpu #(
     .ctl_val_i          (ctl_val),
     // the enable / pulse bits: the dispatch in serial mode, the bit processor's
     // `= T n` / `= C n` otherwise (--tc-path status)
-    .parallel_i         (parallel_i),
+    .partitioned_i      (parallel_i || free_i),
     .bit_we_i           (tcw_we),
     .bit_is_counter_i   (tcw_is_counter),
     .bit_idx_i          (tcw_idx),

@@ -5,7 +5,7 @@
 // instruction executes; the bit processor reads `T n` / `C n` from this buffer in one
 // clock and never waits for the byte processor to look one up. In the other
 // direction the bit side leaves the enable (timers) and count-pulse (counters) bits
-// that the byte procedures read. Two writers, one per mode (parallel_i selects):
+// that the byte procedures read. Two writers, one per mode (partitioned_i selects):
 // serial mode, the dispatch (ctl_*): the RLO at the moment it dispatches an instruction
 // on that timer or counter; parallel and free-running mode, the bit processor's own
 // `= T n` / `= C n` (bit_*, `--tc-path status`, docs/exchange.md): one clock, never a
@@ -29,7 +29,7 @@ module tc_status #(
   input  wire [$clog2(StatusBits)-1:0] ctl_idx_i,
   input  wire                          ctl_val_i,
   // ... or by the bit processor's `= T n` / `= C n` (parallel and free-running mode)
-  input  wire                          parallel_i,
+  input  wire                          partitioned_i,  // parallel or free-running mode
   input  wire                          bit_we_i,
   input  wire                          bit_is_counter_i,
   input  wire [$clog2(StatusBits)-1:0] bit_idx_i,
@@ -46,10 +46,10 @@ module tc_status #(
                "tc_status: StatusBits must be at least 2 (an index needs a bit)")
 
   // the enable / pulse writer of this mode
-  wire                          en_we  = parallel_i ? bit_we_i : ctl_we_i;
-  wire                          en_cnt = parallel_i ? bit_is_counter_i : ctl_is_counter_i;
-  wire [$clog2(StatusBits)-1:0] en_idx = parallel_i ? bit_idx_i : ctl_idx_i;
-  wire                          en_val = parallel_i ? bit_val_i : ctl_val_i;
+  wire                          en_we  = partitioned_i ? bit_we_i : ctl_we_i;
+  wire                          en_cnt = partitioned_i ? bit_is_counter_i : ctl_is_counter_i;
+  wire [$clog2(StatusBits)-1:0] en_idx = partitioned_i ? bit_idx_i : ctl_idx_i;
+  wire                          en_val = partitioned_i ? bit_val_i : ctl_val_i;
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -83,10 +83,10 @@ module tc_status #(
   // and the status half (byte -> bit) never touches them nor they it.
 `include "formal_past.vh"
   reg [StatusBits-1:0] f_en, f_pulse, f_tst, f_cst;
-  wire f_w_we = parallel_i ? bit_we_i : ctl_we_i;
-  wire f_w_c  = parallel_i ? bit_is_counter_i : ctl_is_counter_i;
-  wire [$clog2(StatusBits)-1:0] f_w_i = parallel_i ? bit_idx_i : ctl_idx_i;
-  wire f_w_v  = parallel_i ? bit_val_i : ctl_val_i;
+  wire f_w_we = partitioned_i ? bit_we_i : ctl_we_i;
+  wire f_w_c  = partitioned_i ? bit_is_counter_i : ctl_is_counter_i;
+  wire [$clog2(StatusBits)-1:0] f_w_i = partitioned_i ? bit_idx_i : ctl_idx_i;
+  wire f_w_v  = partitioned_i ? bit_val_i : ctl_val_i;
   integer f_k;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -108,14 +108,15 @@ module tc_status #(
     assert (counter_status_o == f_cst);
   end
   // in parallel mode the dispatch's port is dead: a serial-mode-only write never lands
-  always @(posedge clk_i) if (rst_ni && f_past_valid && $past(rst_ni) && $past(parallel_i)
+  always @(posedge clk_i) if (rst_ni && f_past_valid && $past(rst_ni) && $past(partitioned_i)
                               && !$past(bit_we_i))
     assert (timer_enable_o == $past(timer_enable_o) && counter_pulse_o == $past(counter_pulse_o));
-  // reachable: the bit side sets an enable while a dispatch offers the other value
+  // reachable: the bit side sets an enable (also inside bit_proc's proof, where the
+  // dispatch's port is tied off; tc_status.sby's free ports also reach it with a
+  // dispatch offering the other value in the same clock)
   always @(posedge clk_i) if (rst_ni)
-    cover (f_past_valid && $past(parallel_i && bit_we_i && !bit_is_counter_i && bit_val_i
-                                 && ctl_we_i && !ctl_is_counter_i && !ctl_val_i
-                                 && ctl_idx_i == bit_idx_i) && timer_enable_o[$past(bit_idx_i)]);
+    cover (f_past_valid && $past(partitioned_i && bit_we_i && !bit_is_counter_i && bit_val_i)
+           && timer_enable_o[$past(bit_idx_i)]);
 `endif
 endmodule
 `default_nettype wire

@@ -130,7 +130,7 @@ MUTATIONS = [
     ("hsem", "hsem.v", "      last_q   <= pick;",
      "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
     # tc_status: the enable / pulse half (issue 16 item 1), against its shadow f_en/f_pulse
-    ("tc_status", "tc_status.v", "wire                          en_we  = parallel_i ? bit_we_i : ctl_we_i;",
+    ("tc_status", "tc_status.v", "wire                          en_we  = partitioned_i ? bit_we_i : ctl_we_i;",
      "wire                          en_we  = ctl_we_i;",
      "_o == f_"),                                # the bit side's `= T n` / `= C n` is lost
     ("tc_status", "tc_status.v", "if (en_we &&  en_cnt) counter_pulse_o[en_idx] <= en_val;",

@@ -153,7 +153,8 @@ from bitbyte.lang.program import Program
 
 def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
               status_sync: bool = True, hardware_wait: bool = True,
-              schedule: bool | None = None, costs="paper") -> Partition:
+              schedule: bool | None = None, costs="paper",
+              tc_path: str = "channel") -> Partition:
     """Split `program` into its bit and byte parts (module docstring) and encode them.
 
     channels: exchange channels per direction used round-robin (1..config.channels).
@@ -165,7 +166,10 @@ def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
     costs: the byte cost table the schedule's timing model assumes (the order is valid
     for any).  Raises SourceError for what cannot be partitioned (an exchange
     instruction in a mixed program, a part too large) and ValueError for a bad channel
-    count."""
+    count.  tc_path: "channel" (a timer's enable / a counter's input crosses as a
+    condition, `= FBY k` / `READ FBY k`) or "status" (through the status buffer, Fig. 2,
+    docs/exchange.md: only without status_sync, i.e. in free-running mode; parallel
+    mode keeps the channel)."""
     if not 1 <= channels <= config.channels:
         raise ValueError(f"channels must be 1..{config.channels} (the build's exchange "
                          f"channels per direction), not {channels}")
@@ -174,7 +178,8 @@ def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
     else:
         mirrored: set[int] = set()
         while True:
-            builder = _Builder(program, channels, status_sync, mirrored, hardware_wait)
+            builder = _Builder(program, channels, status_sync, mirrored, hardware_wait,
+                               tc_status=tc_path == "status" and not status_sync)
             builder.build()
             more = builder.unmirrored_jumps_over_byte_rows()
             if not more:

@@ -21,8 +21,13 @@ BIT_RLO_KEEPERS = ("=", "S", "R") + tuple(OPENS) + ("JC", "JCN")   # read, keep
 
 class _Builder:
     def __init__(self, program: Program, channels: int, status_sync: bool,
-                 mirrored: set[int], hardware_wait: bool = True):
+                 mirrored: set[int], hardware_wait: bool = True, tc_status: bool = False):
         self.program = program
+        # --tc-path status (free-running mode): a timer / counter instruction that needs
+        # the RLO from the bit side gets it through the status buffer (`= T n` there,
+        # the byte word's from-status flag) instead of a channel, when it is the only
+        # instruction on its timer / counter (one enable / pulse bit each)
+        self.tc_status = tc_status
         self.channels = channels
         self.status_sync = status_sync
         self.hardware_wait = hardware_wait
@@ -215,12 +220,33 @@ class _Builder:
             if read is not None:
                 self.need_bit(f"RLO to the bit side, to order `{what}` after {read}")
                 self.to_byte(f"RLO for `{what}`, and order: after {read} on the bit side")
+            elif self.tc_status and BYTE not in self.loc and BIT in self.loc and \
+                    len(self.status_ops.updates.get(key, [])) == 1:
+                self.through_status(ins, key)
+                self.unsynced_updates.add(key)
+                return
             else:
                 self.need_byte(f"RLO for `{what}`")
             self.row(BYTE, byte=self.copy(ins))
             self.unsynced_updates.add(key)
         else:                                                     # L, T, arithmetic
             self.row(BYTE, byte=self.copy(ins))
+
+    def through_status(self, ins: Instr, key: tuple[str, int]) -> None:
+        """bit `= T n` / `= C n`, byte the instruction flagged "from status": the RLO
+        reaches the byte side through the status buffer's enable / pulse bit (Fig. 2),
+        seen there like an input (docs/exchange.md). F_B keeps what it held."""
+        area, n = key
+        what = _text(ins.mnemonic, ins.operand)
+        op = Operand("index", area=area, index=n, text=f"{area}{n}")
+        self.row(BIT, bit=self.synth("=", op, f"enable / input of `{what}` into the "
+                                              "status buffer (--tc-path status)"))
+        byte = self.copy(ins)
+        byte.from_status = True
+        byte.synthesized = True
+        reg = "T_ENABLE" if area == "T" else "C_PULSE"
+        byte.note = f"input from the status buffer's {reg} bit {n}"
+        self.row(BYTE, byte=byte)
 
     def jump(self, ins: Instr) -> None:
         m, op = ins.mnemonic, ins.operand

@@ -121,6 +121,11 @@ def encode_bit_part(program: Program) -> list[int]:
                                              "the bit side writes a channel with `= FBY k` "
                                              "and reads one with LD/A/O/X... FBI k")
             words.append(isa.operand_word(isa.OPCODES[m], op.area, op.index))
+        elif instr.mnemonic == "=" and op is not None and op.area in ("T", "C") \
+                and op.kind == "index":
+            # --tc-path status: the enable of timer n / the input of counter n into the
+            # status buffer (Fig. 2); the compiler writes it, the parser never accepts it
+            words.append(isa.operand_word(isa.OPCODES["="], op.area, op.index))
         elif isa.is_byte_instruction(instr.mnemonic, op.area if op else None) or \
                 instr.mnemonic in isa.BYTE_PROGRAM_OPCODES:
             raise _error(program, instr, f"`{instr.mnemonic}` is a byte instruction: "
@@ -149,7 +154,10 @@ def encode_byte_part(program: Program, pool: list[int] | None = None) -> list[in
         elif m in isa.EXCHANGE_OPS:
             words.append(isa.word_operand_word(isa.BYTE_OPCODES[m], op.area, op.index))
         elif isa.is_byte_instruction(m, op.area if op else None):
-            words.append(_encode_byte_side(program, instr, "serial", pool))
+            word = _encode_byte_side(program, instr, "serial", pool)
+            if getattr(instr, "from_status", False):
+                word |= 1 << isa.FROM_STATUS_BIT   # input from T_ENABLE / C_PULSE bit n
+            words.append(word)
         else:
             raise _error(program, instr, f"`{m}` is a bit instruction: not in the byte part")
     return words

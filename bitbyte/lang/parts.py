@@ -32,6 +32,9 @@ class PartInstr(Instr):
     origin: int | None = None
     synthesized: bool = False
     wait_update: bool = False   # T/C read: wait for this scan's update (bit 16)
+    # byte T/C instruction: its enable / count input is the status buffer's bit n, which
+    # the bit part's `= T n` / `= C n` writes (--tc-path status, docs/exchange.md)
+    from_status: bool = False
 
 
 @dataclass

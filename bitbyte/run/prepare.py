@@ -46,6 +46,8 @@ MODE_EXCHANGES: dict[str, tuple[str, ...]] = {
     "free": ("marker", "queue-free"),          # free-running: nobody waits
 }
 MODES = tuple(MODE_EXCHANGES)
+# --tc-path: how a timer's enable / a counter's input reaches the byte side (docs/exchange.md)
+TC_PATHS = ("channel", "status")
 PLANT_MODES = ("serial", "parallel")   # the plant harnesses run no free-running core
 
 
@@ -91,7 +93,8 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                 mode: str = "serial", exchange: str | None = None,
                 channels: int | None = None, lang: str | None = None,
                 mnemonics: str | None = None, profile: str | None = None,
-                symbols: str | None = None, marker_write_buffer: bool = False):
+                symbols: str | None = None, marker_write_buffer: bool = False,
+                tc_path: str = "channel"):
     """Everything `run` does before the simulator: parse, encode, stimulus, columns.
 
     f is the clock in MHz as a Fraction.  The differential tests call this too (as
@@ -118,6 +121,11 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
     if costs not in COST_TABLES:
         raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
     exchange = check_mode(mode, exchange)
+    if tc_path not in TC_PATHS:
+        raise UsageError(f"--tc-path: {tc_path!r} is not one of {', '.join(TC_PATHS)}")
+    if tc_path == "status" and mode == "serial":
+        raise UsageError("--tc-path status: parallel and free-running mode (in serial "
+                         "mode the dispatch itself writes the enable / pulse bits)")
     if marker_write_buffer and exchange != "marker":
         raise UsageError("--marker-write-buffer: the marker exchange's option "
                          "(--mode free, --exchange marker)")
@@ -131,7 +139,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
             raise UsageError(f"--channels must be 1..{config.channels}")
         part = partition(program, channels or config.channels, config=config,
                          status_sync=not free,
-                         hardware_wait=not free, costs=costs)
+                         hardware_wait=not free, costs=costs, tc_path=tc_path)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
         if free and exchange == "marker":
             _one_cell_per_condition(program, part, channels or config.channels)

@@ -1,0 +1,142 @@
+"""`--tc-path status` (issue 16 item 1, paper Fig. 2's bit -> byte half): in free-running
+mode a timer's enable / a counter's input goes through the timer/counter status buffer
+(`= T n` / `= C n` on the bit side, the byte word's from-status flag) instead of an
+exchange channel; docs/exchange.md. The default (`channel`) is today's partition."""
+from __future__ import annotations
+
+import pytest
+
+from bitbyte import cli
+from bitbyte.compiler.partition import partition
+from bitbyte.encoding import isa
+from bitbyte.lang.parser import parse, parse_file
+
+# Timer 1 delays I0.0 by 2 ms into Q0.0; counter 1 counts the rising edges of I0.1 and
+# the byte side copies its value into MW0.
+PROGRAM = """\
+      LD    I0.0
+      L     2
+      SD    T1
+      LD    T1
+      =     Q0.0
+      LD    I0.1
+      CU    C1
+      L     C1
+      T     MW0
+"""
+# I0.0 rises at 100 us; I0.1 rises at 300, 500 and 700 us (3 edges)
+STIM = "t_us,I0.0,I0.1\n100,1,0\n300,1,1\n400,1,0\n500,1,1\n600,1,0\n700,1,1\n"
+EDGES = (300, 500, 700)
+
+
+def free(text: str, tc_path: str):
+    return partition(parse("t.il", text), 4, status_sync=False, hardware_wait=False,
+                     tc_path=tc_path)
+
+
+def show(instrs):
+    return [f"{i.mnemonic} {i.operand.text}".strip() if i.operand else i.mnemonic
+            for i in instrs]
+
+
+def test_fig5_free_status_words():
+    """Fig. 5 in free mode: `SD Timer` takes its enable through T_ENABLE bit 1 instead
+    of FBY 0. Words worked by hand from docs/isa.md: `= T 1` is ASSIGN (0x18), area T
+    (7), index 1; SD T1 is 0xB0, word area T (7), index 1, plus bit 17."""
+    program = parse_file("examples/fig5.il")
+    chan = partition(program, 4, status_sync=False, hardware_wait=False)
+    stat = partition(program, 4, status_sync=False, hardware_wait=False, tc_path="status")
+    assert [t.direction for t in chan.transfers] == ["to_byte", "to_bit"]
+    assert [t.direction for t in stat.transfers] == ["to_bit"]
+    assert "= T1" in show(stat.bit) and "= FBY0" not in show(stat.bit)
+    assert "READ FBY0" not in show(stat.byte)
+    assert 0x18007001 in stat.bit_words
+    assert 0xB0027001 in stat.byte_words and 0xB0007001 in chan.byte_words
+    assert isa.FROM_STATUS_BIT == 17
+    # the default is the channel path
+    named = partition(program, 4, status_sync=False, hardware_wait=False, tc_path="channel")
+    assert (chan.bit_words, chan.byte_words) == (named.bit_words, named.byte_words)
+
+
+def test_parallel_mode_keeps_the_channel():
+    """Parallel mode (status_sync): the compiler cannot yet show the serial result is
+    kept, so `status` falls back to the channel (the issue allows it)."""
+    program = parse_file("examples/fig5.il")
+    a = partition(program, 4, tc_path="status")
+    b = partition(program, 4)
+    assert (a.bit_words, a.byte_words) == (b.bit_words, b.byte_words)
+
+
+def test_two_instructions_on_one_timer_keep_the_channel():
+    """One enable bit per timer: SD T1 and R T1 with their own RLOs would overwrite
+    each other's, so both keep a channel; the counter next to them goes through the
+    buffer."""
+    p = free("LD I0.0\nL 5\nSD T1\nLD I0.1\nR T1\nLD I0.2\nCD C2\n", "status")
+    assert show(p.bit).count("= FBY0") + show(p.bit).count("= FBY1") == 2
+    assert "= C2" in show(p.bit) and "= T1" not in show(p.bit)
+    assert [i.from_status for i in p.byte if i.mnemonic == "CD"] == [True]
+    assert not any(i.from_status for i in p.byte if i.mnemonic in ("SD", "R T", "R"))
+
+
+def test_rlo_already_on_the_byte_side_needs_no_path():
+    """A compare's result is on the byte side: the counter takes F_B, nothing crosses."""
+    p = free("L MW0\nL 3\n>I\nCU C1\n", "status")
+    assert not p.transfers and all(not i.from_status for i in p.byte)
+    assert show(p.bit) == ["END"]
+
+
+def test_serial_mode_refuses_status(tmp_path, capsys):
+    il = tmp_path / "p.il"
+    il.write_text(PROGRAM)
+    assert cli.main(["run", str(il), "--tc-path", "status", "--scans", "2"]) == 2
+    assert "--tc-path status: parallel and free-running mode" in capsys.readouterr().err
+
+
+def _run(tmp_path, sim, tc_path):
+    il = tmp_path / "p.il"
+    il.write_text(PROGRAM)
+    st = tmp_path / "s.csv"
+    st.write_text(STIM)
+    trace = tmp_path / f"{sim}-{tc_path}.csv"
+    assert cli.main(["run", str(il), "--mode", "free", "--exchange", "queue-free",
+                     "--tc-path", tc_path, "--sim", sim, "--stimulus", str(st),
+                     "--clock-mhz", "1", "--until-us", "3000", "--trace", str(trace),
+                     "--watch", "MW0"]) == 0
+    rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
+    return [(float(r[1]), int(r[3]), int(r[4])) for r in rows], trace.read_text()
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_timer_and_counter_through_the_status_buffer(tmp_path, sim, capsys):
+    """Worked by hand (1 MHz: 1 clock = 1 us, 1 ms = 1000 clocks). The bit scan is 7
+    clocks, a byte scan at most 60 (L 2, SD, L C1, T MW0, CU, END_B). Spec §2: the
+    byte side sees the bit side's `= T 1` / `= C 1` at the latest in its following
+    scan, so a change reaches the trace within (bit scan + 2 byte scans + bit scan)
+    = 134 us of the input. Timer: I0.0 rises at 100 us (ms 0), SD starts in ms 0, the
+    status is 1 from ms 2 (2000 us): Q0.0 rises in [2000, 2134]. Counter: MW0 steps to
+    k within 134 us after the k-th rising edge of I0.1 (300, 500, 700), never before,
+    and ends at 3 (no edge lost, none counted twice)."""
+    rows, text = _run(tmp_path, sim, "status")
+    out = capsys.readouterr().out
+    assert "queue losses     overflows to-byte 0 to-bit 0" in out   # nothing crossed
+    q_rise = next(t for t, q, _ in rows if q)
+    assert 2000 <= q_rise <= 2134, q_rise
+    assert all(q for t, q, _ in rows if t >= q_rise)
+    for k, edge in enumerate(EDGES, 1):
+        assert all(mw < k for t, _, mw in rows if t < edge), (k, edge)
+        seen = next(t for t, _, mw in rows if mw >= k)
+        assert seen <= edge + 134, (k, edge, seen)
+    assert rows[-1][2] == 3
+    if sim == "icarus":     # both simulators give the same trace
+        (tmp_path / "v").mkdir()
+        assert text == _run(tmp_path / "v", "verilator", "status")[1]
+
+
+def test_channel_path_is_unchanged_on_the_hardware(tmp_path):
+    """The default path still carries the enable through FBY (its queue overflows in
+    free mode: the bit side writes every 7-clock scan, the byte side reads once per
+    byte scan) and gives the same timer and count."""
+    rows, _ = _run(tmp_path, "verilator", "channel")
+    q_rise = next(t for t, q, _ in rows if q)
+    assert 2000 <= q_rise <= 2134, q_rise
+    assert rows[-1][2] == 3
