@@ -890,7 +890,13 @@ def markdown(res, d) -> str:
     add("| `bench/benchlib.py` | trace reading, static counts, response analysis (also "
         "used by `tests/test_response_bound.py`) |")
     add("| `bench/report.py` | this file and the plots |")
+    add("| `bench/tc_path_bench.py` | the `--tc-path` comparison below (alone: rewrites just "
+        "that section) |")
     add("")
+    if res.get("tc_path"):
+        import tc_path_bench
+        L.extend(tc_path_bench.markdown(res["tc_path"]))
+        add("")
     missing = [m for m, s in res["modes"].items() if not s["available"]]
     if missing:
         add("Not measured yet, because `bitbyte run --mode …` does not run them: "
