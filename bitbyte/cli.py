@@ -29,7 +29,7 @@ from bitbyte.lang.firstcheck import first_check_warnings
 from bitbyte.lang.parser import source_language
 from bitbyte.plant.link import format_map, link, load_plant
 from bitbyte.plant.run import PlantRunError, run_plant
-from bitbyte.run.prepare import MODES, TC_PATHS, parse_clock_mhz, prepare
+from bitbyte.run.prepare import MODES, TC_PATHS, check_tc_path, parse_clock_mhz, prepare
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
 from bitbyte.run.status import block_status_text, parallel_block_status_text
@@ -128,6 +128,11 @@ def _parser() -> argparse.ArgumentParser:
                    help="serial: one image, byte instructions dispatched from the bit "
                         "processor; parallel: partition into a bit part and a byte part "
                         "(the paper's Fig. 12/13) (default serial)")
+    a.add_argument("--tc-path", choices=TC_PATHS, default="channel",
+                   help="how a timer's enable / a counter's input reaches the byte side "
+                        "(see run --tc-path): asm partitions for parallel mode, which keeps "
+                        "the channel either way, so status gives the same images; serial "
+                        "mode refuses status (default channel)")
     a.add_argument("-o", "--outdir", default=None, metavar="OUTDIR",
                    help="where the files go (default: beside the source)")
     _source_options(a)
@@ -283,6 +288,7 @@ def _warnings(args, program) -> None:
 
 
 def cmd_asm(args) -> int:
+    check_tc_path(args.mode, args.tc_path)   # parallel keeps the channel: same images
     result = assemble(args.program, outdir=args.outdir, config=Config.of_profile(args.profile),
                       mode=args.mode, lang=args.lang, mnemonics=args.mnemonics,
                       symbols=args.symbols)

@@ -164,3 +164,18 @@ def test_random_parallel_programs_same_words_with_either_path(tmp_path):
                            tc_path="status")[2]
         took += any(w >> 24 == 0x18 and (w >> 12) & 0xF in (7, 8) for w in free.prog)
     assert took > 0      # the generators do give the status path something to take
+
+
+def test_asm_tc_path(tmp_path, capsys):
+    """asm: serial mode refuses status as run does; parallel gives the same images."""
+    il = tmp_path / "p.il"
+    il.write_text(PROGRAM)
+    assert cli.main(["asm", str(il), "--tc-path", "status"]) == 2
+    assert "--tc-path status: parallel and free-running mode" in capsys.readouterr().err
+    images = {}
+    for tp in ("channel", "status"):
+        out = tmp_path / tp
+        assert cli.main(["asm", str(il), "--mode", "parallel", "--tc-path", tp,
+                         "-o", str(out)]) == 0
+        images[tp] = [(out / f"p.{k}.hex").read_text() for k in ("bit", "byte")]
+    assert images["channel"] == images["status"]

@@ -65,6 +65,15 @@ def check_mode(mode: str, exchange: str | None) -> str:
     return exchange
 
 
+def check_tc_path(mode: str, tc_path: str) -> None:
+    """--tc-path for `asm` and `run`: status needs a partitioned mode (docs/exchange.md)."""
+    if tc_path not in TC_PATHS:
+        raise UsageError(f"--tc-path: {tc_path!r} is not one of {', '.join(TC_PATHS)}")
+    if tc_path == "status" and mode == "serial":
+        raise UsageError("--tc-path status: parallel and free-running mode (in serial "
+                         "mode the dispatch itself writes the enable / pulse bits)")
+
+
 @dataclass(frozen=True)
 class Prepared:
     """What `prepare` returns: prepare_run's four, the stimulus's input changes
@@ -121,11 +130,7 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
     if costs not in COST_TABLES:
         raise UsageError(f"--costs: unknown table {costs!r} (known: {', '.join(COST_TABLES)})")
     exchange = check_mode(mode, exchange)
-    if tc_path not in TC_PATHS:
-        raise UsageError(f"--tc-path: {tc_path!r} is not one of {', '.join(TC_PATHS)}")
-    if tc_path == "status" and mode == "serial":
-        raise UsageError("--tc-path status: parallel and free-running mode (in serial "
-                         "mode the dispatch itself writes the enable / pulse bits)")
+    check_tc_path(mode, tc_path)
     if marker_write_buffer and exchange != "marker":
         raise UsageError("--marker-write-buffer: the marker exchange's option "
                          "(--mode free, --exchange marker)")
