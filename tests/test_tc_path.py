@@ -78,6 +78,17 @@ def test_two_instructions_on_one_timer_keep_the_channel():
     assert not any(i.from_status for i in p.byte if i.mnemonic in ("SD", "R T", "R"))
 
 
+def test_one_instruction_in_a_loop_keeps_the_channel():
+    """A counter counted in a loop gets one input per iteration: the channel carries
+    each in order, one enable bit would keep the last only. The same instruction
+    outside the loop, behind a forward jump, takes the buffer."""
+    loop = free("SET\n= M0.0\ntop: LD I0.1\nCU C1\nLD M0.0\nR M0.0\nJC top\n", "status")
+    assert "= C1" not in show(loop.bit) and any(t.direction == "to_byte"
+                                                 for t in loop.transfers)
+    fwd = free("LD I0.0\nJC skip\nLD I0.1\nCU C1\nskip: NOP\n", "status")
+    assert "= C1" in show(fwd.bit)
+
+
 def test_rlo_already_on_the_byte_side_needs_no_path():
     """A compare's result is on the byte side: the counter takes F_B, nothing crosses."""
     p = free("L MW0\nL 3\n>I\nCU C1\n", "status")

@@ -221,7 +221,10 @@ class _Builder:
                 self.need_bit(f"RLO to the bit side, to order `{what}` after {read}")
                 self.to_byte(f"RLO for `{what}`, and order: after {read} on the bit side")
             elif self.tc_status and BYTE not in self.loc and BIT in self.loc and \
-                    len(self.status_ops.updates.get(key, [])) == 1:
+                    len(self.status_ops.updates.get(key, [])) == 1 and \
+                    self.cur not in self.reach.after(self.cur):
+                # one enable bit: one instruction on the timer / counter, once a scan
+                # (in a loop its per-iteration inputs would collapse to the last one)
                 self.through_status(ins, key)
                 self.unsynced_updates.add(key)
                 return
