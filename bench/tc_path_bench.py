@@ -77,9 +77,9 @@ def markdown(res: dict) -> list[str]:
          f"§1, {res['clock_mhz']:g} MHz). *Transfers* are per straight-line scan as the "
          "compiler makes them (bit → byte / byte → bit); *status* counts the byte "
          "instructions whose enable / count input the bit side leaves in the status buffer "
-         "(`= T n` / `= C n`) instead of a channel. Parallel mode keeps the channel with "
-         "either setting (the compiler cannot yet show the serial result is kept: "
-         "docs/exchange.md), so its two rows must agree. In free-running mode the median is "
+         "(`= T n` / `= C n`) instead of a channel; in parallel mode the byte side waits for "
+         "this scan's write there (the status-wait bit, docs/exchange.md), so both of its "
+         "rows keep the serial result. In free-running mode the median is "
          "the bit side's scan, then the byte side's scans (simulated clocks / its scans) and "
          "the queues' losses (overflows / underflows, to-byte and to-bit).", "",
          "| mode | --tc-path | transfers bit→byte / byte→bit | via status buffer | "

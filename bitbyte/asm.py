@@ -25,7 +25,8 @@ from bitbyte.lang.program import Program
 
 def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
              mode: str = "serial", lang: str | None = None,
-             mnemonics: str | None = None, symbols: str | None = None) -> dict:
+             mnemonics: str | None = None, symbols: str | None = None,
+             tc_path: str = "channel") -> dict:
     """Parse, encode and write the three files (and `<stem>.pool.hex` when the
     program has constants too wide for the 24-bit immediate).
 
@@ -35,7 +36,7 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     """
     if mode == "parallel":            # two images and the partition report
         return assemble_parallel(path, outdir, config, lang=lang, mnemonics=mnemonics,
-                                 symbols=symbols)
+                                 symbols=symbols, tc_path=tc_path)
     program = parse_file(path, config, lang=lang, mnemonics=mnemonics, symbols=symbols)
     words, listing_text = encode(program, config, mode)
     pool = constant_pool(program)
@@ -75,8 +76,8 @@ def _write(path: str, text: str) -> None:
 
 def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEFAULT,
                       channels: int | None = None, lang: str | None = None,
-                      mnemonics: str | None = None, symbols: str | None = None
-                      ) -> dict:
+                      mnemonics: str | None = None, symbols: str | None = None,
+                      tc_path: str = "channel") -> dict:
     """Parse, partition, encode, write (stem = the source's name without .il):
 
       <stem>.bit.hex        bit part image ($readmemh, one 8-digit word per line)
@@ -91,7 +92,7 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
     Returns {"bit_hex", "byte_hex", ["pool"], "lst", "report", "json": paths,
     "words": bit words, "byte_words": byte words, "program": the parsed Program}.  Nothing is written on an error."""
     program = parse_file(path, config, lang=lang, mnemonics=mnemonics, symbols=symbols)
-    part = partition(program, channels or config.channels, config=config)
+    part = partition(program, channels or config.channels, config=config, tc_path=tc_path)
     report = report_text(part)
     view = side_by_side(part)
     stem = os.path.splitext(os.path.basename(path))[0]

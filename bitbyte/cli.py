@@ -130,9 +130,8 @@ def _parser() -> argparse.ArgumentParser:
                         "(the paper's Fig. 12/13) (default serial)")
     a.add_argument("--tc-path", choices=TC_PATHS, default="channel",
                    help="how a timer's enable / a counter's input reaches the byte side "
-                        "(see run --tc-path): asm partitions for parallel mode, which keeps "
-                        "the channel either way, so status gives the same images; serial "
-                        "mode refuses status (default channel)")
+                        "in the parallel-mode partition (see run --tc-path); serial mode "
+                        "refuses status (default channel)")
     a.add_argument("-o", "--outdir", default=None, metavar="OUTDIR",
                    help="where the files go (default: beside the source)")
     _source_options(a)
@@ -166,12 +165,13 @@ def _parser() -> argparse.ArgumentParser:
                         "the conditions of one writer scan may be split between two "
                         "reader scans)")
     r.add_argument("--tc-path", choices=TC_PATHS, default="channel",
-                   help="free mode: how a timer's enable / a counter's input reaches the "
+                   help="parallel and free mode: how a timer's enable / a counter's input reaches the "
                         "byte side: channel (a condition through the exchange, = FBY k / "
                         "READ FBY k) or status (the bit side writes it into the "
                         "timer/counter status buffer, = T n / = C n, and the byte side "
                         "reads it there like an input: the paper's Fig. 2; "
-                        "docs/exchange.md). Parallel mode keeps the channel; serial mode "
+                        "docs/exchange.md; in parallel mode the byte side first waits "
+                        "until the bit side has written it in this scan). Serial mode "
                         "refuses status (default channel)")
     r.add_argument("--stimulus", metavar="STIM.csv",
                    help="input pins over time: first column scan or t_us, then one "
@@ -288,10 +288,10 @@ def _warnings(args, program) -> None:
 
 
 def cmd_asm(args) -> int:
-    check_tc_path(args.mode, args.tc_path)   # parallel keeps the channel: same images
+    check_tc_path(args.mode, args.tc_path)
     result = assemble(args.program, outdir=args.outdir, config=Config.of_profile(args.profile),
                       mode=args.mode, lang=args.lang, mnemonics=args.mnemonics,
-                      symbols=args.symbols)
+                      symbols=args.symbols, tc_path=args.tc_path)
     _warnings(args, result["program"])
     for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:

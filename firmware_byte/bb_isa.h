@@ -37,6 +37,7 @@
 #define BB_TARGET_MASK          0xFFFFu
 #define BB_IMM_MASK             0xFFFFFFu
 #define BB_FROM_STATUS          0x20000u /* T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n */
+#define BB_STATUS_WAIT          0x40000u /* with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first */
 
 /* Byte-instruction opcodes (docs/isa.md, "Byte instructions"). */
 #define BB_OP_L_IMM             0x80u  /* L# */

@@ -27,6 +27,11 @@
 #define BB_BUS_T_ENABLE_HI      0x16u  /* R */
 #define BB_BUS_C_PULSE_LO       0x17u  /* R */
 #define BB_BUS_C_PULSE_HI       0x18u  /* R */
+#define BB_BUS_T_WRITTEN_LO     0x19u  /* R */
+#define BB_BUS_T_WRITTEN_HI     0x1Au  /* R */
+#define BB_BUS_C_WRITTEN_LO     0x1Bu  /* R */
+#define BB_BUS_C_WRITTEN_HI     0x1Cu  /* R */
+#define BB_BUS_TC_WAIT          0x1Du  /* RW */
 #define BB_BUS_FBY(n)           (0x20u + (unsigned)(n)) /* R, n < 8 */
 #define BB_BUS_FBI(n)           (0x28u + (unsigned)(n)) /* W, n < 8 */
 #define BB_BUS_CHAN_STATUS      0x30u  /* R */

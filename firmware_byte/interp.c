@@ -145,8 +145,24 @@ static void transfer_word(bb_state *s, unsigned area, unsigned n) {
  * the status buffer's T_ENABLE / C_PULSE (the bit side's `= T n` / `= C n`), read over
  * the bus, instead of F_B; one bus read, inside the class's table cost. F_B is left
  * as it was. lo: the _LO register, _HI follows it (32 bits each). */
-static int status_input(bb_state *s, uint16_t lo, unsigned n) {
+static int status_bit(bb_state *s, uint16_t lo, unsigned n) {
   return (int)((hal_bus_read(s->hal_ctx, (uint16_t)(lo + n / 32u)) >> (n % 32u)) & 1u);
+}
+
+/* Parallel mode adds BB_STATUS_WAIT: the bit side writes the bit in this scan, maybe
+ * after the byte side gets here, so the bit is read through TC_WAIT: a write selects
+ * timer / counter n, the read is not ready (a bus stall, as an empty channel's) until
+ * the bit side has written it since the scan's latch. The compiler puts the write and
+ * this instruction in one row, so the bit side reaches the write without waiting for
+ * anything the byte side does after it: the wait ends (docs/exchange.md). Like a
+ * channel read's, the clocks it takes count against the instruction's cost. */
+static int status_input(bb_state *s, uint32_t instr, uint16_t lo, unsigned n) {
+  if (instr & BB_STATUS_WAIT) {
+    const uint32_t counter = lo == BB_BUS_C_PULSE_LO ? BB_TC_COUNTER : 0u;
+    hal_bus_write(s->hal_ctx, BB_BUS_TC_WAIT, counter | (n & BB_TC_INDEX_MASK));
+    return (int)(hal_bus_read(s->hal_ctx, BB_BUS_TC_WAIT) & 1u);
+  }
+  return status_bit(s, lo, n);
 }
 
 static int is_jump(unsigned op) {
@@ -198,12 +214,12 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       if (op != BB_OP_RT)
         now = hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
       bb_proc_timer(s, op, n, (instr & BB_FROM_STATUS) ?
-                    status_input(s, BB_BUS_T_ENABLE_LO, n) : r, now);
+                    status_input(s, instr, BB_BUS_T_ENABLE_LO, n) : r, now);
       break;
     }
     case BB_CL_COUNTER:
       bb_proc_counter(s, op, n, (instr & BB_FROM_STATUS) ?
-                      status_input(s, BB_BUS_C_PULSE_LO, n) : r);
+                      status_input(s, instr, BB_BUS_C_PULSE_LO, n) : r);
       break;
     case BB_CL_BINARY:
       if (is_jump(op)) {

@@ -795,7 +795,8 @@ module bit_proc #(
     .bit_we_i(tcw_we_o), .bit_is_counter_i(tcw_is_counter_o), .bit_idx_i(tcw_idx_o),
     .bit_val_i(tcw_val_o), .latch_i(latch_i),
     .timer_status_o(f_tst), .counter_status_o(f_cst), .timer_enable_o(),
-    .counter_pulse_o(), .timer_updated_o(f_tupd), .counter_updated_o(f_cupd));
+    .counter_pulse_o(), .timer_updated_o(f_tupd), .counter_updated_o(f_cupd),
+    .timer_written_o(), .counter_written_o());
   // verilator lint_on PINCONNECTEMPTY
   always @(*) begin
     assume (pii_i == f_pii && rise_i == f_rise && fall_i == f_fall);

@@ -107,7 +107,7 @@ module bitbyte_cpu #(
   wire        exec_valid;
   // exchange
   wire [StatusBits-1:0] timer_status, counter_status, timer_enable, counter_pulse;
-  wire [StatusBits-1:0] timer_updated, counter_updated;
+  wire [StatusBits-1:0] timer_updated, counter_updated, timer_written, counter_written;
   wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
   wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
   wire        fby_wr_data, fbi_wr_data, bit_stall;
@@ -371,7 +371,9 @@ module bitbyte_cpu #(
     .timer_enable_o     (timer_enable),
     .counter_pulse_o    (counter_pulse),
     .timer_updated_o    (timer_updated),
-    .counter_updated_o  (counter_updated)
+    .counter_updated_o  (counter_updated),
+    .timer_written_o    (timer_written),
+    .counter_written_o  (counter_written)
   );
 
   byte_port #(
@@ -407,6 +409,8 @@ module bitbyte_cpu #(
     .counter_status_i(counter_status),
     .timer_enable_i  (timer_enable),
     .counter_pulse_i (counter_pulse),
+    .timer_written_i (timer_written),
+    .counter_written_i(counter_written),
     .fby_rd_req_o    (fby_rd_req),
     .fby_rd_data_i   (fby_rd_data),
     .fby_rd_ready_i  (fby_rd_ready),

@@ -27,6 +27,11 @@
 `define BUS_T_ENABLE_HI      8'h16     // R
 `define BUS_C_PULSE_LO       8'h17     // R
 `define BUS_C_PULSE_HI       8'h18     // R
+`define BUS_T_WRITTEN_LO     8'h19     // R
+`define BUS_T_WRITTEN_HI     8'h1A     // R
+`define BUS_C_WRITTEN_LO     8'h1B     // R
+`define BUS_C_WRITTEN_HI     8'h1C     // R
+`define BUS_TC_WAIT          8'h1D     // RW
 `define BUS_FBY              8'h20     // R, 8 registers
 `define BUS_FBI              8'h28     // W, 8 registers
 `define BUS_CHAN_STATUS      8'h30     // R

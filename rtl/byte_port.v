@@ -46,6 +46,8 @@ module byte_port #(
   input  wire [StatusBits-1:0]         counter_status_i,
   input  wire [StatusBits-1:0]         timer_enable_i,
   input  wire [StatusBits-1:0]         counter_pulse_i,
+  input  wire [StatusBits-1:0]         timer_written_i,   // enable written this scan
+  input  wire [StatusBits-1:0]         counter_written_i, // pulse written this scan
   // condition channels: FBY k (bit -> byte) are read here, FBI k (byte -> bit) written
   output wire [Channels-1:0]           fby_rd_req_o,
   input  wire [Channels-1:0]           fby_rd_data_i,
@@ -155,6 +157,18 @@ module byte_port #(
   wire [63:0] c_stat  = {{(64-StatusBits){1'b0}}, counter_status_i};
   wire [63:0] t_en    = {{(64-StatusBits){1'b0}}, timer_enable_i};
   wire [63:0] c_pulse = {{(64-StatusBits){1'b0}}, counter_pulse_i};
+  wire [63:0] t_wr    = {{(64-StatusBits){1'b0}}, timer_written_i};
+  wire [63:0] c_wr    = {{(64-StatusBits){1'b0}}, counter_written_i};
+  // TC_WAIT (parallel mode's status wait, docs/exchange.md): the byte side selects a
+  // timer / counter with a write, then reads its enable / pulse bit; the read is not
+  // ready until the bit side has written that bit in this scan (its written bit). A
+  // bus-level wait, as an empty channel's, so every runner's stall loop serves it.
+  reg  [6:0]  tc_wait_sel_q;                       // bit 6 counter, bits 5..0 n
+  wire [63:0] tc_wait_en = tc_wait_sel_q[6] ? c_pulse : t_en;
+  wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? c_wr : t_wr;
+  wire        tc_wait_val     = tc_wait_en[tc_wait_sel_q[5:0]];
+  wire        tc_wait_written = tc_wait_wr[tc_wait_sel_q[5:0]];
+  wire        is_tc_wait_rd   = bus_re_i && bus_addr_i == `BUS_TC_WAIT;
   wire [16*16-1:0] out_words16 = {{((16-OutWords)*16){1'b0}}, out_words_o};
   wire [7:0]  fby_data8 = {{(8-Channels){1'b0}}, fby_rd_data_i};
   wire [7:0]  fby_full8 = {{(8-Channels){1'b0}}, fby_full_i};
@@ -198,6 +212,11 @@ module byte_port #(
             (A == `BUS_T_ENABLE_HI)      ? t_en[63:32] :
             (A == `BUS_C_PULSE_LO)       ? c_pulse[31:0] :
             (A == `BUS_C_PULSE_HI)       ? c_pulse[63:32] :
+            (A == `BUS_T_WRITTEN_LO)     ? t_wr[31:0] :
+            (A == `BUS_T_WRITTEN_HI)     ? t_wr[63:32] :
+            (A == `BUS_C_WRITTEN_LO)     ? c_wr[31:0] :
+            (A == `BUS_C_WRITTEN_HI)     ? c_wr[63:32] :
+            (A == `BUS_TC_WAIT)          ? {31'd0, tc_wait_val} :
             (A == `BUS_CHAN_STATUS)      ? {16'd0, fbi_full8, fby_full8} :
             (A == `BUS_STALLS_BIT)       ? stalls_bit_o :
             (A == `BUS_STALLS_BYTE)      ? stalls_byte_o :
@@ -217,12 +236,13 @@ module byte_port #(
                      : rd_iw_now ? {{16{named_iw[15]}}, named_iw}
                      : rd_tab[bus_addr_i] | {31'd0, rd_status && next_i};
 
-  // Ready: only a condition channel can refuse an access (a channel the build lacks
-  // never does). Widened to the 8 channels the bus decodes and indexed by the channel
+  // Ready: only a condition channel (a channel the build lacks never does) and TC_WAIT
+  // can refuse an access. Widened to the 8 channels the bus decodes and indexed by the channel
   // number, again without a compare.
   wire [7:0] fby_ready8 = {{(8-Channels){1'b1}}, fby_rd_ready_i};
   wire [7:0] fbi_ready8 = {{(8-Channels){1'b1}}, fbi_wr_ready_i};
-  assign bus_ready_o = !(is_fby_rd && !fby_ready8[chan]) && !(is_fbi_wr && !fbi_ready8[chan]);
+  assign bus_ready_o = !(is_fby_rd && !fby_ready8[chan]) && !(is_fbi_wr && !fbi_ready8[chan])
+                    && !(is_tc_wait_rd && !tc_wait_written);
 
   // ---------------------------------------------------------------- statistics
   // Every clock in which an access is refused is one byte-side stall (it is repeated).
@@ -252,7 +272,9 @@ module byte_port #(
       tick_div_q    <= `BUS_TICK_DIV_RESET;   // 100 MHz
       out_words_o   <= {(OutWords*16){1'b0}};
       byte_flags_o  <= 32'd0;
+      tc_wait_sel_q <= 7'd0;
     end else begin
+      if (bus_we_i && bus_addr_i == `BUS_TC_WAIT) tc_wait_sel_q <= bus_wdata_i[6:0];
       if (bus_we_i && bus_addr_i == `BUS_TICK_DIV) tick_div_q <= bus_wdata_i;
       if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_o <= bus_wdata_i;
       for (w = 0; w < OutWords; w = w + 1)
@@ -270,8 +292,26 @@ module byte_port #(
   always @(*) assume (!(bus_re_i && bus_we_i));          // one access per clock
 
   // An access waits only on a condition channel the build has, and exactly while
-  // that channel cannot take / give a condition.
-  always @(*) if (rst_ni && !bus_ready_o) assert ((is_fby_rd || is_fbi_wr) && chan_ok);
+  // that channel cannot take / give a condition, or on TC_WAIT, exactly while the
+  // timer / counter its last write selected is not written in this scan.
+  always @(*) if (rst_ni && !bus_ready_o)
+    assert (((is_fby_rd || is_fbi_wr) && chan_ok) || (bus_re_i && bus_addr_i == `BUS_TC_WAIT));
+  reg [6:0] f_sel;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) f_sel <= 7'd0;
+    else if (bus_we_i && bus_addr_i == `BUS_TC_WAIT) f_sel <= bus_wdata_i[6:0];
+  wire [63:0] f_wr = f_sel[6] ? {{(64-StatusBits){1'b0}}, counter_written_i}
+                              : {{(64-StatusBits){1'b0}}, timer_written_i};
+  wire [63:0] f_en = f_sel[6] ? {{(64-StatusBits){1'b0}}, counter_pulse_i}
+                              : {{(64-StatusBits){1'b0}}, timer_enable_i};
+  always @(*) if (rst_ni) assert (tc_wait_sel_q == f_sel);    // induction invariant
+  always @(*) if (rst_ni && bus_re_i && bus_addr_i == `BUS_TC_WAIT) begin
+    assert (bus_ready_o == f_wr[f_sel[5:0]]);
+    assert (bus_rdata_o == {31'd0, f_en[f_sel[5:0]]});
+  end
+  always @(posedge clk_i) if (rst_ni)
+    cover (f_past_valid && $past(bus_re_i && bus_addr_i == `BUS_TC_WAIT && !bus_ready_o)
+           && bus_re_i && bus_addr_i == `BUS_TC_WAIT && bus_ready_o && f_sel[6]);
   always @(*) if (rst_ni && is_fby_rd && chan_ok)
     assert (bus_ready_o == |(fby_rd_ready_i & chan_sel));
   always @(*) if (rst_ni && is_fbi_wr && chan_ok)

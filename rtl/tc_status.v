@@ -13,6 +13,10 @@
 // Parallel mode: an `updated` bit per timer/counter records that the byte side wrote
 // its status since this scan's latch, so a bit instruction marked "after the update"
 // (docs/isa.md, bit 16) waits exactly until the byte side's timer instruction has run.
+// The mirror image for the enable / pulse half: a `written` bit per timer/counter
+// records that the bit processor wrote its enable / pulse bit since this scan's latch,
+// so that a parallel-mode byte procedure flagged "status wait" (--tc-path status)
+// reads the bit of this scan and not the previous one (docs/exchange.md).
 module tc_status #(
   parameter integer StatusBits = 64  // timers T0.. and counters C0.. (each)
 ) (
@@ -40,7 +44,9 @@ module tc_status #(
   output reg  [StatusBits-1:0]         timer_enable_o,
   output reg  [StatusBits-1:0]         counter_pulse_o,
   output reg  [StatusBits-1:0]         timer_updated_o,
-  output reg  [StatusBits-1:0]         counter_updated_o
+  output reg  [StatusBits-1:0]         counter_updated_o,
+  output reg  [StatusBits-1:0]         timer_written_o,
+  output reg  [StatusBits-1:0]         counter_written_o
 );
   `PARAM_CHECK(g_bad_status_bits, StatusBits < 2,
                "tc_status: StatusBits must be at least 2 (an index needs a bit)")
@@ -59,10 +65,14 @@ module tc_status #(
       counter_pulse_o  <= {StatusBits{1'b0}};
       timer_updated_o  <= {StatusBits{1'b0}};
       counter_updated_o <= {StatusBits{1'b0}};
+      timer_written_o   <= {StatusBits{1'b0}};
+      counter_written_o <= {StatusBits{1'b0}};
     end else begin
       if (latch_i) begin
         timer_updated_o   <= {StatusBits{1'b0}};
         counter_updated_o <= {StatusBits{1'b0}};
+        timer_written_o   <= {StatusBits{1'b0}};
+        counter_written_o <= {StatusBits{1'b0}};
       end
       // a write in the latch clock belongs to the new scan: after the clear
       if (status_we_i && !status_is_counter_i) timer_updated_o[status_idx_i]   <= 1'b1;
@@ -71,6 +81,9 @@ module tc_status #(
       if (status_we_i &&  status_is_counter_i) counter_status_o[status_idx_i] <= status_val_i;
       if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;
       if (en_we &&  en_cnt) counter_pulse_o[en_idx] <= en_val;
+      // only the bit processor's own writes count (a serial dispatch needs no wait)
+      if (partitioned_i && bit_we_i && !bit_is_counter_i) timer_written_o[bit_idx_i]   <= 1'b1;
+      if (partitioned_i && bit_we_i &&  bit_is_counter_i) counter_written_o[bit_idx_i] <= 1'b1;
     end
   end
 
@@ -117,6 +130,25 @@ module tc_status #(
   always @(posedge clk_i) if (rst_ni)
     cover (f_past_valid && $past(partitioned_i && bit_we_i && !bit_is_counter_i && bit_val_i)
            && timer_enable_o[$past(bit_idx_i)]);
+
+  // The written bits (the status wait, docs/exchange.md), for any one timer and counter
+  // f_n: set in the clock after the bit processor wrote its enable / pulse bit (also
+  // in a latch clock: that write is the new scan's), cleared by a latch without such a
+  // write, held otherwise; a serial dispatch never sets them. A byte procedure that
+  // waits for the bit therefore reads the value written in its own scan.
+  (* anyconst *) reg [$clog2(StatusBits)-1:0] f_n;
+  wire f_wt = partitioned_i && bit_we_i && !bit_is_counter_i && bit_idx_i == f_n;
+  wire f_wc = partitioned_i && bit_we_i &&  bit_is_counter_i && bit_idx_i == f_n;
+  always @(posedge clk_i) if (rst_ni && f_past_valid && $past(rst_ni)) begin
+    assert (timer_written_o[f_n] ==
+            ($past(f_wt) || ($past(timer_written_o[f_n]) && !$past(latch_i))));
+    assert (counter_written_o[f_n] ==
+            ($past(f_wc) || ($past(counter_written_o[f_n]) && !$past(latch_i))));
+  end
+  always @(*) if (!rst_ni) assert (timer_written_o == 0 && counter_written_o == 0);
+  // reachable: a counter's written bit set, then cleared by the next scan's latch
+  always @(posedge clk_i) if (rst_ni)
+    cover (f_past_valid && $past(counter_written_o[f_n]) && !counter_written_o[f_n]);
 `endif
 endmodule
 `default_nettype wire

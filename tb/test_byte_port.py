@@ -7,6 +7,8 @@ import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
+from bitbyte.lang.definition import DEF
+
 from simrun import SIMULATORS, run_cocotb
 
 CHANNELS = 4
@@ -17,7 +19,8 @@ async def reset(dut):
     for sig in (dut.rst_ni, dut.bus_addr_i, dut.bus_wdata_i, dut.bus_we_i, dut.bus_re_i,
                 dut.latch_i, dut.time_start_i, dut.exec_i, dut.fault_i, dut.next_i, dut.dispatch_instr_i,
                 dut.dispatch_ctx_i, dut.timer_status_i, dut.counter_status_i,
-                dut.timer_enable_i, dut.counter_pulse_i, dut.fby_rd_data_i,
+                dut.timer_enable_i, dut.counter_pulse_i, dut.timer_written_i,
+                dut.counter_written_i, dut.fby_rd_data_i,
                 dut.fby_rd_ready_i, dut.fby_full_i, dut.fbi_wr_ready_i, dut.fbi_full_i,
                 dut.in_words_i, dut.bit_stall_i, dut.queue_overflows_i,
                 dut.queue_underflows_i):
@@ -190,6 +193,51 @@ async def dispatch_snapshot(dut):
         dut.bus_re_i.value = 0
         await access(dut, 0x04, 0)               # DONE: the next dispatch starts fresh
         dut.next_i.value = 0 if word_value == 0xF000 else 1
+
+
+@cocotb.test()
+async def status_vectors(dut):
+    """The six 64-bit vectors of the timer/counter status buffer, each on its LO/HI
+    register pair (addresses from bitbyte/lang/definition.toml): distinct random
+    patterns, so a register that shows another vector's bits or the other half fails."""
+    import random
+    rng = random.Random(16)
+    await reset(dut)
+    vectors = {"T_STATUS": dut.timer_status_i, "C_STATUS": dut.counter_status_i,
+               "T_ENABLE": dut.timer_enable_i, "C_PULSE": dut.counter_pulse_i,
+               "T_WRITTEN": dut.timer_written_i, "C_WRITTEN": dut.counter_written_i}
+    for _ in range(3):
+        values = {name: rng.getrandbits(64) for name in vectors}
+        for name, sig in vectors.items():
+            sig.value = values[name]
+        for name, v in values.items():
+            assert await read(dut, DEF.bus[name + "_LO"]) == v & 0xFFFFFFFF, name
+            assert await read(dut, DEF.bus[name + "_HI"]) == v >> 32, name
+
+
+@cocotb.test()
+async def tc_wait_stalls_until_written(dut):
+    """TC_WAIT (parallel mode's status wait): a write selects timer / counter n (bit 6
+    counter, as TC_BIT); a read is not ready while its written bit is 0 (another
+    index's or the other kind's bit does not count), then gives its enable / pulse."""
+    await reset(dut)
+    wait = DEF.bus["TC_WAIT"]
+    counter = dict(DEF.register("TC_BIT").fields)["TC_COUNTER"]
+    for kind, n in (("counter", 41), ("timer", 7)):
+        written = dut.counter_written_i if kind == "counter" else dut.timer_written_i
+        other = dut.timer_written_i if kind == "counter" else dut.counter_written_i
+        value = dut.counter_pulse_i if kind == "counter" else dut.timer_enable_i
+        value.value = 1 << n
+        written.value = (1 << (n + 1)) | (1 << (n - 1))
+        other.value = 1 << n
+        await access(dut, wait, (counter if kind == "counter" else 0) | n)
+        for _ in range(3):
+            assert await access(dut, wait) == (1, 0), kind        # not ready
+        written.value = 1 << n
+        assert await access(dut, wait) == (1, 1), kind
+        value.value = 0
+        assert await access(dut, wait) == (0, 1), kind
+        written.value = other.value = 0
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)

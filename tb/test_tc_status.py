@@ -3,7 +3,9 @@ time; the enable/pulse bits are written by the serial dispatch (ctl_*) or, in pa
 and free-running mode (partitioned_i), by the bit processor (bit_*), the other writer
 ignored; each set is independent. The `updated` bits
 (parallel mode's "after the update" wait): a status write sets its bit, a scan's latch
-clears them all, and a write in the latch clock itself belongs to the new scan."""
+clears them all, and a write in the latch clock itself belongs to the new scan. The
+`written` bits (parallel mode's status wait, --tc-path status) likewise for the bit
+processor's enable / pulse writes; a serial dispatch never sets them."""
 from __future__ import annotations
 
 import random
@@ -22,7 +24,7 @@ N = 64
 async def random_writes_against_model(dut):
     await start_in_reset(dut, dut.status_we_i, dut.ctl_we_i, dut.bit_we_i,
                          dut.partitioned_i, dut.latch_i)
-    model = {"ts": 0, "cs": 0, "te": 0, "cp": 0, "tu": 0, "cu": 0}
+    model = {"ts": 0, "cs": 0, "te": 0, "cp": 0, "tu": 0, "cu": 0, "tw": 0, "cw": 0}
     rng = random.Random(3)
     latches = latch_writes = 0
     part = 0
@@ -44,7 +46,7 @@ async def random_writes_against_model(dut):
         dut.ctl_idx_i.value, dut.ctl_val_i.value = c_idx, c_val
         dut.latch_i.value = int(latch)
         if latch:
-            model["tu"] = model["cu"] = 0
+            model["tu"] = model["cu"] = model["tw"] = model["cw"] = 0
             latches += 1
             latch_writes += sw
         if sw:
@@ -58,11 +60,14 @@ async def random_writes_against_model(dut):
             key = "cp" if cnt else "te"
             model[key] = (model[key] & ~(1 << idx)) | (val << idx)
             taken[part] += 1
+        if part and bw:                         # the bit processor's own write only
+            model["cw" if b_cnt else "tw"] |= 1 << b_idx
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
         got = {"ts": int(dut.timer_status_o.value), "cs": int(dut.counter_status_o.value),
                "te": int(dut.timer_enable_o.value), "cp": int(dut.counter_pulse_o.value),
-               "tu": int(dut.timer_updated_o.value), "cu": int(dut.counter_updated_o.value)}
+               "tu": int(dut.timer_updated_o.value), "cu": int(dut.counter_updated_o.value),
+               "tw": int(dut.timer_written_o.value), "cw": int(dut.counter_written_o.value)}
         assert got == model
     assert latches > 100 and latch_writes > 50        # the cases the model separates
     assert min(taken.values()) > 300                  # both writers, in their modes

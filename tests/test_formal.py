@@ -139,6 +139,14 @@ MUTATIONS = [
     ("tc_status", "tc_status.v", "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;",
      "if (en_we) timer_enable_o[en_idx]  <= en_val;",
      "timer_enable_o == f_en"),                  # a `= C n` also moves T n's enable
+    # tc_status: the written bits the parallel status wait reads (docs/exchange.md)
+    ("tc_status", "tc_status.v", "        counter_written_o <= {StatusBits{1'b0}};",
+     "        counter_written_o <= counter_written_o;",
+     "counter_written_o[f_n] =="),               # last scan's write taken for this one
+    ("tc_status", "tc_status.v",
+     "if (partitioned_i && bit_we_i && !bit_is_counter_i) timer_written_o[bit_idx_i]   <= 1'b1;",
+     "if (en_we && !en_cnt) timer_written_o[en_idx]   <= 1'b1;",
+     "timer_written_o[f_n] =="),                 # a serial dispatch marks it written
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",
@@ -147,6 +155,12 @@ MUTATIONS = [
      "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
      "wire byte_refused = bus_re_i && !bus_ready_o;",
      "f_access_clocks - f_completed"),                     # misses refused writes
+    # byte_port: TC_WAIT, parallel mode's status wait (docs/exchange.md)
+    ("byte_port", "byte_port.v", "                    && !(is_tc_wait_rd && !tc_wait_written);",
+     "                    ;", "bus_ready_o == f_wr"),    # reads last scan's enable
+    ("byte_port", "byte_port.v", "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? c_wr : t_wr;",
+     "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? t_wr : c_wr;",
+     "bus_ready_o == f_wr"),                     # waits on the other kind's bit
     ("core_seq", "copy_engine.v",
      "assign done_o  = run_i && (issued_q == len_q) && !f_valid_q && !c_valid_q;",
      "assign done_o  = run_i && (issued_q == len_q);"),   # done (lock freed) mid-copy

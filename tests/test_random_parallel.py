@@ -13,6 +13,9 @@ from pathlib import Path
 
 import pytest
 
+from bitbyte.compiler.partition import partition
+from bitbyte.lang.costs import byte_kind
+from bitbyte.lang.parts import STATUS_UPDATES
 from bitbyte.run.prepare import prepare_run
 from bitbyte.sim.cocotb_runner import records_from_rows
 from bitbyte import cli
@@ -95,6 +98,30 @@ def test_parallel_on_harness(cases, exchange, tmp_path, capsys):
         assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
         case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
                    f"harness, parallel, {exchange}")
+
+
+def test_parallel_status_path_on_harness(cases, tmp_path, capsys):
+    """--tc-path status (issue 16 item 1, Fig. 2's bit -> byte half): a timer's enable /
+    a counter's input through the status buffer, the byte side waiting for this scan's
+    write; the same trace as serial mode. Handshake and queue alternate; the path must
+    be taken in most programs with a timer or counter (else this proves little)."""
+    used = with_tc = 0
+    for i, case in enumerate(cases):
+        exchange = "queue" if i % 2 else "handshake"
+        trace = tmp_path / f"{case.seed}.csv"
+        argv = ["run", str(case.il), "--mode", "parallel", "--exchange", exchange,
+                "--tc-path", "status", "--stimulus", str(case.stim), "--scans",
+                str(SCANS), "--watchdog", str(WATCHDOG), "--trace", str(trace)]
+        if case.watch:
+            argv += ["--watch", case.watch]
+        rc = cli.main(argv)
+        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
+        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
+                   f"harness, parallel, {exchange}, --tc-path status")
+        with_tc += any(byte_kind(i) in STATUS_UPDATES for i in case.program.instrs)
+        used += any(i.status_wait for i in partition(case.program, tc_path="status").byte)
+    assert used > with_tc // 2, f"the status path in {used} of {with_tc} programs"
+    print(f"--tc-path status taken in {used} of {with_tc} programs with a timer or counter")
 
 
 @pytest.mark.parametrize("sim", ["icarus", "verilator"])

@@ -58,13 +58,53 @@ def test_fig5_free_status_words():
     assert (chan.bit_words, chan.byte_words) == (named.bit_words, named.byte_words)
 
 
-def test_parallel_mode_keeps_the_channel():
-    """Parallel mode (status_sync): the compiler cannot yet show the serial result is
-    kept, so `status` falls back to the channel (the issue allows it)."""
+def test_fig5_parallel_status_words():
+    """Parallel mode: the same path, and the SD word also carries the status-wait bit
+    (18): the byte side reads T_ENABLE bit 1 only once T_WRITTEN bit 1 says the bit side
+    wrote it in this scan. Hand-worked: 0xB0007001 | 1 << 17 | 1 << 18 = 0xB0067001."""
     program = parse_file("examples/fig5.il")
-    a = partition(program, 4, tc_path="status")
-    b = partition(program, 4)
-    assert (a.bit_words, a.byte_words) == (b.bit_words, b.byte_words)
+    chan = partition(program, 4)
+    stat = partition(program, 4, tc_path="status")
+    assert [t.direction for t in chan.transfers] == ["to_byte", "to_bit"]
+    assert [t.direction for t in stat.transfers] == ["to_bit"]
+    assert 0x18007001 in stat.bit_words and 0xB0067001 in stat.byte_words
+    assert isa.STATUS_WAIT_BIT == 18
+    # free-running mode never waits: bit 17 only
+    assert 0xB0027001 in free(program_text("examples/fig5.il"), "status").byte_words
+
+
+def program_text(path: str) -> str:
+    with open(path) as f:
+        return f.read()
+
+
+# The bit side reaches `= T1` 21 instructions after the FBI read that gives it the
+# compare result, the byte side its SD after one `L 0`: without the wait the byte side
+# reads T_ENABLE before this scan's write and the timer follows IW0 a scan late.
+RACE = ("L IW0\nL 0\n>I\nA I0.0\n" + "AN M1.0\n" * 20 + "L 0\nSD T1\nLD T1\n= Q0.0\n")
+RACE_STIM = "scan,IW0,I0.0\n0,1,1\n1,0,1\n2,1,1\n3,1,1\n4,0,1\n5,1,1\n"
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_parallel_status_waits_for_this_scans_write(tmp_path, sim):
+    """Worked by hand: SD with preset 0 is on exactly while its enable is, so Q0.0 =
+    (IW0 > 0) AND I0.0 in the same scan: 1 0 1 1 0 1, serial and parallel alike. Shown
+    to fail (a scan late: 0 1 0 1 1 0) with the firmware's wait removed."""
+    il = tmp_path / "race.il"
+    il.write_text(RACE)
+    st = tmp_path / "race.csv"
+    st.write_text(RACE_STIM)
+    got = {}
+    for mode, path in (("serial", "channel"), ("parallel", "channel"), ("parallel", "status")):
+        trace = tmp_path / f"{mode}-{path}.csv"
+        assert cli.main(["run", str(il), "--mode", mode, "--tc-path", path, "--sim", sim,
+                         "--stimulus", str(st), "--scans", "6", "--trace", str(trace),
+                         "--watch", "T1"]) == 0
+        got[mode, path] = [tuple(line.split(",")[3:]) for line in
+                           trace.read_text().splitlines()[1:]]
+    want = [(q, q) for q in "101101"]
+    assert got["serial", "channel"] == got["parallel", "channel"] == want
+    assert got["parallel", "status"] == want
 
 
 def test_two_instructions_on_one_timer_keep_the_channel():
@@ -153,32 +193,35 @@ def test_channel_path_is_unchanged_on_the_hardware(tmp_path):
     assert rows[-1][2] == 3
 
 
-def test_random_parallel_programs_same_words_with_either_path(tmp_path):
-    """The random parallel programs (tests/test_random_parallel.py's generators, timers
-    and counters included) compile to the same words with `--tc-path status` in
-    parallel mode, so the serial traces that file checks on both simulators hold for
-    either path; in free mode the same programs do take the status path."""
+def test_random_programs_take_the_status_path(tmp_path):
+    """The random generators' programs (tests/test_random_parallel.py, timers and
+    counters included) do give the status path something to take, in free-running
+    mode (no wait) and in parallel mode (with the status-wait bit); their serial
+    traces with it are checked there on the harness."""
     import random
     from randprog import long_timers, random_mixed_program, random_parallel_program
     from bitbyte.run.prepare import prepare_run
-    took = 0
+    took = {"parallel": 0, "free": 0}
     for index in range(16):
         seed = 7_000_000 + index
         maker = random_parallel_program if index % 2 else random_mixed_program
         il = tmp_path / f"p{seed}.il"
         il.write_text(long_timers(maker(seed), random.Random(seed)))
-        jobs = {tp: prepare_run(str(il), mode="parallel", scans=2, tc_path=tp)[2]
-                for tp in ("channel", "status")}
-        assert (jobs["channel"].prog, jobs["channel"].byte_prog) == \
-            (jobs["status"].prog, jobs["status"].byte_prog), seed
-        free = prepare_run(str(il), mode="free", exchange="queue-free", scans=2,
-                           tc_path="status")[2]
-        took += any(w >> 24 == 0x18 and (w >> 12) & 0xF in (7, 8) for w in free.prog)
-    assert took > 0      # the generators do give the status path something to take
+        for mode, extra in (("parallel", {}), ("free", {"exchange": "queue-free"})):
+            job = prepare_run(str(il), mode=mode, scans=2, tc_path="status", **extra)[2]
+            writes = any(w >> 24 == 0x18 and (w >> 12) & 0xF in (7, 8) for w in job.prog)
+            waits = any(w >> 24 >= 0x80 and (w >> isa.FROM_STATUS_BIT) & 1 and
+                        ((w >> isa.STATUS_WAIT_BIT) & 1) == (mode == "parallel")
+                        for w in job.byte_prog if (w >> 12) & 0xF in (7, 8))
+            took[mode] += writes and waits
+    assert took["parallel"] > 4 and took["free"] > 4, took
 
 
 def test_asm_tc_path(tmp_path, capsys):
-    """asm: serial mode refuses status as run does; parallel gives the same images."""
+    """asm: serial mode refuses status as run does; parallel mode writes the status
+    path's images: `= T1` (0x18007001) and `= C1` (0x18008001) in the bit part, SD T1
+    and CU C1 with the from-status and status-wait bits (0xB0067001, 0xB8068001) in
+    the byte part, none of them with `channel`."""
     il = tmp_path / "p.il"
     il.write_text(PROGRAM)
     assert cli.main(["asm", str(il), "--tc-path", "status"]) == 2
@@ -188,5 +231,6 @@ def test_asm_tc_path(tmp_path, capsys):
         out = tmp_path / tp
         assert cli.main(["asm", str(il), "--mode", "parallel", "--tc-path", tp,
                          "-o", str(out)]) == 0
-        images[tp] = [(out / f"p.{k}.hex").read_text() for k in ("bit", "byte")]
-    assert images["channel"] == images["status"]
+        images[tp] = [(out / f"p.{k}.hex").read_text().lower().split() for k in ("bit", "byte")]
+    for word, part in (("18007001", 0), ("18008001", 0), ("b0067001", 1), ("b8068001", 1)):
+        assert word in images["status"][part] and word not in images["channel"][part]

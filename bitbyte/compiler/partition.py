@@ -168,8 +168,8 @@ def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
     instruction in a mixed program, a part too large) and ValueError for a bad channel
     count.  tc_path: "channel" (a timer's enable / a counter's input crosses as a
     condition, `= FBY k` / `READ FBY k`) or "status" (through the status buffer, Fig. 2,
-    docs/exchange.md: only without status_sync, i.e. in free-running mode; parallel
-    mode keeps the channel)."""
+    docs/exchange.md; with status_sync, i.e. in parallel mode, the byte side waits for
+    this scan's write: the word's status-wait bit)."""
     if not 1 <= channels <= config.channels:
         raise ValueError(f"channels must be 1..{config.channels} (the build's exchange "
                          f"channels per direction), not {channels}")
@@ -179,7 +179,7 @@ def partition(program: Program, channels: int = 4, *, config: Config = DEFAULT,
         mirrored: set[int] = set()
         while True:
             builder = _Builder(program, channels, status_sync, mirrored, hardware_wait,
-                               tc_status=tc_path == "status" and not status_sync)
+                               tc_status=tc_path == "status")
             builder.build()
             more = builder.unmirrored_jumps_over_byte_rows()
             if not more:

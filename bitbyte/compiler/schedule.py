@@ -53,7 +53,11 @@ def _segments(bit: list[PartInstr], lo: int, hi: int, fby_no: dict, fbi_no: dict
             depth -= 1
         if depth < 0:
             return None
+        # `= T n` / `= C n` (--tc-path status): in parallel mode the byte side's timer /
+        # counter instruction of the same row waits for it, an exchange event the
+        # deadlock check does not model, so it keeps the walk's place (a barrier)
         if m in JUMPS or m in ("END", "NOP", "REFRESH", "REFRESH Q") or \
+                (m == "=" and op is not None and op.area in ("T", "C")) or \
                 (op is not None and op.kind not in ("bit", "index", "label")) or \
                 (op is not None and op.kind != "label" and op.area not in _SCHED_AREAS):
             seg.barrier = True

@@ -23,10 +23,11 @@ class _Builder:
     def __init__(self, program: Program, channels: int, status_sync: bool,
                  mirrored: set[int], hardware_wait: bool = True, tc_status: bool = False):
         self.program = program
-        # --tc-path status (free-running mode): a timer / counter instruction that needs
-        # the RLO from the bit side gets it through the status buffer (`= T n` there,
-        # the byte word's from-status flag) instead of a channel, when it is the only
-        # instruction on its timer / counter (one enable / pulse bit each)
+        # --tc-path status (parallel and free-running mode): a timer / counter
+        # instruction that needs the RLO from the bit side gets it through the status
+        # buffer (`= T n` there, the byte word's from-status flag) instead of a channel,
+        # when it is the only instruction on its timer / counter (one enable / pulse bit
+        # each)
         self.tc_status = tc_status
         self.channels = channels
         self.status_sync = status_sync
@@ -246,9 +247,13 @@ class _Builder:
                                               "status buffer (--tc-path status)"))
         byte = self.copy(ins)
         byte.from_status = True
+        # parallel mode: the serial result needs this scan's bit, so the byte side
+        # waits until the bit side has written it (free-running mode never waits)
+        byte.status_wait = self.status_sync
         byte.synthesized = True
         reg = "T_ENABLE" if area == "T" else "C_PULSE"
-        byte.note = f"input from the status buffer's {reg} bit {n}"
+        byte.note = f"input from the status buffer's {reg} bit {n}" + (
+            ", once written in this scan" if self.status_sync else "")
         self.row(BYTE, byte=byte)
 
     def jump(self, ins: Instr) -> None:

@@ -157,6 +157,8 @@ def encode_byte_part(program: Program, pool: list[int] | None = None) -> list[in
             word = _encode_byte_side(program, instr, "serial", pool)
             if getattr(instr, "from_status", False):
                 word |= 1 << isa.FROM_STATUS_BIT   # input from T_ENABLE / C_PULSE bit n
+            if getattr(instr, "status_wait", False):
+                word |= 1 << isa.STATUS_WAIT_BIT   # ... written by the bit side this scan
             words.append(word)
         else:
             raise _error(program, instr, f"`{m}` is a bit instruction: not in the byte part")

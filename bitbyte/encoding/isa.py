@@ -17,6 +17,7 @@ AREA_SHIFT = DEF.fields["area"].lo
 INDEX_BITS = DEF.fields["index"].width     # operand index field: byte*8+bit, or n
 WAIT_UPDATE_BIT = DEF.wait_update_bit      # T/C read in a bit part: wait for this scan's update
 FROM_STATUS_BIT = DEF.from_status_bit      # byte T/C word: input from T_ENABLE / C_PULSE bit n
+STATUS_WAIT_BIT = DEF.status_wait_bit      # ... after the bit side wrote it this scan
 TARGET_BITS = DEF.fields["target"].width   # jump target field: an instruction address
 
 # Logic function field f of loads/combines and opening parentheses.

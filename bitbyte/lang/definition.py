@@ -66,6 +66,7 @@ class Definition:
         self.fields = {k: Field(*w[k]) for k in ("opcode", "area", "index", "target", "imm")}
         self.wait_update_bit: int = w["wait_update"]
         self.from_status_bit: int = w["from_status"]
+        self.status_wait_bit: int = w["status_wait"]
         self.byte_bit: int = w["byte_bit"]
 
         tm = raw["timing"]

@@ -177,6 +177,8 @@ def c_isa(d: Definition) -> str:
          _cdef("BB_IMM_MASK", _h(f["imm"].mask, 6)),
          _cdef("BB_FROM_STATUS", _h(1 << d.from_status_bit, 5),
                "T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n"),
+         _cdef("BB_STATUS_WAIT", _h(1 << d.status_wait_bit, 5),
+               "with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]
     for op in d.byte_opcode_rows:
         b.append(_cdef(op.c, _h(op.value), op.mnemonic

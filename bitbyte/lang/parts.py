@@ -35,6 +35,9 @@ class PartInstr(Instr):
     # byte T/C instruction: its enable / count input is the status buffer's bit n, which
     # the bit part's `= T n` / `= C n` writes (--tc-path status, docs/exchange.md)
     from_status: bool = False
+    # ... and in parallel mode waits first until the bit side has written it in this
+    # scan (the word's status-wait bit, T_WRITTEN / C_WRITTEN)
+    status_wait: bool = False
 
 
 @dataclass

@@ -114,6 +114,23 @@ uint32_t hal_bus_read(void *ctx, uint16_t addr) {
       case BB_BUS_T_ENABLE_HI:    v = (uint32_t)(h->t_enable >> 32); h->tc_in_reads++; break;
       case BB_BUS_C_PULSE_LO:     v = (uint32_t)h->c_pulse; h->tc_in_reads++; break;
       case BB_BUS_C_PULSE_HI:     v = (uint32_t)(h->c_pulse >> 32); h->tc_in_reads++; break;
+      case BB_BUS_T_WRITTEN_LO:   v = (uint32_t)h->t_written; break;
+      case BB_BUS_T_WRITTEN_HI:   v = (uint32_t)(h->t_written >> 32); break;
+      case BB_BUS_C_WRITTEN_LO:   v = (uint32_t)h->c_written; break;
+      case BB_BUS_C_WRITTEN_HI:   v = (uint32_t)(h->c_written >> 32); break;
+      case BB_BUS_TC_WAIT: {      /* not ready until the selected bit is written */
+        const int cnt = (h->tc_wait_sel & BB_TC_COUNTER) != 0;
+        const unsigned n = h->tc_wait_sel & BB_TC_INDEX_MASK;
+        while (!(((cnt ? h->c_written : h->t_written) >> n) & 1u)) {
+          h->clock++;
+          h->stalls_byte++;
+          h->tc_wait_stalls++;
+          if (h->after_access) h->after_access(h->after_access_arg);
+        }
+        v = (uint32_t)(((cnt ? h->c_pulse : h->t_enable) >> n) & 1u);
+        h->tc_in_reads++;
+        break;
+      }
       case BB_BUS_BYTE_FLAGS:     v = h->byte_flags; break;
       case BB_BUS_STALLS_BYTE:    v = h->stalls_byte; break;
       default:                    v = 0; break;
@@ -151,6 +168,7 @@ void hal_bus_write(void *ctx, uint16_t addr, uint32_t data) {
         break;
       }
       case BB_BUS_TICK_DIV:   h->tick_div = data; break;
+      case BB_BUS_TC_WAIT:    h->tc_wait_sel = data; break;
       case BB_BUS_BYTE_FLAGS: h->byte_flags = data; break;
       default: break;
     }

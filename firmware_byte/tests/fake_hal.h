@@ -52,6 +52,11 @@ typedef struct {
   /* the enable / pulse half, written by the bit side (`= T n` / `= C n`) */
   uint64_t t_enable, c_pulse;
   unsigned tc_in_reads;      /* reads of T_ENABLE_* / C_PULSE_* */
+  /* written this scan (T_WRITTEN / C_WRITTEN); TC_WAIT: the selection its last write
+   * made, and the not-ready clocks its reads took (after_access runs after each) */
+  uint64_t t_written, c_written;
+  uint32_t tc_wait_sel;
+  unsigned tc_wait_stalls;
   uint32_t byte_flags;
   /* channels: FBY k (read) returns fby_val[k] after fby_stall[k] not-ready clocks;
    * FBI k (write) takes fbi_stall[k] not-ready clocks, stores fbi_val[k] */

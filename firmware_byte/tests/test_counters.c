@@ -172,8 +172,55 @@ static void test_from_status(void) {
   CHECK_EQ(S.counter[33].value, 7);
 }
 
+/* The bit side writes C 40's input (1) and its written bit only after the third
+ * not-ready clock of the TC_WAIT read (the fake HAL's after-access hook plays the bit
+ * side): a flagged CU with the status wait selects C 40, stalls until then and counts
+ * the 1 written this scan, not the 0 C_PULSE held before; without the wait the same
+ * instruction reads the stale 0. */
+static unsigned stalls_before_write;
+static void bit_side_writes_c40(void *arg) {
+  (void)arg;
+  if (FH.tc_wait_stalls == stalls_before_write && !(FH.c_written >> 40 & 1u)) {
+    FH.c_pulse |= 1ull << 40;
+    FH.c_written |= 1ull << 40;
+  }
+}
+
+static void test_status_wait(void) {
+  setup();
+  const uint32_t cu = i_ctr(BB_OP_CU, 40) | BB_FROM_STATUS;
+  FH.c_pulse = 0;
+  FH.t_written = 1ull << 40;                 /* timer 40 and counter 39: not this one */
+  FH.c_written = 1ull << 39;
+  stalls_before_write = 3;
+  FH.after_access = bit_side_writes_c40;
+  ex(cu | BB_STATUS_WAIT);
+  CHECK_EQ(FH.tc_wait_sel, BB_TC_COUNTER | 40u);
+  CHECK_EQ(FH.tc_wait_stalls, 3u);
+  CHECK_EQ(S.counter[40].value, 1);          /* this scan's input: 0 -> 1 counted */
+  /* a new scan: the latch clears the written bits; the input drops to 0 at once */
+  FH.c_written = 0;
+  FH.c_pulse = 0;
+  FH.tc_wait_stalls = 0;
+  FH.after_access = NULL;
+  ex(cu);                                    /* no wait: reads the 0 of before */
+  CHECK_EQ(FH.tc_wait_stalls, 0u);
+  FH.after_access = bit_side_writes_c40;
+  stalls_before_write = 2;
+  ex(cu | BB_STATUS_WAIT);
+  CHECK_EQ(FH.tc_wait_stalls, 2u);
+  CHECK_EQ(S.counter[40].value, 2);          /* the next edge */
+  FH.after_access = NULL;
+  /* a timer selects without the counter bit */
+  FH.t_written = FH.t_enable = 1ull << 5;
+  S.accu1 = 5;
+  ex(i_tmr(BB_OP_SD, 5) | BB_FROM_STATUS | BB_STATUS_WAIT);
+  CHECK_EQ(FH.tc_wait_sel, 5u);
+}
+
 void suite_counters(void) {
   RUN(test_from_status);
+  RUN(test_status_wait);
   RUN(test_cu);
   RUN(test_cd_and_saturation);
   RUN(test_cu_cd_own_edges);
