@@ -111,7 +111,8 @@ clean:          ## remove build products (keeps .venv)
 
 # ------------------------------------------------------------------ soak (soak/)
 # N random programs (tests/randprog.py's generators) on the Verilator harness in serial
-# and parallel (handshake, queue) mode against the reference interpreter, spread over
+# and parallel (handshake, queue) mode against the reference interpreter, and the
+# shared-memory tearing test at 100 000 reader scans per protection, spread over
 # JOBS cores; mismatches saved under build/soak/cases/; docs/soak.md gets the seed, the
 # time, the mismatches and the coverage table. Not part of `make test` (N=10000: about
 # 15 min on 2 cores). BITBYTE_SEED=<n> repeats a run.
@@ -121,7 +122,8 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 	@rm -rf build/soak; mkdir -p build/soak
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; t0=$$(date +%s); \
 	echo "soak: BITBYTE_SEED=$$seed N=$(N)"; \
-	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider soak/; rc=$$?; \
+	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) BITBYTE_TEARING_SCANS=100000 $(VENV)/bin/pytest -q -n $(JOBS) \
+	  -p no:cacheprovider soak/ tests/test_plant_tearing.py; rc=$$?; \
 	$(VENV)/bin/python soak/soak_report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
 	exit $$rc
 

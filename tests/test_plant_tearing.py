@@ -3,8 +3,9 @@
 Tearing: a writer stamps its scan count into every word of an 8-word group each
 scan; the reader's trace shows, per scan, what its precycle copied. With the
 semaphore and with ping-pong every copied group must be whole (all words equal) over
-more than 100 000 reader scans at random period ratios and phases; with protection
-switched off the same test must see torn groups, so it can fail.
+READER_SCANS reader scans at random period ratios and phases (30 000 in `make test`,
+100 000 in `make soak`: BITBYTE_TEARING_SCANS); with protection switched off the same
+runs must show torn groups, so it can fail (it stops at the first run that does).
 
 Contention: both cores copying at once spin on the lock (sem_wait > 0), a waiting
 core gets the lock within a bounded number of clocks after the owner's copy ends, and
@@ -27,13 +28,15 @@ import plantgen  # noqa: E402
 
 SEED = int(os.environ.get("BITBYTE_SEED", "1"))   # printed by make test
 GROUP = 8
-READER_SCANS = 100_000       # per protection mode, summed over the runs
+# per protection mode, summed over the runs
+READER_SCANS = int(os.environ.get("BITBYTE_TEARING_SCANS", "30000"))
 
 
-def _tearing_runs(tmp_path, protection: str, seed: int):
-    """Runs with random periods and reader phases until READER_SCANS reader scans;
-    returns (reader scans, torn scans, distinct values seen). No run may end with the
-    reader's copy_fail set (no skip, no ping-pong precycle overtaken by its writer)."""
+def _tearing_runs(tmp_path, protection: str, seed: int, until_torn: bool = False):
+    """Runs with random periods and reader phases until READER_SCANS reader scans (or,
+    until_torn, the first run with a torn group); returns (reader scans, torn scans,
+    distinct values seen). No run may end with the reader's copy_fail set (no skip, no
+    ping-pong precycle overtaken by its writer)."""
     rng = random.Random(seed)
     scans = torn = 0
     seen = set()
@@ -57,6 +60,8 @@ def _tearing_runs(tmp_path, protection: str, seed: int):
             seen |= group
         scans += len(rows["r"])
         run += 1
+        if until_torn and torn:
+            break
     return scans, torn, seen
 
 
@@ -71,7 +76,7 @@ def test_no_tearing_with_protection(tmp_path, protection):
 
 def test_tearing_detected_without_protection(tmp_path):
     seed = SEED + 3
-    scans, torn, _ = _tearing_runs(tmp_path, "none", seed)
+    scans, torn, _ = _tearing_runs(tmp_path, "none", seed, until_torn=True)
     assert torn > 0, f"no torn group in {scans} reader scans: the test cannot fail"
 
 
