@@ -36,6 +36,18 @@ def progress(msg: str) -> None:
 
 
 # ---------------------------------------------------------------------- clock
+def splice_section(text: str, lines: list[str]) -> str:
+    """text (docs/performance.md) with the section `lines` replaced, found by its first
+    and last line (its markers), or added at the end: a benchmark run alone rewrites
+    just its own section."""
+    begin, end = lines[0], lines[-1]
+    block = "\n".join(lines)
+    if begin in text and end in text:
+        head, rest = text.split(begin, 1)
+        return head + block + rest.split(end, 1)[1]
+    return text.rstrip("\n") + "\n\n" + block + "\n"
+
+
 def synth_clock() -> tuple[Fraction, str]:
     """The clock the benchmark states its µs at: `Fmax HX8K: <n> MHz` from
     docs/synthesis.md (make synth), rounded down to whole kHz (bitbyte run's

@@ -892,10 +892,15 @@ def markdown(res, d) -> str:
     add("| `bench/report.py` | this file and the plots |")
     add("| `bench/tc_path_bench.py` | the `--tc-path` comparison below (alone: rewrites just "
         "that section) |")
+    add("| `bench/bit_engine_bench.py` | the bit-engine throughput below (alone: likewise) |")
     add("")
     if res.get("tc_path"):
         import tc_path_bench
         L.extend(tc_path_bench.markdown(res["tc_path"]))
+        add("")
+    if res.get("bit_engine"):
+        import bit_engine_bench
+        L.extend(bit_engine_bench.markdown(res["bit_engine"]))
         add("")
     missing = [m for m, s in res["modes"].items() if not s["available"]]
     if missing:

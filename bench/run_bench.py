@@ -32,6 +32,7 @@ import benchlib as bl                     # noqa: E402
 import gen_programs                       # noqa: E402
 import mcu_baseline                       # noqa: E402
 import tc_path_bench                      # noqa: E402
+import bit_engine_bench                   # noqa: E402
 
 ROOT = bl.ROOT
 EX = ROOT / "examples"
@@ -320,6 +321,8 @@ def main(argv=None) -> int:
     scan = measure_scan(cases, modes, f)
     bl.progress("  --tc-path channel vs status, Table-1 program ...")
     tc_path = tc_path_bench.measure(next(c for c in cases if c["key"] == "table1"), f)
+    bl.progress("  bit-engine throughput (issue 18) ...")
+    bit_engine = bit_engine_bench.measure(args.quick)
     bl.progress(f"[2/{steps}] response time: {args.edges} edges per mode ...")
     resp = measure_response(modes, f, args.edges)
     bl.progress(f"[3/{steps}] response time, fast bit logic next to slow word logic ...")
@@ -339,6 +342,7 @@ def main(argv=None) -> int:
     results = dict(clock_mhz=float(f), clock_source=f_src, c320_mhz=float(C320_MHZ),
                    modes=mode_status, scan=scan, response=resp,
                    response_fast=resp_fast, simspeed=speed, tc_path=tc_path,
+                   bit_engine=bit_engine,
                    seed=SEED, quick=args.quick, load_avg=load, cpus=os.cpu_count(),
                    bench_wall_s=time.perf_counter() - t_start,
                    costs=dict(paper=bl.cost_table("paper"), c320=bl.cost_table("c320")),

@@ -104,15 +104,6 @@ def markdown(res: dict) -> list[str]:
     return L
 
 
-def splice(text: str, lines: list[str]) -> str:
-    """text with the section replaced (or added at the end)."""
-    block = "\n".join(lines)
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        return head + block + rest.split(END, 1)[1]
-    return text.rstrip("\n") + "\n\n" + block + "\n"
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="500 scans instead of 3000")
@@ -126,7 +117,7 @@ def main(argv=None) -> int:
     bl.BUILD.mkdir(parents=True, exist_ok=True)
     (bl.BUILD / "tc_path.json").write_text(json.dumps(res, indent=1))
     doc = bl.ROOT / "docs" / "performance.md"
-    doc.write_text(splice(doc.read_text(), markdown(res)))
+    doc.write_text(bl.splice_section(doc.read_text(), markdown(res)))
     bl.progress("docs/performance.md: the --tc-path section rewritten")
     return 0
 
