@@ -7,7 +7,9 @@ this slice supports, and why each translation is S7's meaning, is docs/s7.md; in
 short:
 
 * one `ORGANIZATION_BLOCK OB 1` (header lines, `VAR_TEMP`, `BEGIN`, `NETWORK`,
-  `TITLE =`, `END_ORGANIZATION_BLOCK`); every other block is `unsupported:`;
+  `TITLE =`, `END_ORGANIZATION_BLOCK`), and `FUNCTION FC n`, `FUNCTION_BLOCK FB n`
+  with their instance `DATA_BLOCK`s, called with CALL / UC / CC and inlined
+  (expand_calls); every other block is `unsupported:`;
 * German or English mnemonics and addresses, detected from the source (one language
   per source) or forced with mnemonics="de" / "en";
 * bit logic with S7's status bits /FC (first check) and OR, resolved statically:
@@ -95,12 +97,83 @@ BIT_AREAS = ("I", "Q", "M")
 COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
 ARITHMETIC = ("+I", "-I", "*I", "/I")
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
-    + TIMER_STARTS + ("CU", "CD")
+    + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
 # instructions that neither read nor change /FC, the OR bit or the RLO: a jump
 # target starting with them is judged by the first statement after them
 FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
+
+# Blocks (docs/s7.md, "Blocks and calls")
+BLOCK_HEADS = {"ORGANIZATION_BLOCK": "OB", "FUNCTION": "FC", "FUNCTION_BLOCK": "FB",
+               "DATA_BLOCK": "DB"}
+BLOCK_ENDS = {"OB": "END_ORGANIZATION_BLOCK", "FC": "END_FUNCTION",
+              "FB": "END_FUNCTION_BLOCK", "DB": "END_DATA_BLOCK"}
+SECTIONS = {"VAR_INPUT": "IN", "VAR_OUTPUT": "OUT", "VAR_IN_OUT": "IN_OUT",
+            "VAR": "STAT", "VAR_TEMP": "TEMP"}
+BLOCK_SECTIONS = {"OB": ("TEMP",), "FC": ("IN", "OUT", "IN_OUT", "TEMP"),
+                  "FB": ("IN", "OUT", "IN_OUT", "STAT", "TEMP"), "DB": ()}
+PARAMETERS = ("IN", "OUT", "IN_OUT")
+LOCAL_TYPES = ("BOOL", "INT", "WORD")
+WRITES = ("=", "S", "R", "FP", "FN", "T")    # statements that write their operand
+# The marker region the front end keeps for block-local data (FB instances, TEMPs,
+# the RLO saved around a call's copies): bits from M 192.0 up to M 223.7, words
+# MW 128, 130, ... MW 190 (S7 bytes 128..191); the timers' scratch bits are above it
+# (M 255.7 down).  A program with such data may not use M bytes 128..223 itself.
+LOCAL_BYTES = (128, 224)
+LOCAL_BIT_BASE, LOCAL_BIT_END = 192 * 8, 224 * 8
+LOCAL_WORD_BASE, LOCAL_WORD_END = 128, 192
+
+
+@dataclass
+class Decl:
+    """One declaration of a block's interface: `name : TYPE [:= value];`."""
+
+    name: str
+    section: str        # IN OUT IN_OUT STAT TEMP
+    type: str           # upper case: BOOL INT WORD, or any other (rejected when used)
+    line: int
+    col: int
+
+
+@dataclass(eq=False)
+class Block:
+    kind: str           # OB FC FB DB
+    number: int
+    line: int
+    col: int
+    decls: dict[str, Decl] = field(default_factory=dict)   # upper-case name ->
+    stmts: list = field(default_factory=list)
+    instance_of: int | None = None      # a DB: the FB it is an instance of
+    begin: int = 0
+
+    @property
+    def name(self) -> str:
+        return f"{self.kind} {self.number}"
+
+
+@dataclass
+class CallInfo:
+    """`CALL FC n (p := a, ...)`, `CALL FB n, DB m (...)`, `UC FC n`, `CC FC n`."""
+
+    kind: str
+    number: int
+    db: int | None
+    params: list        # [(name Word, [actual Words])]
+
+
+@dataclass
+class Binding:
+    """What a `#name` of a block stands for where it is inlined: the words of an
+    address (`E 0.0`, a marker the front end allocated) or of a constant."""
+
+    words: list | None = None
+    const: bool = False         # a constant (awlsim copies it; writing it is an error)
+    boolean: str | None = None  # TRUE / FALSE
+    copy: bool = False          # awlsim passes a copy (an FB's instance data, a
+                                # constant): an FC writing it as an input differs
+    decl: Decl | None = None
+    cell: tuple | None = None   # the key of a block-local cell, allocated on first use
 
 
 # --------------------------------------------------------------------------------------
@@ -112,11 +185,13 @@ class Word:
     text: str
     col: int            # 1-based
     shown: str = ""     # how messages name it (a symbol: `"Motor"` for `A4.0`)
+    local: bool = False  # a marker the front end allocated for a block-local variable
 
 
-@dataclass
+@dataclass(eq=False)
 class Stmt:
-    """One statement: labels, the mnemonic as written, the operand words."""
+    """One statement: labels, the mnemonic as written, the operand words.  (Compared
+    by identity: an FC inlined twice gives equal copies at different places.)"""
 
     line: int
     col: int
@@ -125,8 +200,15 @@ class Stmt:
     operands: list[Word]
     labels: list[Word] = field(default_factory=list)
     canon: str = ""     # canonical (English) mnemonic, once the language is known
+    extra: object = None  # CALL: its CallInfo; @CALL/@END: the copies; @RET: the label
 
 
+_CALL_START = re.compile(r"\s*(?:[A-Za-z_]\w*\s*:(?!=)\s*)*(CALL|UC|CC)\b", re.I)
+_CALL_STMT = re.compile(r"\s*(CALL|UC|CC)\s+(.*?)\s*$", re.I | re.S)
+_CALLEE = re.compile(r"(FC|FB)\s*(\d+)\s*(?:,\s*(DB)\s*(\d+))?\s*(\((.*)\))?", re.I | re.S)
+_PARAM = re.compile(r"\s*([A-Za-z_]\w*)\s*:=\s*(.*?)\s*", re.S)
+_DECL = re.compile(r"\s*([A-Za-z_]\w*)\s*(?:\{[^}]*\}\s*)?:\s*([^:;]+?)\s*"
+                   r"(?::=\s*([^;]+?))?\s*;?\s*$")
 _TOKEN = re.compile(r'"[^"]*"|\(|\)|[^\s()"]+')
 _LABEL = re.compile(r"\s*([A-Za-z_][A-Za-z0-9_]*)\s*:(?!=)")
 
@@ -142,13 +224,29 @@ def _strip_comment(text: str) -> str:
     return text
 
 
-def _split_statements(text: str) -> list[tuple[int, str]]:
-    """(offset, piece) for the `;`-separated pieces of a line (quotes respected)."""
+def _initial(value: str) -> int | None:
+    """The number of an initial value (FALSE 0, TRUE 1, INT, W#16#/16#/B#16#), or
+    None if it is none of them."""
+    v = value.strip().upper()
+    if v in ("FALSE", "TRUE"):
+        return int(v == "TRUE")
+    prefix, _, digits = v.rpartition("#")
+    try:
+        return int(digits, 16 if prefix in ("W#16", "16", "B#16") else
+                   2 if prefix in ("2", "W#2", "B#2") else 10) if prefix in (
+            "", "W#16", "16", "B#16", "2", "W#2", "B#2") else None
+    except ValueError:
+        return None
+
+
+def _split_statements(text: str, sep: str = ";") -> list[tuple[int, str]]:
+    """(offset, piece) for the `;`-separated pieces of a line, or the `,`-separated
+    ones of a parameter list (quotes respected)."""
     pieces, start, quoted = [], 0, False
     for i, ch in enumerate(text):
         if ch == '"':
             quoted = not quoted
-        elif ch == ";" and not quoted:
+        elif ch == sep and not quoted:
             pieces.append((start, text[start:i]))
             start = i + 1
     pieces.append((start, text[start:]))
@@ -244,6 +342,7 @@ class StlFrontEnd:
         self.resolve_symbols()
         for stmt in self.stmts:
             self.canonical(stmt)
+        self.expand_calls()
         self.prepare_timers()
         program = self.translate()
         program.symbols = self.symbol_operands()
@@ -260,7 +359,11 @@ class StlFrontEnd:
         for stmt in self.stmts:
             if not stmt.operands or not stmt.operands[0].text.startswith('"'):
                 continue
-            word = stmt.operands[0]
+            stmt.operands[0] = self.resolve_word(stmt, stmt.operands[0])
+
+    def resolve_word(self, stmt: Stmt, word: Word) -> Word:
+        """A quoted symbol -> its address (a Word that remembers the symbol)."""
+        if True:
             name = word.text.strip('"')
             sym = self.symbol_table.get(name.upper())
             if sym is None:
@@ -275,7 +378,7 @@ class StlFrontEnd:
                 raise self.unsupported(stmt, f"symbol `{word.text}` is `{sym.address}` "
                                        f"({self.symbol_path}:{sym.line}), not an "
                                        "address of this slice", word.col)
-            stmt.operands[0] = Word(address, word.col, f"{word.text} = {sym.address}")
+            return Word(address, word.col, f"{word.text} = {sym.address}")
 
     def symbol_language(self) -> str:
         """The table's mnemonics: from its German-only or English-only areas (a table
@@ -331,6 +434,313 @@ class StlFrontEnd:
                 continue
             out[key] = op
         return out
+
+    # -- blocks and calls: inlining ------------------------------------------------
+
+    def expand_calls(self) -> None:
+        """Replace every call by the called block's statements (docs/s7.md, "Blocks
+        and calls"): its `#name`s bound to the actual operands (FC), to markers of
+        the instance DB (FB) or of the block's TEMPs; its labels renamed, its block
+        ends made jumps to the end of the inlined body.  Pseudo-statements carry
+        what S7's CALL does: @CALL (/FC = 0, OR = 0, an FB's inputs copied in),
+        @LEAVE (the block end: /FC = 0, OR = 0), @END (an FB's outputs copied out,
+        the label the block's BEA/BEB jump to), @RET (BEA/BE)."""
+        self.cells: dict[tuple, Word] = {}
+        self.local_bits = 0
+        self.local_words = 0
+        self.inlined = 0
+        ob1 = self.blocks[("OB", 1)]
+        scope = {"block": ob1, "prefix": "", "bindings": self.temp_bindings(ob1),
+                 "ret": None, "returns": False}
+        self.stmts = self.expand(ob1.stmts, scope, [ob1])
+        self.check_local_region()
+
+    def temp_bindings(self, block: Block) -> dict[str, Binding]:
+        return {key: Binding(decl=d, cell=(block.name, "TEMP", key))
+                for key, d in block.decls.items() if d.section == "TEMP"}
+
+    def cell(self, stmt: Stmt, binding: Binding, col: int) -> list[Word]:
+        """The marker of a block-local variable, allocated on its first use."""
+        decl = binding.decl
+        if binding.cell in self.cells:
+            return [self.cells[binding.cell]]
+        if decl.type not in LOCAL_TYPES:
+            raise self.error(stmt.line, col, f"unsupported: `#{decl.name}` of type "
+                             f"{decl.type} (block-local data of this slice: BOOL, INT, "
+                             "WORD)")
+        bit = decl.type == "BOOL"
+        used = self.local_bits if bit else self.local_words
+        k = LOCAL_BIT_BASE + used if bit else LOCAL_WORD_BASE + 2 * used
+        if k >= (LOCAL_BIT_END if bit else LOCAL_WORD_END):
+            raise self.unsupported(stmt, f"more than {used} block-local "
+                                   + ("bits (M 192.0 .. M 223.7)" if bit else
+                                      "words (MW 128 .. MW 190)"))
+        if bit:
+            self.local_bits += 1
+        else:
+            self.local_words += 1
+        text = f"M{k // 8}.{k % 8}" if bit else f"MW{k}"
+        word = Word(text, 0, "", True)
+        self.cells[binding.cell] = word
+        return [word]
+
+    def bound_words(self, stmt: Stmt, word: Word, scope: dict) -> tuple[Binding,
+                                                                         list[Word]]:
+        """`#name` in `stmt` -> (its binding, the words it stands for)."""
+        name = word.text[1:]
+        binding = scope["bindings"].get(name.upper())
+        if binding is None:
+            block = scope["block"]
+            raise self.error(stmt.line, word.col, f"undeclared local `{word.text}` (not "
+                             f"declared in {block.name})")
+        if binding.boolean is not None:
+            raise self.error(stmt.line, word.col, f"unsupported: `{word.text}` bound to "
+                             f"the constant {binding.boolean} (no bit constant here)")
+        words = binding.words if binding.cell is None else self.cell(stmt, binding,
+                                                                     word.col)
+        shown = f"{word.text} = {' '.join(w.shown or w.text for w in words)}" \
+            if binding.cell is None else word.text
+        out = [Word(w.text, word.col, shown if i == 0 else "", w.local)
+               for i, w in enumerate(words)]
+        return binding, out
+
+    def expand(self, stmts: list[Stmt], scope: dict, stack: list[Block]) -> list[Stmt]:
+        out: list[Stmt] = []
+        prefix = scope["prefix"]
+        for stmt in stmts:
+            labels = [Word(f"{prefix}.{w.text}" if prefix else w.text, w.col)
+                      for w in stmt.labels]
+            if stmt.canon in ("CALL", "UC", "CC"):
+                out += self.inline(stmt, labels, scope, stack)
+                continue
+            operands = []
+            for w in stmt.operands:
+                if self.is_jump(stmt) and prefix:
+                    operands.append(Word(f"{prefix}.{w.text}", w.col))
+                elif w.text.startswith("#"):
+                    binding, words = self.bound_words(stmt, w, scope)
+                    if stmt.canon in WRITES and binding.const:
+                        raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` writes "
+                                               f"`{w.text}`, which is bound to a "
+                                               "constant", w.col)
+                    if stmt.canon in WRITES and binding.copy and binding.decl and \
+                            binding.decl.section == "IN" and binding.cell is None:
+                        raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` writes the "
+                                               f"input `{w.text}`, whose actual S7 "
+                                               "passes as a copy (a constant or an "
+                                               "FB's instance data)", w.col)
+                    operands += words
+                else:
+                    operands.append(w)
+            new = Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic, operands, labels,
+                       stmt.canon)
+            if scope["ret"] is not None and stmt.canon in ("BE", "BEU", "BEC"):
+                self.no_operand(stmt)
+                scope["returns"] = True
+                if stmt.canon == "BEC":         # BEB: SPB to the block end
+                    new.canon, new.operands = "JC", [Word(scope["ret"], stmt.col)]
+                else:
+                    new.canon, new.extra = "@RET", scope["ret"]
+            out.append(new)
+        return out
+
+    def inline(self, stmt: Stmt, labels: list[Word], scope: dict,
+               stack: list[Block]) -> list[Stmt]:
+        info: CallInfo = stmt.extra
+        m = stmt.canon
+        written = f"{stmt.mnemonic.text} {info.kind} {info.number}"
+        callee = self.blocks.get((info.kind, info.number))
+        if callee is None:
+            raise self.error(stmt.line, stmt.col, f"`{written}`: {info.kind} "
+                             f"{info.number} is not in the source")
+        if callee in stack:
+            chain = " -> ".join(b.name for b in stack[stack.index(callee):] + [callee])
+            raise self.unsupported(stmt, f"`{written}` is a recursive call ({chain}): "
+                                   "calls are inlined, and recursion cannot be")
+        params = [d for d in callee.decls.values() if d.section in PARAMETERS]
+        if m in ("UC", "CC"):
+            if info.kind == "FB":
+                raise self.unsupported(stmt, f"`{written}` (UC/CC of an FB: its instance "
+                                       "DB would be the open DI; use CALL FB n, DB m)")
+            if params or info.params or info.db is not None:
+                raise self.unsupported(stmt, f"`{written}`: UC/CC pass no parameters, "
+                                       f"and {callee.name} has some (use CALL)")
+        if info.kind == "FB" and info.db is None:
+            raise self.error(stmt.line, stmt.col, f"`{written}` needs an instance DB: "
+                             f"CALL FB {info.number}, DB m")
+        if info.kind == "FC" and info.db is not None:
+            raise self.error(stmt.line, stmt.col, f"`{written}`: an FC has no instance "
+                             "DB")
+        if info.kind == "FB":
+            db = self.blocks.get(("DB", info.db))
+            if db is None or db.instance_of != info.number:
+                what = "is not in the source" if db is None else \
+                    f"is not an instance DB of FB {info.number}"
+                raise self.error(stmt.line, stmt.col, f"`{written}, DB {info.db}`: DB "
+                                 f"{info.db} {what}")
+        self.inlined += 1
+        prefix = f"{info.kind}{info.number}.{self.inlined}"
+        given: dict[str, tuple[Word, Binding]] = {}
+        for name, actual in info.params:
+            decl = callee.decls.get(name.text.upper())
+            if decl is None or decl.section not in PARAMETERS:
+                raise self.error(stmt.line, name.col, f"`{name.text}` is not a parameter "
+                                 f"of {callee.name}")
+            if name.text.upper() in given:
+                raise self.error(stmt.line, name.col, f"parameter `{name.text}` given "
+                                 "twice")
+            if not actual:
+                raise self.error(stmt.line, name.col, f"missing actual for "
+                                 f"`{name.text}`")
+            given[name.text.upper()] = (name, self.actual(stmt, decl, actual, scope))
+        bindings = self.temp_bindings(callee)
+        copy_in, copy_out = [], []
+        if info.kind == "FC":
+            seen: dict[str, Word] = {}
+            for decl in params:
+                if decl.name.upper() not in given:
+                    raise self.error(stmt.line, stmt.col, f"`{written}` without the "
+                                     f"parameter `{decl.name}` (an FC needs all of them)")
+                name, b = given[decl.name.upper()]
+                if b.boolean is not None:
+                    raise self.unsupported(stmt, f"`{name.text} := {b.boolean}`: a bit "
+                                           "constant for an FC parameter", name.col)
+                if b.copy and not b.const:
+                    key = " ".join(w.text for w in b.words)
+                    if key in seen:
+                        raise self.unsupported(stmt, f"`{name.text}` and "
+                                               f"`{seen[key].text}` get the same "
+                                               "instance variable, which S7 passes as "
+                                               "two copies", name.col)
+                    seen[key] = name
+                bindings[decl.name.upper()] = Binding(b.words, b.const, None, b.copy,
+                                                      decl)
+        else:
+            instance = f"DB {info.db}"
+            for key, decl in callee.decls.items():
+                if decl.section != "TEMP":
+                    bindings[key] = Binding(decl=decl, cell=(instance, key), copy=True)
+            for key, (name, b) in given.items():
+                decl = callee.decls[key]
+                field_words = self.cell(stmt, bindings[key], name.col)
+                kind = "bit" if decl.type == "BOOL" else "word"
+                if decl.section in ("IN", "IN_OUT"):
+                    copy_in.append((b.boolean.lower() if b.boolean else kind, b.words,
+                                    field_words))
+                if decl.section in ("OUT", "IN_OUT"):
+                    copy_out.append((kind, field_words, b.words))
+        for name, b in given.values():
+            decl = callee.decls[name.text.upper()]
+            if decl.section != "IN" and (b.const or b.boolean):
+                raise self.error(stmt.line, name.col, f"a constant for the "
+                                 f"{'output' if decl.section == 'OUT' else 'in/out'} "
+                                 f"parameter `{name.text}`")
+        inner = {"block": callee, "prefix": prefix, "bindings": bindings, "ret": prefix,
+                 "returns": m == "CC"}
+        body = self.expand(callee.stmts, inner, stack + [callee])
+        where = (stmt.line, stmt.col, stmt.source, stmt.mnemonic)
+        out = []
+        if m == "CC":                   # S7: called when RLO = 1; RLO := 1 either way
+            out.append(Stmt(*where, [Word(prefix, stmt.col)], labels, "JCN"))
+            labels = []
+        out.append(Stmt(*where, [], labels, "@CALL", copy_in))
+        out += body
+        out.append(Stmt(*where, [], [], "@LEAVE"))
+        out.append(Stmt(*where, [], [Word(prefix, stmt.col)] if inner["returns"] else [],
+                        "@END", copy_out))
+        return out
+
+    def actual(self, stmt: Stmt, decl: Decl, words: list[Word], scope: dict) -> Binding:
+        """The actual operand of a parameter: an address, a constant, TRUE/FALSE, a
+        symbol or a `#name` of the calling block."""
+        first = words[0]
+        up = first.text.upper()
+        if decl.type not in LOCAL_TYPES:
+            raise self.error(stmt.line, first.col, f"unsupported: parameter "
+                             f"`{decl.name}` of type {decl.type} (parameters of this "
+                             "slice: BOOL, INT, WORD)")
+        if first.text.startswith("#"):
+            binding, out = self.bound_words(stmt, first, scope)
+            if len(words) > 1:
+                raise self.error(stmt.line, words[1].col, f"extra operand "
+                                 f"`{words[1].text}`")
+            return Binding(out, binding.const, None, binding.copy)
+        if first.text.startswith('"'):
+            return Binding([self.resolve_word(stmt, first)] + words[1:])
+        if up in ("TRUE", "FALSE"):
+            if decl.type != "BOOL":
+                raise self.error(stmt.line, first.col, f"operand of the wrong kind: "
+                                 f"`{decl.name}` is {decl.type}, not `{first.text}`")
+            return Binding(None, True, up, True)
+        bit = "." in first.text or len(words) > 1 and "." in words[1].text
+        const = up[0].isdigit() or up[0] in "+-" or "#" in up
+        if (decl.type == "BOOL") != (bit and not const):
+            raise self.error(stmt.line, first.col, f"operand of the wrong kind: "
+                             f"`{decl.name}` is {decl.type}, not "
+                             f"`{' '.join(w.text for w in words)}`")
+        return Binding(words, const, None, const)
+
+    def check_local_region(self) -> None:
+        """The program's own operands stay out of the region the block-local data
+        lives in (M bytes 128..223), once there is such data."""
+        if not self.cells:
+            return
+        for stmt in self.stmts:
+            for ops in [stmt.operands] + [w for c in (stmt.extra if stmt.canon in (
+                    "@CALL", "@END") else []) for w in (c[1] or [], c[2])]:
+                if not ops or ops[0].local or self.is_jump(stmt):
+                    continue
+                text = "".join(w.text for w in ops[:2]).upper()
+                area, rest = _split_area(text)
+                canon = AREA_TABLE.get(area, {}).get(self.lang)
+                lo = hi = None
+                if canon == "M" and re.fullmatch(r"\d+\.\d", rest):
+                    lo = hi = int(rest.split(".")[0])
+                elif canon == "MW" and rest.isdigit():
+                    lo, hi = int(rest), int(rest) + 1
+                if lo is not None and lo < LOCAL_BYTES[1] and hi >= LOCAL_BYTES[0]:
+                    shown = ops[0].shown or " ".join(w.text for w in ops[:2])
+                    raise self.unsupported(stmt, f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
+                                           f"M {LOCAL_BYTES[1] - 1}, which this program's "
+                                           "block-local data (FB instances, TEMPs) uses",
+                                           ops[0].col)
+
+    def copy(self, stmt: Stmt, st: _State, pairs: list) -> None:
+        """An FB call's parameters copied in or out: (kind, source words, target
+        words), kind bit / word / true / false.  S7 copies without touching the RLO
+        or the accumulators; here the RLO is saved around bit copies (unless the next
+        statement overwrites it) and the accumulators count as changed."""
+        if not pairs:
+            return
+
+        def tmp(mnemonic: str, words: list[Word]) -> Stmt:
+            return Stmt(stmt.line, stmt.col, stmt.source, Word(mnemonic, stmt.col),
+                        words, canon=mnemonic)
+
+        nxt = self.next_stmt(stmt)
+        keep = any(kind != "word" for kind, _, _ in pairs) and nxt is not None and not (
+            nxt.canon in COMBINE and nxt.operands or nxt.canon in OPEN
+            or nxt.canon in ("SET", "CLR") + COMPARES)
+        save = self.cell(stmt, Binding(decl=Decl("RLO", "TEMP", "BOOL", 0, 0),
+                                       cell=("@", "RLO")), stmt.col)[0]
+        save_op = Operand("bit", area="M", byte=int(save.text[1:].split(".")[0]),
+                          bit=int(save.text.split(".")[1]), text="RLO saved")
+        if keep:
+            self.emit("=", save_op)
+        for kind, src, dst in pairs:
+            if kind == "word":
+                op, _ = self.load_operand(tmp("L", src))
+                self.emit("L", op)
+                self.emit("T", self.word_operand(tmp("T", dst), ("QW", "MW")))
+                st.acc = (CLOBBERED, CLOBBERED)
+                continue
+            if kind == "bit":
+                self.emit("LD", self.bit_operand(tmp("A", src)))
+            else:
+                self.emit("SET" if kind == "true" else "CLR")
+            self.emit("=", self.bit_operand(tmp("=", dst), ("Q", "M")))
+        if keep:
+            self.emit("LD", save_op)
 
     # -- timers --------------------------------------------------------------------
 
@@ -410,11 +820,21 @@ class StlFrontEnd:
         self.check_scratch()
 
     def read_blocks(self) -> None:
-        """Find `ORGANIZATION_BLOCK OB 1` ... `END_ORGANIZATION_BLOCK`, collect its
-        body statements; other blocks are unsupported."""
-        state, ob1_seen, begin_line = "outside", False, 0
+        """Read every block of the source: OB 1, FC n, FB n (their interfaces and
+        bodies) and DB n (instance DBs; global ones are read and never used, since
+        DB operands are rejected).  Other OBs and TYPE are unsupported."""
+        self.blocks: dict[tuple[str, int], Block] = {}
+        state, block, section = "outside", None, ""
+        struct_depth, call = 0, None
         for n, raw in enumerate(self.lines, start=1):
             text = _strip_comment(raw.rstrip("\r"))
+            if call is not None:                # a CALL's parameters over lines
+                call[1].append(text)
+                joined = " ".join(call[1])
+                if joined.count("(") <= joined.count(")"):
+                    self.read_statements(call[0], joined)
+                    call = None
+                continue
             stripped = text.strip()
             if not stripped:
                 continue
@@ -422,55 +842,127 @@ class StlFrontEnd:
             words = stripped.replace(";", " ").split()
             head = words[0].upper()
             if state == "outside":
-                if head == "ORGANIZATION_BLOCK":
-                    rest = "".join(words[1:]).upper()
-                    if rest != "OB1":
-                        raise self.error(n, col, "unsupported: `" + stripped + "` (this "
-                                         "slice runs ORGANIZATION_BLOCK OB 1 only)")
-                    if ob1_seen:
-                        raise self.error(n, col, "duplicate block OB 1")
-                    ob1_seen, state = True, "header"
-                elif head in ("FUNCTION", "FUNCTION_BLOCK", "DATA_BLOCK", "TYPE"):
-                    raise self.error(n, col, f"unsupported: {head} (this slice runs "
-                                     "ORGANIZATION_BLOCK OB 1 only)")
-                else:
-                    raise self.error(n, col, f"expected ORGANIZATION_BLOCK OB 1, found "
-                                     f"`{words[0]}`")
+                block = self.block_head(n, col, stripped, words)
+                state = "header"
             elif state == "header":
                 if head == "BEGIN":
-                    state, begin_line = "body", n
-                elif head == "VAR_TEMP":
-                    state = "temp"
-                elif head.startswith(("VAR", "END_VAR")):
-                    raise self.error(n, col, f"unsupported: {head} in OB 1 (only VAR_TEMP)")
+                    state, block.begin = ("dbinit" if block.kind == "DB" else "body"), n
+                elif head in SECTIONS:
+                    section = SECTIONS[head]
+                    if section not in BLOCK_SECTIONS[block.kind]:
+                        raise self.error(n, col, f"unsupported: {head} in {block.name}"
+                                         + (" (only VAR_TEMP)" if block.kind == "OB"
+                                            else ""))
+                    state = "decl"
+                elif block.kind == "DB" and head == "STRUCT":
+                    state, struct_depth = "struct", 1
+                elif block.kind == "DB" and re.fullmatch(r"FB\s*\d+", " ".join(words),
+                                                         re.I):
+                    block.instance_of = int(re.sub(r"\D", "", " ".join(words)))
                 elif head.startswith(("TITLE", "AUTHOR", "FAMILY", "NAME", "VERSION",
                                       "KNOW_HOW_PROTECT", "CODE_VERSION", "{")):
                     pass
                 else:
                     raise self.error(n, col, f"expected BEGIN, found `{words[0]}`")
-            elif state == "temp":
+            elif state == "decl":
                 if head == "END_VAR":
                     state = "header"
+                elif head == "END_STRUCT" and struct_depth:
+                    struct_depth -= 1
+                elif not struct_depth:
+                    struct_depth = self.read_decl(block, section, n, col, stripped)
+                elif head.endswith("STRUCT") or stripped.upper().rstrip(
+                        "; ").endswith(": STRUCT"):
+                    struct_depth += 1
+            elif state == "struct":
+                if head == "END_STRUCT":
+                    struct_depth -= 1
+                    state = "header" if not struct_depth else state
+                elif stripped.upper().rstrip("; ").endswith("STRUCT"):
+                    struct_depth += 1
+            elif state == "dbinit":
+                if head == "END_DATA_BLOCK":
+                    state = "outside"
                 else:
-                    name = stripped.split(":")[0].strip()
-                    self.temps[name.upper()] = n
+                    self.read_db_value(block, n, col, stripped)
             elif state == "body":
-                if head == "END_ORGANIZATION_BLOCK":
+                if head == BLOCK_ENDS[block.kind]:
                     state = "outside"
                 elif head in ("NETWORK",) or head.startswith("TITLE"):
                     pass
                 elif head.startswith("END_"):
-                    raise self.error(n, col, f"expected END_ORGANIZATION_BLOCK, found "
-                                     f"`{words[0]}`")
+                    raise self.error(n, col, f"expected {BLOCK_ENDS[block.kind]}, "
+                                     f"found `{words[0]}`")
                 else:
-                    self.read_statements(n, text)
-        if state in ("header", "temp"):
-            raise self.error(len(self.lines), 1, "missing BEGIN in OB 1")
-        if state == "body":
-            raise self.error(begin_line, 1, "missing END_ORGANIZATION_BLOCK for the "
-                             "OB 1 that begins here")
-        if not ob1_seen:
+                    self.stmts = block.stmts
+                    if _CALL_START.match(text) and text.count("(") > text.count(")"):
+                        call = (n, [text])
+                    else:
+                        self.read_statements(n, text)
+        if call is not None:
+            raise self.error(call[0], 1, "unbalanced parentheses: the parameter list of "
+                             "this CALL is never closed")
+        if state in ("header", "decl", "struct"):
+            raise self.error(len(self.lines), 1, f"missing BEGIN in {block.name}")
+        if state in ("body", "dbinit"):
+            raise self.error(block.begin, 1, f"missing {BLOCK_ENDS[block.kind]} for "
+                             f"the {block.name} that begins here")
+        if ("OB", 1) not in self.blocks:
             raise SourceError(self.path, 0, 0, "no ORGANIZATION_BLOCK OB 1 in the source")
+        self.stmts = [st for b in self.blocks.values() for st in b.stmts]
+
+    def block_head(self, n: int, col: int, stripped: str, words: list[str]) -> Block:
+        head = words[0].upper()
+        kind = BLOCK_HEADS.get(head)
+        if kind is None:
+            if head in ("TYPE", "VAR_GLOBAL"):
+                raise self.error(n, col, f"unsupported: {head} (this slice reads "
+                                 "ORGANIZATION_BLOCK OB 1, FUNCTION, FUNCTION_BLOCK and "
+                                 "DATA_BLOCK)")
+            raise self.error(n, col, f"expected ORGANIZATION_BLOCK OB 1, FUNCTION, "
+                             f"FUNCTION_BLOCK or DATA_BLOCK, found `{words[0]}`")
+        m = re.fullmatch(kind + r"\s*(\d+)\s*(:\s*\w+)?", " ".join(words[1:]), re.I)
+        if kind == "OB" and (m is None or int(m.group(1)) != 1):
+            raise self.error(n, col, "unsupported: `" + stripped + "` (this slice runs "
+                             "ORGANIZATION_BLOCK OB 1 only)")
+        if m is None:
+            raise self.error(n, col, f"expected `{head} {kind} <number>`, found "
+                             f"`{stripped}`")
+        number = int(m.group(1))
+        if (kind, number) in self.blocks:
+            first = self.blocks[(kind, number)]
+            raise self.error(n, col, f"duplicate block {kind} {number} (first at line "
+                             f"{first.line})")
+        block = Block(kind, number, n, col)
+        self.blocks[(kind, number)] = block
+        return block
+
+    def read_decl(self, block: Block, section: str, n: int, col: int,
+                  text: str) -> int:
+        """`name : TYPE [:= value];` (1 when it opens a STRUCT, else 0)."""
+        m = _DECL.match(text)
+        if not m:
+            raise self.error(n, col, f"malformed declaration `{text}`: name : type; "
+                             "expected")
+        name, type_, value = m.group(1), m.group(2).strip().upper(), m.group(3)
+        if name.upper() in block.decls:
+            raise self.error(n, col, f"duplicate declaration `{name}` in {block.name}")
+        block.decls[name.upper()] = Decl(name, section, type_, n, col)
+        if value is not None and type_ in LOCAL_TYPES and _initial(value) != 0:
+            raise self.error(n, text.index(value) + col, f"unsupported: initial value "
+                             f"`{value.strip()}` (block-local data lives in markers, "
+                             "which start at 0)")
+        return 1 if type_ == "STRUCT" else 0
+
+    def read_db_value(self, block: Block, n: int, col: int, text: str) -> None:
+        """An instance DB's `name := value;` after BEGIN (0 / FALSE only)."""
+        m = re.fullmatch(r"\s*([A-Za-z_][\w.\[\], ]*?)\s*:=\s*([^;]+?)\s*;?\s*", text)
+        if not m:
+            raise self.error(n, col, f"malformed initial value `{text}`")
+        if _initial(m.group(2)) != 0:
+            raise self.error(n, col, f"unsupported: initial value `{m.group(2)}` in "
+                             f"{block.name} (block-local data lives in markers, which "
+                             "start at 0)")
 
     def read_statements(self, n: int, text: str) -> None:
         source = self.lines[n - 1].rstrip("\r")
@@ -483,6 +975,10 @@ class StlFrontEnd:
                     break
                 labels.append(Word(m.group(1), offset + m.start(1) + 1))
                 pos = m.end()
+            call = _CALL_STMT.match(piece, pos)
+            if call:
+                self.read_call(n, source, offset, piece, labels, call)
+                continue
             words = [Word(t.group(0), offset + t.start() + 1)
                      for t in _TOKEN.finditer(piece, pos)]
             if not words:
@@ -497,6 +993,45 @@ class StlFrontEnd:
                 mnem = Word(mnem.text + "(", mnem.col)
                 rest = rest[1:]
             self.stmts.append(Stmt(n, mnem.col, source, mnem, rest, labels))
+
+    def read_call(self, n: int, source: str, offset: int, piece: str,
+                  labels: list[Word], call) -> None:
+        """`CALL FC n (p := a, ...)`, `CALL FB n, DB m (...)`, `UC FC n`, `CC FC n`
+        (the parameter list may go on over lines; its words then count as at the
+        CALL's column)."""
+        width = len(source)
+
+        def col(i: int) -> int:
+            return offset + i + 1 if offset + i < width else offset + call.start(1) + 1
+
+        mnem = Word(call.group(1), col(call.start(1)))
+        target = call.group(2)
+        m = _CALLEE.fullmatch(target)
+        if m is None:
+            raise self.error(n, col(call.start(2)), f"unsupported: `{call.group(1)} "
+                             f"{' '.join(target.split())}` (this slice calls FC n and "
+                             "FB n, DB m by number)")
+        params = []
+        if m.group(5) is not None:
+            inner_start = call.start(2) + m.start(6)
+            for p_start, text in _split_statements(m.group(6), ","):
+                if not text.strip():
+                    if m.group(6).strip():
+                        raise self.error(n, col(inner_start + p_start),
+                                         "malformed parameter list")
+                    continue
+                pm = _PARAM.fullmatch(text)
+                if pm is None:
+                    raise self.error(n, col(inner_start + p_start), f"malformed "
+                                     f"parameter `{text.strip()}`: name := actual "
+                                     "expected")
+                base = inner_start + p_start
+                actual = [Word(t.group(0), col(base + pm.start(2) + t.start()))
+                          for t in re.finditer(r'"[^"]*"|\S+', pm.group(2))]
+                params.append((Word(pm.group(1), col(base + pm.start(1))), actual))
+        info = CallInfo(m.group(1).upper(), int(m.group(2)),
+                        int(m.group(4)) if m.group(4) else None, params)
+        self.stmts.append(Stmt(n, mnem.col, source, mnem, [], labels, extra=info))
 
     # -- mnemonics -----------------------------------------------------------------
 
@@ -840,7 +1375,26 @@ class StlFrontEnd:
     def statement(self, stmt: Stmt, st: _State, edges) -> bool:
         """Translate one statement; False when it never falls through."""
         m = stmt.canon
-        if m in COMBINE and stmt.operands:
+        if m in ("@CALL", "@LEAVE", "@RET"):       # S7's CALL / block end: /FC, OR 0
+            if st.parens:
+                if m == "@LEAVE":
+                    opener = st.parens[-1][1]
+                    raise self.error(opener.line, opener.col, f"unbalanced parentheses: "
+                                     f"`{opener.mnemonic.text}` is never closed")
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+            self.close_term(st)
+            st.ner = 0
+            if m == "@CALL":
+                self.copy(stmt, st, stmt.extra)
+            elif m == "@RET":
+                edges[stmt.extra].append((0, stmt, "JU"))
+                self.acc_edges[stmt.extra].append(st.acc)
+                self.emit("JU", Operand("label", label=stmt.extra.upper(),
+                                        text=stmt.mnemonic.text))
+                return False
+        elif m == "@END":
+            self.copy(stmt, st, stmt.extra)
+        elif m in COMBINE and stmt.operands:
             self.combine(stmt, st, m)
         elif m == "O":                          # O without operand: AND before OR
             self.no_operand(stmt)

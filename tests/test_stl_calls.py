@@ -1,0 +1,448 @@
+"""S7 blocks and calls (`.awl`, spec §9, issue 19): FUNCTION FC n and FUNCTION_BLOCK
+FB n with VAR_INPUT / VAR_OUTPUT / VAR_IN_OUT / VAR / VAR_TEMP, instance DBs, `CALL FC
+n (...)`, `CALL FB n, DB m (...)`, UC and CC — inlined by the front end
+(docs/s7.md, "Blocks and calls").  Every program is compared with awlsim, the
+independent S7 simulator (tests/awlsim_oracle.py), scan for scan; the expected values
+come from awlsim, never from the front end.  Deliberately wrong inlinings (parameters
+swapped, one instance for two DBs, a CALL that keeps /FC) are shown to be caught.
+"""
+from __future__ import annotations
+
+import random
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from awlsim_oracle import awlsim_scans, bitbyte_scans
+from bitbyte import cli
+from bitbyte.lang import stl
+from tracecmp import first_difference
+
+WORDS = ("MW10", "MW12", "MW14")
+
+# A function with bit and word parameters, a TEMP and the RLO it returns; two
+# instances of a function block (edge memory and a count in the instance DB, an
+# IN_OUT), nesting FB -> FC -> FC with `#name`s passed on, BEB/BEA in a callee,
+# labels of the same name in two blocks, UC and CC.
+BLOCKS = """
+FUNCTION FC 1 : VOID
+TITLE = bits and words
+VERSION : 0.1
+VAR_INPUT
+  a : BOOL ;
+  b : BOOL ;
+  n : INT ;
+END_VAR
+VAR_OUTPUT
+  q : BOOL ;
+  w : INT ;
+END_VAR
+VAR_TEMP
+  t : BOOL ;
+END_VAR
+BEGIN
+NETWORK
+TITLE =
+      U     #a
+      UN    #b
+      =     #t
+      U     #t
+      O     E 1.0
+      =     #q
+      L     #n
+      L     3
+      +I
+      T     #w
+      U     E 0.7              // the RLO the caller gets back
+END_FUNCTION
+
+FUNCTION FC 2 : VOID
+VAR_INPUT
+  x : BOOL ;
+END_VAR
+VAR_IN_OUT
+  io : BOOL ;
+END_VAR
+BEGIN
+NETWORK
+TITLE =
+      U     #x
+      SPB   M1
+      U     E 1.1
+      BEB                      // ends the block when E 1.1
+      S     #io
+      BEA
+M1:   R     #io
+      CALL  FC 3 (z := #io)
+END_FUNCTION
+
+FUNCTION FC 3 : VOID
+VAR_OUTPUT
+  z : BOOL ;
+END_VAR
+BEGIN
+NETWORK
+TITLE =
+M1:   U     #z
+      =     A 1.7
+END_FUNCTION
+
+FUNCTION_BLOCK FB 1
+TITLE = counts rising edges
+VAR_INPUT
+  en : BOOL ;
+  step : INT ;
+END_VAR
+VAR_OUTPUT
+  cnt : INT ;
+  on : BOOL ;
+END_VAR
+VAR_IN_OUT
+  flip : BOOL ;
+END_VAR
+VAR
+  edge : BOOL ;
+  c : INT ;
+  held : BOOL ;
+END_VAR
+VAR_TEMP
+  tmp : BOOL ;
+END_VAR
+BEGIN
+NETWORK
+TITLE =
+      U     #en
+      FP    #edge
+      =     #tmp
+      U     #tmp
+      SPBN  M1
+      L     #c
+      L     #step
+      +I
+      T     #c
+      U     #flip
+      NOT
+      =     #flip
+M1:   L     #c
+      T     #cnt
+      U     #en
+      S     #held
+      U     E 1.2
+      R     #held
+      U     #held
+      =     #on
+      CALL  FC 2 (x := #held, io := #flip)
+END_FUNCTION_BLOCK
+
+DATA_BLOCK DB 1
+  FB 1
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK DB 2
+TITLE = the second conveyor
+  FB 1
+BEGIN
+  c := 0;
+END_DATA_BLOCK
+
+FUNCTION FC 4 : VOID
+BEGIN
+NETWORK
+TITLE =
+      =     A 1.5              // the RLO the caller left
+      U     E 1.3
+END_FUNCTION
+"""
+
+OB1 = {
+    "fc": """
+      CALL  FC 1 (a := E 0.0, b := E 0.1, n := 5,
+                  q := A 0.0, w := MW 10)
+      =     A 0.1
+      U     E 0.2
+      CALL  FC 1 (a := M 0.3, b := E 0.0, n := MW 10, q := M 0.3, w := MW 12)
+      =     M 0.4
+      """,
+    "fb": """
+      CALL  FB 1, DB 1 (en := E 0.2, step := 1, cnt := MW 12, on := A 0.2,
+                        flip := M 0.0)
+      U     E 0.4
+      CALL  FB 1, DB 2 (en := E 0.3, step := -2, cnt := MW 14, flip := A 0.3)
+      CALL  FB 1, DB 1 (en := E 0.5)
+      """,
+    "fc_nested": """
+      U     E 0.0
+      U     E 0.1
+      CALL  FC 2 (x := E 0.2, io := M 0.1)
+      =     A 0.4
+      U     E 0.3
+      =     M 0.2
+      CALL  FC 2 (x := M 0.2, io := A 0.5)
+M1:   U     M 0.1
+      =     A 0.6
+      """,
+    "uc_cc": """
+      U     E 0.0
+      CC    FC 4
+      =     A 0.0
+      U     E 0.1
+      UC    FC 4
+      =     A 0.1
+      U     E 0.2
+      O
+      U     E 0.3
+      CALL  FC 4
+      """,
+    "ob_temp": """
+      U     E 0.0
+      =     #flag
+      L     EW 2
+      T     #count
+      U     #flag
+      =     A 0.0
+      L     #count
+      L     1
+      +I
+      T     MW 10
+      """,
+}
+
+
+def source(name: str) -> str:
+    temps = "VAR_TEMP\n  flag : BOOL ;\n  count : INT ;\n  info : BYTE ;\nEND_VAR\n"
+    return (BLOCKS + "\nORGANIZATION_BLOCK OB 1\nTITLE = test\n" + temps + "BEGIN\n"
+            "NETWORK\nTITLE =\n" + textwrap.dedent(OB1[name]).strip("\n")
+            + "\nEND_ORGANIZATION_BLOCK\n")
+
+
+TO_ENGLISH = [("E ", "I "), ("A 0.", "Q 0."), ("A 1.", "Q 1."), ("U ", "A "),
+              ("UN ", "AN "), ("SPBN ", "JCN "), ("SPB ", "JC "), ("BEB", "BEC"),
+              ("BEA", "BEU"), ("EW ", "IW "), ("UC ", "UC ")]
+
+
+def english(text: str) -> str:
+    out, body = [], False
+    for line in text.split("\n"):
+        code = line.split("//")[0]
+        body = (body or line.strip() == "BEGIN") and not line.startswith("END_")
+        if body and line.strip() and not line.strip().startswith(("NETWORK", "TITLE")):
+            for de, en in TO_ENGLISH:
+                code = code.replace(de, en).replace(de.strip() + "\t", en.strip() + "\t")
+        out.append(code)
+    return "\n".join(out)
+
+
+def inputs(seed: int, scans: int = 40) -> list[dict[int, int]]:
+    r = random.Random(seed)
+    image = [r.randrange(256), r.randrange(256), 0, 7]
+    rows = []
+    for _ in range(scans):
+        rows.append(dict(enumerate(image)))
+        for _ in range(r.randrange(1, 4)):
+            image[r.randrange(2)] ^= 1 << r.randrange(8)
+        if r.random() < 0.2:
+            image[3] = r.randrange(256)
+    return rows
+
+
+def compare(path: Path, lang: str, tmp: Path, seed: int = 1, **kw):
+    stim = inputs(seed)
+    expected = awlsim_scans(path, stim, mnemonics=lang, words=WORDS)
+    got = bitbyte_scans(path, stim, tmp, words=WORDS, in_words=(2,), **kw)
+    return expected, got, first_difference(expected, got)
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+@pytest.mark.parametrize("name", sorted(OB1))
+def test_calls_against_awlsim(tmp_path, name, lang):
+    text = source(name)
+    path = tmp_path / f"{name}.awl"
+    path.write_text(text if lang == "de" else english(text))
+    expected, _, diff = compare(path, lang, tmp_path)
+    assert diff is None, (path.read_text(), diff)
+    # the programs do something: outputs and markers change
+    assert len({tuple(sorted(r.items())) for r in expected}) > 4
+
+
+def test_fb_instances_count_apart(tmp_path):
+    """Two instance DBs of FB 1 keep their counts apart (awlsim agrees, and so do
+    the words: DB 1's count goes up by 1, DB 2's down by 2)."""
+    path = tmp_path / "fb.awl"
+    path.write_text(source("fb"))
+    expected, got, diff = compare(path, "de", tmp_path)
+    assert diff is None, diff
+    assert max(r["MW12"] for r in got) > 0 and min(r["MW14"] for r in got) < 0
+
+
+def test_calls_on_verilator_serial_and_parallel(tmp_path):
+    for name in ("fb", "fc_nested"):
+        path = tmp_path / f"{name}.awl"
+        path.write_text(source(name))
+        for mode in ("serial", "parallel"):
+            _, _, diff = compare(path, "de", tmp_path, sim="verilator", mode=mode)
+            assert diff is None, (name, mode, diff)
+
+
+def run_cli(argv, capsys):
+    code = cli.main(argv)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_run_with_calls(tmp_path, capsys):
+    path = tmp_path / "fb.awl"
+    path.write_text(source("fb"))
+    code, out, err = run_cli(["run", str(path), "--scans", "3"], capsys)
+    assert code == 0, err
+
+
+FC9 = "FUNCTION FC 9 : VOID\nVAR_INPUT\n  a : BOOL ;\n  r : REAL ;\nEND_VAR\n" \
+      "VAR_OUTPUT\n  q : BOOL ;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n      U #a\n" \
+      "      = #q\nEND_FUNCTION\n"
+FC8 = "FUNCTION FC 8 : VOID\nBEGIN\nNETWORK\nTITLE =\n      CALL FC 7\nEND_FUNCTION\n" \
+      "FUNCTION FC 7 : VOID\nBEGIN\nNETWORK\nTITLE =\n      CALL FC 8\nEND_FUNCTION\n"
+FB9 = "FUNCTION_BLOCK FB 9\nVAR_INPUT\n  a : BOOL ;\nEND_VAR\nVAR\n  s : INT ;\n" \
+      "END_VAR\nBEGIN\nNETWORK\nTITLE =\n      U #a\n      = A 0.0\n" \
+      "END_FUNCTION_BLOCK\nDATA_BLOCK DB 9\n  FB 9\nBEGIN\nEND_DATA_BLOCK\n" \
+      "DATA_BLOCK DB 8\n  FB 1\nBEGIN\nEND_DATA_BLOCK\n"
+
+
+def ob(body: str, blocks: str = FC9) -> str:
+    return blocks + ("ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n"
+                     + textwrap.dedent(body).strip("\n") + "\nEND_ORGANIZATION_BLOCK\n")
+
+
+FC1 = "FUNCTION FC 1 : VOID\nVAR_INPUT\n  a : BOOL ;\nEND_VAR\nBEGIN\nNETWORK\n" \
+      "      U #a\n      = A 0.0\nEND_FUNCTION\n"
+
+CALL_ERRORS = [
+    # (source, the line the message points at (its first line with this text),
+    #  column, message start)
+    (ob("CALL FC 9 (a := E 0.0, q := A 0.0)"), "CALL", 1,
+     "`CALL FC 9` without the parameter `r`"),
+    (ob("CALL FC 9 (a := E 0.0, r := MD 0, q := A 0.0, x := E 0.1)"), "CALL", 29,
+     "unsupported: parameter `r` of type REAL"),
+    (ob("CALL FC 9 (a := E 0.0, b := E 0.1)"), "CALL", 24,
+     "`b` is not a parameter of FC 9"),
+    (ob("CALL FC 9 (a := MW 2, q := A 0.0)"), "CALL", 17, "operand of the wrong kind: "
+     "`a` is BOOL"),
+    (ob("CALL FC 1 (a := TRUE)", FC1), "CALL", 12, "unsupported: `a := TRUE`"),
+    (ob("CALL FC 5"), "CALL", 1, "`CALL FC 5`: FC 5 is not in the source"),
+    (ob("CALL FC 8", FC8), "CALL FC 8", 7, "unsupported: `CALL FC 8` is a recursive "
+     "call (FC 8 -> FC 7 -> FC 8)"),
+    (ob("CALL FB 9", FB9), "CALL FB", 1, "`CALL FB 9` needs an instance DB"),
+    (ob("CALL FB 9, DB 8 (a := E 0.0)", FB9), "CALL FB", 1, "`CALL FB 9, DB 8`: DB 8 "
+     "is not an instance DB of FB 9"),
+    (ob("UC FC 9"), "UC", 1, "unsupported: `UC FC 9`: UC/CC pass no parameters"),
+    (ob("UC FB 9", FB9), "UC", 1, "unsupported: `UC FB 9` (UC/CC of an FB"),
+    (ob("U(\nU E 0.0\nCALL FB 9, DB 9\n)", FB9), "CALL FB", 1,
+     "unsupported: `CALL` inside parentheses"),
+    (ob("CALL FB 9, DB 9 (a := E 0.0)\nU M 130.0\n= A 0.1", FB9), "U M 130", 3,
+     "unsupported: `M 130.0` is in M 128 .. M 223"),
+    (ob("CALL FB 9, DB 9 (a := M 200.0)", FB9), "CALL FB", 23,
+     "unsupported: `M 200.0` is in M 128 .. M 223"),
+    (ob("U #nope\n= A 0.0"), "#nope", 3, "undeclared local `#nope`"),
+    (ob("CALL \"Motor\""), "CALL", 6, "unsupported: `CALL \"Motor\"`"),
+    ("FUNCTION_BLOCK FB 1\nVAR\n  s : INT := 5;\nEND_VAR\nBEGIN\nEND_FUNCTION_BLOCK\n"
+     + ob("SET"), ":= 5", 14, "unsupported: initial value `5`"),
+    (FB9 + "DATA_BLOCK DB 7\n  FB 9\nBEGIN\n  s := 3;\nEND_DATA_BLOCK\n" + ob("SET"),
+     "s := 3", 3, "unsupported: initial value `3` in DB 7"),
+    ("FUNCTION FC 1 : VOID\nVAR\n  s : INT ;\nEND_VAR\nBEGIN\nEND_FUNCTION\n" + ob("SET"),
+     "VAR", 1, "unsupported: VAR in FC 1"),
+    (ob("CALL FC 1 (a := 1)", FC1), "CALL", 17, "operand of the wrong kind: `a` is BOOL"),
+    ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  a : INT ;\nEND_VAR\nBEGIN\nNETWORK\n"
+     "      L 1\n      T #a\nEND_FUNCTION\n" + ob("CALL FC 1 (a := 7)"), "T #a", 9,
+     "unsupported: `T` writes `#a`, which is bound to a constant"),
+    ("FUNCTION FC 1 : VOID\nVAR_OUTPUT\n  a : INT ;\nEND_VAR\nBEGIN\nEND_FUNCTION\n"
+     + ob("CALL FC 1 (a := 7)"), "CALL", 12, "a constant for the output parameter `a`"),
+    ("FUNCTION FC 1 : VOID\nBEGIN\nEND_FUNCTION\nFUNCTION FC 1 : VOID\nBEGIN\n"
+     "END_FUNCTION\n" + ob("SET"), "FUNCTION FC", 1, "duplicate block FC 1"),
+    ("FUNCTION FC 1 : VOID\nBEGIN\nEND_FUNCTION\n", None, 0,
+     "no ORGANIZATION_BLOCK OB 1"),
+]
+
+
+@pytest.mark.parametrize("text,at,col,message", CALL_ERRORS)
+def test_call_errors(tmp_path, capsys, text, at, col, message):
+    path = tmp_path / "bad.awl"
+    path.write_text(text)
+    code, out, err = run_cli(["asm", str(path), "-o", str(tmp_path)], capsys)
+    assert code == 1, (out, err)
+    if at is None:
+        assert err.startswith(f"{path}: {message}"), err
+    else:
+        lines = text.split("\n")
+        line = next(i for i, t in enumerate(lines, 1) if at in t)
+        if message.startswith("duplicate"):
+            line = [i for i, t in enumerate(lines, 1) if at in t][1]
+        assert err.startswith(f"{path}:{line}:{col}: {message}"), err
+    assert "Traceback" not in err
+
+
+# --------------------------------------------------------------------------------------
+# The comparison can fail: deliberately wrong inlinings are caught by awlsim
+# --------------------------------------------------------------------------------------
+
+def caught(tmp_path, names=("fc", "fb", "fc_nested", "uc_cc")) -> int:
+    found = 0
+    for name in names:
+        path = tmp_path / f"{name}.awl"
+        path.write_text(source(name))
+        try:
+            found += compare(path, "de", tmp_path)[2] is not None
+        except AssertionError:
+            found += 1
+    return found
+
+
+def test_oracle_catches_swapped_parameters(tmp_path, monkeypatch):
+    """The inliner binding each FC/FB parameter to the actual of the one before
+    of the same kind (a wrong parameter mapping) differs from awlsim."""
+    original = stl.StlFrontEnd.inline
+
+    def swapped(self, stmt, labels, scope, stack):
+        params = stmt.extra.params
+        decls = self.blocks[(stmt.extra.kind, stmt.extra.number)].decls
+        kinds = [(decls[p[0].text.upper()].section, decls[p[0].text.upper()].type)
+                 for p in params]
+        if len(params) >= 2 and kinds[0] == kinds[1]:
+            stmt.extra.params = [(params[0][0], params[1][1]), (params[1][0],
+                                                                params[0][1])] + params[2:]
+        try:
+            return original(self, stmt, labels, scope, stack)
+        finally:
+            stmt.extra.params = params
+
+    monkeypatch.setattr(stl.StlFrontEnd, "inline", swapped)
+    assert caught(tmp_path, ("fc",)) == 1
+
+
+def test_oracle_catches_one_instance_for_two_dbs(tmp_path, monkeypatch):
+    """FB statics kept per FB instead of per instance DB differ from awlsim."""
+    original = stl.StlFrontEnd.cell
+
+    def shared(self, stmt, binding, col):
+        if binding.cell and str(binding.cell[0]).startswith("DB "):
+            binding = stl.Binding(decl=binding.decl, cell=("DB", binding.cell[1]))
+        return original(self, stmt, binding, col)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "cell", shared)
+    assert caught(tmp_path, ("fb",)) == 1
+
+
+def test_oracle_catches_a_call_that_keeps_the_first_check(tmp_path, monkeypatch):
+    """A CALL that leaves /FC as it was (the callee's first `U` combining with the
+    caller's string instead of loading) differs from awlsim."""
+    original = stl.StlFrontEnd.statement
+
+    def keep(self, stmt, st, edges):
+        ner = st.ner
+        result = original(self, stmt, st, edges)
+        if stmt.canon == "@CALL":
+            st.ner = ner
+        return result
+
+    monkeypatch.setattr(stl.StlFrontEnd, "statement", keep)
+    assert caught(tmp_path, ("fc_nested",)) == 1
