@@ -453,7 +453,6 @@ class StlFrontEnd:
         scope = {"block": ob1, "prefix": "", "bindings": self.temp_bindings(ob1),
                  "ret": None, "returns": False}
         self.stmts = self.expand(ob1.stmts, scope, [ob1])
-        self.check_local_region()
 
     def temp_bindings(self, block: Block) -> dict[str, Binding]:
         return {key: Binding(decl=d, cell=(block.name, "TEMP", key))
@@ -705,6 +704,79 @@ class StlFrontEnd:
                                            "block-local data (FB instances, TEMPs) uses",
                                            ops[0].col)
 
+    def local_bit(self, stmt: Stmt, key: tuple) -> Operand:
+        """A bit of the block-local region the translation keeps for itself."""
+        word = self.cell(stmt, Binding(decl=Decl(key[1], "TEMP", "BOOL", 0, 0),
+                                       cell=key), stmt.col)[0]
+        byte, bit = word.text[1:].split(".")
+        return Operand("bit", area="M", byte=int(byte), bit=int(bit), text=word.text)
+
+    def jump_list(self, stmt: Stmt, st: _State, edges) -> bool:
+        """SPL (JL) l with its list of SPA (JU) up to the label l: S7 jumps to the
+        k-th SPA for k = ACCU1's low byte below the list's length, else to l, and
+        changes no status bit.  The IL has no computed jump, so this is a compare
+        chain: the RLO saved, the low byte ((ACCU1 MOD 256 + 256) MOD 256, unless the
+        compiler knows it is 0..255) in a local word, `L` it, `L k`, `==I`, `JC` to
+        the k-th SPA, which restores the RLO; both accumulators count as changed."""
+        label = self.label_operand(stmt)
+        if label not in self.label_defs:
+            raise self.error(stmt.line, stmt.operands[0].col,
+                             f"unknown label `{stmt.operands[0].text}`")
+        if st.parens or st.orm != "none":
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses or "
+                                   "after `O`")
+        i = self.stmts.index(stmt)
+        entries = []
+        for entry in self.stmts[i + 1:]:
+            if label in (w.text.upper() for w in entry.labels):
+                break
+            if entry.canon != "JU" or entry.labels:
+                raise self.unsupported(entry, f"`{entry.mnemonic.text or 'a label'}` in "
+                                       f"the jump list of `{stmt.mnemonic.text}` (line "
+                                       f"{stmt.line}): only unlabelled "
+                                       f"{'SPA' if self.lang == 'de' else 'JU'} up to "
+                                       f"its label `{stmt.operands[0].text}`")
+            entries.append(entry)
+        else:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text} "
+                                   f"{stmt.operands[0].text}`: its label must end the "
+                                   "jump list after it")
+        if len(entries) > 255:
+            raise self.unsupported(stmt, "a jump list of more than 255 entries")
+        known = st.acc[0]
+        self.read_acc(stmt, st, 1)
+        rlo = self.local_bit(stmt, ("@", "RLO"))
+        index = self.cell(stmt, Binding(decl=Decl("SPL", "TEMP", "INT", 0, 0),
+                                        cell=("@", "SPL")), stmt.col)[0]
+        index_op = Operand("index", area="MW", index=int(index.text[2:]),
+                           text=index.text)
+
+        def const(value: int) -> Operand:
+            return Operand("const", area="INT", value=value, text=str(value))
+
+        self.emit("=", rlo)
+        if not (isinstance(known, Known) and known.il_value is None
+                and 0 <= known.value <= 255):
+            for mnem, op in (("L", const(256)), ("MOD", None), ("L", const(256)),
+                             ("+I", None), ("L", const(256)), ("MOD", None)):
+                self.emit(mnem, op)
+        self.emit("T", index_op)
+        for k, entry in enumerate(entries):
+            entry.extra = f"JL{i}.{k}"
+            self.emit("L", index_op)
+            self.emit("L", const(k))
+            self.emit("==I")
+            self.emit("JC", Operand("label", label=entry.extra, text=entry.extra))
+        st.acc = (CLOBBERED, CLOBBERED)
+        self.emit("LD", rlo)
+        edges[label].append((st.ner, stmt, "JU"))
+        self.acc_edges[label].append(st.acc)
+        fix = self.assumed.get(label, (0, ""))[1]
+        if fix and st.ner == 0:
+            self.emit(fix)
+        self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
+        return False
+
     def copy(self, stmt: Stmt, st: _State, pairs: list) -> None:
         """An FB call's parameters copied in or out: (kind, source words, target
         words), kind bit / word / true / false.  S7 copies without touching the RLO
@@ -721,10 +793,7 @@ class StlFrontEnd:
         keep = any(kind != "word" for kind, _, _ in pairs) and nxt is not None and not (
             nxt.canon in COMBINE and nxt.operands or nxt.canon in OPEN
             or nxt.canon in ("SET", "CLR") + COMPARES)
-        save = self.cell(stmt, Binding(decl=Decl("RLO", "TEMP", "BOOL", 0, 0),
-                                       cell=("@", "RLO")), stmt.col)[0]
-        save_op = Operand("bit", area="M", byte=int(save.text[1:].split(".")[0]),
-                          bit=int(save.text.split(".")[1]), text="RLO saved")
+        save_op = self.local_bit(stmt, ("@", "RLO")) if keep else None
         if keep:
             self.emit("=", save_op)
         for kind, src, dst in pairs:
@@ -1219,9 +1288,11 @@ class StlFrontEnd:
                 wanted_acc[name] = acc
             if wanted == assumed and wanted_acc == assumed_acc:
                 self.check_overlaps()
+                self.check_local_region()
                 return program
             assumed, assumed_acc = wanted, wanted_acc
         self.check_overlaps()
+        self.check_local_region()
         return program          # pragma: no cover (states settle in a few passes)
 
     def check_edges(self, edges: dict[str, list[tuple[int, Stmt, str]]]
@@ -1451,7 +1522,12 @@ class StlFrontEnd:
             if len(stmt.operands) != 1 or not stmt.operands[0].text.isdigit():
                 raise self.error(stmt.line, stmt.mnemonic.col,
                                  f"`{stmt.mnemonic.text}` needs a number")
+        elif m == "JL":
+            return self.jump_list(stmt, st, edges)
         elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC"):
+            if m == "JU" and isinstance(stmt.extra, str):   # an entry of a jump list
+                self.pending.append(stmt.extra)
+                self.emit("LD", self.local_bit(stmt, ("@", "RLO")))
             return self.jump(stmt, st, m, edges)
         elif m in ("L", "T") + ARITHMETIC + COMPARES:
             self.word_statement(stmt, st, m)
