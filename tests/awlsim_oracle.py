@@ -158,6 +158,24 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
 LATCH = "@latch_s"
 
 
+def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
+                      words: tuple[str, ...], in_words: tuple[int, ...]) -> bool:
+    """A random program: True when its scans equal awlsim's (asserted), False when
+    the front end rejects it — only ever as `unsupported:` (asserted)."""
+    from bitbyte.lang.errors import SourceError
+    from tracecmp import first_difference
+
+    try:
+        got = bitbyte_scans(path, inputs, tmp, words=words, in_words=in_words)
+    except SourceError as e:
+        assert e.message.startswith("unsupported:"), (seed, str(e))
+        return False
+    expected = awlsim_scans(path, inputs, mnemonics=lang, words=words)
+    diff = first_difference(expected, got)
+    assert diff is None, f"seed {seed} ({path}) differs from awlsim: {diff}"
+    return True
+
+
 def latch_times(rows: list[dict[str, int]]) -> list[float]:
     """The scans' latch times (s) of a bitbyte_scans result, for awlsim's cpu.now."""
     return [float(row[LATCH]) for row in rows]

@@ -47,8 +47,14 @@ COMPARE = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
 
 
 class Gen:
-    def __init__(self, seed: int, words: bool = True, timers: bool = False):
+    def __init__(self, seed: int, words: bool = True, timers: bool = False,
+                 calls: bool = False):
         self.r = random.Random(seed)
+        self.calls = calls
+        self.local_bits: list[str] = []     # `#name`s a body in a block may read ...
+        self.local_out: list[str] = []      # ... and write
+        self.local_words: list[str] = []
+        self.local_word_out: list[str] = []
         self.lang = self.r.choice(("de", "en"))
         self.words = words
         self.counters = words           # (programs keyed by scan)
@@ -67,9 +73,14 @@ class Gen:
         self.reads_timers = True
         self.lines: list[str] = []
         self.label = ""                 # put before the next statement
+        self.edge_memory = ""           # a block's own edge memory (FB: `#edge`)
+        self.prefix_labels = ""
 
     def addr(self, areas: str = "IQM") -> str:
         r = self.r
+        pool = self.local_out if areas in ("QM", "M") else self.local_bits
+        if pool and r.random() < 0.5:
+            return r.choice(pool)
         area = r.choice(areas)
         spaced = r.random() < 0.7
         name = AREA[self.lang][area]
@@ -83,6 +94,9 @@ class Gen:
 
     def word(self, areas: str = "IQM") -> str:
         r = self.r
+        pool = self.local_word_out if areas == "QM" else self.local_words
+        if pool and r.random() < 0.5:
+            return r.choice(pool)
         area = r.choice(areas) + "W"
         n = r.choice(IN_WORDS) if area == "IW" else int(r.choice(
             [w for w in WORDS if w.startswith(area)])[2:])
@@ -159,6 +173,8 @@ class Gen:
             self.emit("O")                          # AND before OR
         elif not opening and x < 0.33:
             memory = self.addr("M").replace("0.", "1.", 1)
+            if memory.startswith("#"):
+                memory = self.edge_memory or memory
             if self.timer_kind:         # one edge memory each (M 2.0 .. M 3.7): no
                 k = self.edge_memories  # feedback through a shared one
                 if k == 16:
@@ -251,6 +267,35 @@ class Gen:
             op = r.choice(("=", "=", "S", "R"))
             self.emit(f"{op}\t{self.addr('QM')}")
 
+    def body(self, networks: int) -> None:
+        r = self.r
+        labels: dict[int, str] = {}
+        jumps: dict[int, tuple[str, str]] = {}
+        for n in range(networks - 1):
+            # (timer programs: no jumps, so that every scan takes as long: a timer
+            # starts at its instruction, not at the latch as in awlsim, and its
+            # run-out may come two scans late after a long scan; docs/s7.md)
+            if r.random() < 0.25 and not self.timer_kind:
+                target = r.randrange(n + 1, networks)
+                name = labels.setdefault(target, f"M{target:03d}")
+                jumps[n] = (r.choice(JUMPS[self.lang]), name)
+        for n in range(networks):
+            if self.calls and r.random() < 0.4:
+                self.lines.append(f"NETWORK\nTITLE = network {n}")
+                if n in labels:
+                    self.label = f"{labels[n]}:"
+                self.call_network()
+            else:
+                self.network(n, labels)
+            if n in jumps:
+                mnem, name = jumps[n]
+                if r.random() < 0.3:
+                    self.string(0)                  # a condition of its own
+                self.emit(f"{mnem}\t{name}")
+            elif r.random() < 0.05 and not self.timer_kind:
+                self.string(0)
+                self.emit("BEB" if self.lang == "de" else "BEC")
+
     def program(self) -> str:
         r = self.r
         networks = r.randrange(2, 7)
@@ -262,35 +307,107 @@ class Gen:
                 1, min(len(self.timer_kind), networks) + 1)))
             self.free_timers = sorted(self.timer_kind)
             r.shuffle(self.free_timers)
-        labels: dict[int, str] = {}
-        jumps: dict[int, tuple[str, str]] = {}
-        for n in range(networks - 1):
-            # (timer programs: no jumps, so that every scan takes as long: a timer
-            # starts at its instruction, not at the latch as in awlsim, and its
-            # run-out may come two scans late after a long scan; docs/s7.md)
-            if r.random() < 0.25 and not self.timer_kind:
-                target = r.randrange(n + 1, networks)
-                name = labels.setdefault(target, f"M{target:03d}")
-                jumps[n] = (r.choice(JUMPS[self.lang]), name)
+        blocks = self.blocks() if self.calls else []
         self.lines = ["ORGANIZATION_BLOCK OB 1", "TITLE = random", "VERSION : 0.1", "",
                       "BEGIN"]
-        for n in range(networks):
-            self.network(n, labels)
-            if n in jumps:
-                mnem, name = jumps[n]
-                if r.random() < 0.3:
-                    self.string(0)                  # a condition of its own
-                self.emit(f"{mnem}\t{name}")
-            elif r.random() < 0.05 and not self.timer_kind:
-                self.string(0)
-                self.emit("BEB" if self.lang == "de" else "BEC")
+        self.body(networks)
         self.lines.append("END_ORGANIZATION_BLOCK")
-        return "\n".join(self.lines) + "\n"
+        return "\n".join(blocks + self.lines) + "\n"
+
+    # -- calls (calls=True) ---------------------------------------------------------
+
+    def blocks(self) -> list[str]:
+        """FC 1 (bit and word parameters, a TEMP), FC 2 (none: for UC/CC), FB 1
+        (instance data: a static bit and word, an edge memory) with DB 1 and DB 2;
+        their bodies made like OB 1's networks, reading and writing `#name`s."""
+        r = self.r
+        out = []
+        specs = [
+            ("FUNCTION FC 1 : VOID", "END_FUNCTION",
+             [("VAR_INPUT", ["a : BOOL", "b : BOOL", "n : INT"]),
+              ("VAR_OUTPUT", ["q : BOOL", "w : INT"]), ("VAR_TEMP", ["t : BOOL"])],
+             ["#a", "#b", "#q", "#t"], ["#q", "#t"], ["#n", "#w"], ["#w"],
+             [f"{COMBINES[self.lang][0]}\t#a", "=\t#t"]),
+            ("FUNCTION FC 2 : VOID", "END_FUNCTION", [], [], [], [], [], []),
+            ("FUNCTION_BLOCK FB 1", "END_FUNCTION_BLOCK",
+             [("VAR_INPUT", ["en : BOOL", "k : INT"]),
+              ("VAR_OUTPUT", ["out : BOOL", "cnt : INT"]),
+              ("VAR", ["s : BOOL", "c : INT", "edge : BOOL"])],
+             ["#en", "#s", "#out"], ["#s", "#out"], ["#k", "#c", "#cnt"],
+             ["#c", "#cnt"],
+             # the instance's state, visible in its outputs: `s` toggles at each
+             # rising edge of `en`, `c` adds `k` at every call
+             [f"{COMBINES[self.lang][0]}\t#en", "FP\t#edge", "X\t#s", "=\t#s",
+              f"{COMBINES[self.lang][0]}\t#s", "=\t#out"]
+             + (["L\t#c", "L\t#k", "+I", "T\t#c", "L\t#c", "T\t#cnt"]
+                if self.words else [])),
+        ]
+        for head, end, sections, bits, outs, words, word_outs, prefix in specs:
+            self.local_bits, self.local_out = bits, outs
+            self.local_words = words if self.words else []
+            self.local_word_out = word_outs if self.words else []
+            self.edge_memory = "#edge" if "FB" in head else ""
+            self.lines = [head]
+            for name, decls in sections:
+                self.lines += [name] + [f"  {d} ;" for d in decls] + ["END_VAR"]
+            self.lines += ["BEGIN", "NETWORK", "TITLE = prefix"]
+            for line in prefix:
+                self.emit(line)
+            saved = self.calls
+            self.calls = False
+            self.body(r.randrange(1, 4))
+            self.calls = saved
+            self.lines.append(end)
+            out += self.lines + [""]
+        self.local_bits, self.local_out, self.local_words, self.local_word_out = \
+            [], [], [], []
+        self.edge_memory = ""
+        for db in (1, 2):
+            out += [f"DATA_BLOCK DB {db}", "  FB 1", "BEGIN", "END_DATA_BLOCK", ""]
+        return out
+
+    def actual_word(self, out: bool) -> str:
+        r = self.r
+        if not out and r.random() < 0.4:
+            return str(r.choice((0, 1, 5, -3, 100, 32767)))
+        return self.word("QM" if out else "IQM")
+
+    def call_network(self) -> None:
+        """A CALL of FC 1, FB 1 with DB 1 or DB 2 (some parameters left out), or
+        UC/CC FC 2; now and then a string before it (the RLO the callee starts with)
+        and an assignment after it (the RLO it returns)."""
+        r = self.r
+        if r.random() < 0.3:
+            self.string(0)
+        x = r.random()
+        if x < 0.4:
+            word = self.words
+            params = [f"a := {self.addr()}", f"b := {self.addr()}",
+                      f"n := {self.actual_word(False) if word else 0}",
+                      f"q := {self.addr('QM')}",
+                      f"w := {self.actual_word(True) if word else 'MW 10'}"]
+            self.emit(f"CALL\tFC 1 ({', '.join(params)})")
+        elif x < 0.8:
+            dbs = [r.choice((1, 2))] if r.random() < 0.4 else r.sample((1, 2), 2)
+            for db in dbs:              # often both instances, in either order
+                params = [f"en := {self.addr()}"]
+                if r.random() < 0.7:
+                    params.append(f"k := {self.actual_word(False)}")
+                if r.random() < 0.9:
+                    params.append(f"out := {self.addr('QM')}")
+                if r.random() < 0.7:
+                    params.append(f"cnt := {self.actual_word(True)}")
+                r.shuffle(params)
+                self.emit(f"CALL\tFB 1, DB {db} ({', '.join(params)})")
+        else:
+            self.emit(f"{r.choice(('UC', 'CC'))}\tFC 2")
+        if r.random() < 0.4:
+            self.emit(f"=\t{self.addr('QM')}")
 
 
-def random_program(seed: int, words: bool = True, timers: bool = False
-                   ) -> tuple[str, str]:
-    g = Gen(seed, words, timers)
+def random_program(seed: int, words: bool = True, timers: bool = False,
+                   calls: bool = False) -> tuple[str, str]:
+    g = Gen(seed, words, timers, calls)
     return g.program(), g.lang
 
 

@@ -8,15 +8,18 @@ swapped, one instance for two DBs, a CALL that keeps /FC) are shown to be caught
 """
 from __future__ import annotations
 
+import os
 import random
 import textwrap
 from pathlib import Path
 
 import pytest
 
-from awlsim_oracle import awlsim_scans, bitbyte_scans
+from awlsim_oracle import awlsim_scans, bitbyte_scans, equal_or_rejected
 from bitbyte import cli
 from bitbyte.lang import stl
+from stlgen import IN_WORDS, random_inputs, random_program
+from stlgen import WORDS as GEN_WORDS
 from tracecmp import first_difference
 
 WORDS = ("MW10", "MW12", "MW14")
@@ -419,8 +422,8 @@ def test_oracle_catches_swapped_parameters(tmp_path, monkeypatch):
     assert caught(tmp_path, ("fc",)) == 1
 
 
-def test_oracle_catches_one_instance_for_two_dbs(tmp_path, monkeypatch):
-    """FB statics kept per FB instead of per instance DB differ from awlsim."""
+def one_instance(monkeypatch) -> None:
+    """Mutate the inliner: FB statics kept per FB, not per instance DB."""
     original = stl.StlFrontEnd.cell
 
     def shared(self, stmt, binding, col):
@@ -429,6 +432,11 @@ def test_oracle_catches_one_instance_for_two_dbs(tmp_path, monkeypatch):
         return original(self, stmt, binding, col)
 
     monkeypatch.setattr(stl.StlFrontEnd, "cell", shared)
+
+
+def test_oracle_catches_one_instance_for_two_dbs(tmp_path, monkeypatch):
+    """FB statics kept per FB instead of per instance DB differ from awlsim."""
+    one_instance(monkeypatch)
     assert caught(tmp_path, ("fb",)) == 1
 
 
@@ -446,3 +454,54 @@ def test_oracle_catches_a_call_that_keeps_the_first_check(tmp_path, monkeypatch)
 
     monkeypatch.setattr(stl.StlFrontEnd, "statement", keep)
     assert caught(tmp_path, ("fc_nested",)) == 1
+
+
+# --------------------------------------------------------------------------------------
+# Random programs with calls (tests/stlgen.py, calls=True)
+# --------------------------------------------------------------------------------------
+
+CALL_PROGRAMS = int(os.environ.get("BITBYTE_STL_CALL_PROGRAMS", "6"))
+BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
+
+
+def random_call_programs(tmp: Path, count: int, offset: int = 0
+                         ) -> tuple[int, list[int], set[str]]:
+    """(compared, rejected seeds, the call mnemonics seen in compared programs);
+    asserts 0 mismatches against awlsim.  Program i has the seed
+    BITBYTE_SEED * 10000 + i."""
+    compared, rejected, seen = 0, [], set()
+    for index in range(offset, offset + count):
+        seed = BASE_SEED * 10_000 + index
+        text, lang = random_program(seed, calls=True)
+        path = tmp / f"call{seed}.awl"
+        path.write_text(text)
+        if not equal_or_rejected(seed, path, lang, random_inputs(seed, 12), tmp,
+                                 words=GEN_WORDS, in_words=IN_WORDS):
+            rejected.append(seed)
+            continue
+        compared += 1
+        seen |= {line.split()[0] for line in text.splitlines()
+                 if line.startswith("\t") and line.split()[0] in ("CALL", "UC", "CC")}
+        seen |= {"FB" for line in text.splitlines() if "CALL\tFB" in line}
+    return compared, rejected, seen
+
+
+def test_random_programs_with_calls_against_awlsim(tmp_path):
+    """Random programs that call generated FCs and an FB with two instance DBs
+    (bodies of random networks over `#name`s, strings before and assignments after
+    the calls, UC/CC): 0 mismatches; rejections stay `unsupported:` and rare.
+    BITBYTE_STL_CALL_PROGRAMS=<n> for a soak (docs/s7.md)."""
+    compared, rejected, seen = random_call_programs(tmp_path, CALL_PROGRAMS)
+    assert len(rejected) <= max(1, CALL_PROGRAMS * 0.25), rejected
+    if CALL_PROGRAMS >= 50:
+        assert {"CALL", "UC", "CC", "FB"} <= seen, seen
+    print(f"{compared} random STL programs with calls equal awlsim's, "
+          f"{len(rejected)} rejected as unsupported")
+
+
+def test_random_call_programs_catch_one_instance_for_two_dbs(tmp_path, monkeypatch):
+    """The random comparison fails when the inliner keeps FB statics per FB instead
+    of per instance DB (the mutation of test_oracle_catches_one_instance_for_two_dbs)."""
+    one_instance(monkeypatch)
+    with pytest.raises(AssertionError, match="differs from awlsim"):
+        random_call_programs(tmp_path, 40)
