@@ -505,3 +505,23 @@ def test_random_call_programs_catch_one_instance_for_two_dbs(tmp_path, monkeypat
     one_instance(monkeypatch)
     with pytest.raises(AssertionError, match="differs from awlsim"):
         random_call_programs(tmp_path, 40)
+
+
+def test_symbols_as_actual_parameters(tmp_path):
+    """`CALL FC 1 (a := "Start", q := "Motor")` with a STEP 7 symbol table: equal to
+    awlsim's scans (awlsim loads the same .asc table)."""
+    from stlgen import symbol_table
+
+    table = tmp_path / "symbols.asc"
+    table.write_text(symbol_table([("Start", "E 0.0", "BOOL"), ("Stop", "E 0.1", "BOOL"),
+                                   ("Motor", "A 0.0", "BOOL")], "asc"))
+    path = tmp_path / "sym.awl"
+    path.write_text(BLOCKS + "\nORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n"
+                    "      CALL  FC 1 (a := \"Start\", b := \"Stop\", n := 1,\n"
+                    "                  q := \"Motor\", w := MW 10)\n"
+                    "END_ORGANIZATION_BLOCK\n")
+    stim = inputs(5)
+    expected = awlsim_scans(path, stim, mnemonics="de", words=WORDS, symbols=table)
+    got = bitbyte_scans(path, stim, tmp_path, words=WORDS, symbols=table)
+    assert first_difference(expected, got) is None
+    assert {row["Q0.0"] for row in expected} == {0, 1}
