@@ -20,5 +20,30 @@ module bus_stats (
       if (byte_stall_i) stalls_byte_o <= stalls_byte_o + 32'd1;
     end
   end
+
+`ifdef FORMAL
+  // Proved alone (formal/bus_stats.sby) and as part of the byte port
+  // (formal/byte_port.sby), k-induction, against the clocks since reset rather than the
+  // counters' own increments: every clock is a stall of a side or not, so each count
+  // plus the clocks without that side's stall is the clocks since reset (all wrapping
+  // at 32 bits, like the counters).
+  `include "formal_past.vh"
+  reg [31:0] f_clocks, f_bit_idle, f_byte_idle;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_clocks    <= 32'd0;
+      f_bit_idle  <= 32'd0;
+      f_byte_idle <= 32'd0;
+    end else begin
+      f_clocks <= f_clocks + 32'd1;
+      if (!bit_stall_i)  f_bit_idle  <= f_bit_idle + 32'd1;
+      if (!byte_stall_i) f_byte_idle <= f_byte_idle + 32'd1;
+    end
+  always @(*) if (rst_ni) begin
+    assert (stalls_bit_o + f_bit_idle == f_clocks);
+    assert (stalls_byte_o + f_byte_idle == f_clocks);
+  end
+  always @(*) if (rst_ni) cover (stalls_bit_o == 32'd2 && stalls_byte_o == 32'd1 && f_clocks == 32'd4);
+`endif
 endmodule
 `default_nettype wire

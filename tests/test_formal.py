@@ -161,6 +161,19 @@ MUTATIONS = [
     ("byte_port", "byte_port.v", "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? c_wr : t_wr;",
      "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? t_wr : c_wr;",
      "bus_ready_o == f_wr"),                     # waits on the other kind's bit
+    # time_base: TIME_MS against CLOCK from outside (f_mark: CLOCK at its last step)
+    ("time_base", "time_base.v", "if (sub_q + 32'd1 >= tick_div_i) begin",
+     "if (sub_q + 32'd2 >= tick_div_i) begin",
+     "assert (f_stepped == (f_elapsed"),               # every millisecond a clock short
+    ("time_base", "time_base.v", "        sub_q <= 32'd0;", "        sub_q <= 32'd1;",
+     "assert (f_stepped == (f_elapsed"),               # ... all but the first
+    # bus_stats: each count against the clocks since reset without that side's stall
+    ("bus_stats", "bus_stats.v", "if (bit_stall_i)  stalls_bit_o  <= stalls_bit_o + 32'd1;",
+     "if (bit_stall_i && !byte_stall_i) stalls_bit_o <= stalls_bit_o + 32'd1;",
+     "stalls_bit_o + f_bit_idle"),                     # a bit stall lost beside a byte one
+    ("bus_stats", "bus_stats.v", "if (byte_stall_i) stalls_byte_o <= stalls_byte_o + 32'd1;",
+     "if (byte_stall_i) stalls_byte_o <= stalls_bit_o + 32'd1;",
+     "stalls_byte_o + f_byte_idle"),                   # the wrong count advanced
     ("core_seq", "copy_engine.v",
      "assign done_o  = run_i && (issued_q == len_q) && !f_valid_q && !c_valid_q;",
      "assign done_o  = run_i && (issued_q == len_q);"),   # done (lock freed) mid-copy
