@@ -1,6 +1,10 @@
 """Byte-side port: register map (docs/byte-bus.md), time base, word I/O, channel
-routing with ready/stall, DONE and TC_BIT strobes."""
+routing with ready/stall, DONE and TC_BIT strobes; and every register bit, every
+address and every strobe against a model of the register map (BusModel), its
+addresses and fields read from bitbyte/lang/definition.toml."""
 from __future__ import annotations
+
+import random
 
 import cocotb
 import pytest
@@ -12,6 +16,8 @@ from bitbyte.lang.definition import DEF
 from simrun import SIMULATORS, run_cocotb
 
 CHANNELS = 4
+STATUS_BITS = 64       # byte_port's defaults (the register map's LO/HI pairs full)
+WORDS = 16             # InWords = OutWords
 
 
 async def reset(dut):
@@ -238,6 +244,264 @@ async def tc_wait_stalls_until_written(dut):
         value.value = 0
         assert await access(dut, wait) == (0, 1), kind
         written.value = other.value = 0
+
+
+# ------------------------------------------------------------------ the register map's model
+M32 = 0xFFFFFFFF
+REG = {r.name: r for r in DEF.registers if not r.plant_only}   # byte_port decodes 8 bits
+F = dict(f for r in DEF.registers for f in r.fields)            # field masks and shifts
+
+
+def sext16(v: int) -> int:
+    return (v | 0xFFFF0000) if v & 0x8000 else v
+
+
+def register_at(addr: int):
+    """(register, index in its window) of a bus address, or (None, 0)."""
+    for r in REG.values():
+        if r.addr <= addr < r.addr + r.count:
+            return r, addr - r.addr
+    return None, 0
+
+
+def word(vec: int, n: int) -> int:
+    return (vec >> (16 * n)) & 0xFFFF
+
+
+class BusModel:
+    """byte_port as docs/byte-bus.md describes it, clock by clock: the read data and
+    strobes of a clock from its inputs (`outputs`), the registers after its edge
+    (`clock`). TIME_MS steps when TICK_DIV clocks (as TICK_DIV is at that clock) have
+    passed since its last step, counted from clock 0 (the first latch / time start)."""
+
+    def __init__(self):
+        self.out_words = [0] * WORDS
+        self.byte_flags = 0
+        self.tick_div = REG["TICK_DIV"].reset
+        self.scan_done = 0
+        self.started = False
+        self.clock_count = self.ms = self.since_step = 0
+        self.stalls_bit = self.stalls_byte = 0
+        self.pending = False
+        self.disp_ms = self.disp_iw = 0
+        self.tc_wait_sel = 0
+
+    def tc_wait_bit(self, i: dict, timer: str, counter: str) -> int:
+        vec = i[counter] if self.tc_wait_sel & F["TC_COUNTER"] else i[timer]
+        return vec >> (self.tc_wait_sel & F["TC_INDEX_MASK"]) & 1
+
+    def read_value(self, name: str, n: int, i: dict) -> int:
+        """What register `name` (window index n) reads with the inputs `i`."""
+        first = i["next"] and not self.pending          # a dispatch's first clock: live
+        named = word(i["in_words"], i["instr"] & 0xF)
+        lo, hi = (lambda v: v & M32), (lambda v: v >> 32)
+        values = {
+            "ID": lambda: DEF.bus_id_value,
+            # bit 0 NEXT, bit 1 running, bit 2 fault, bit 3 SCAN_DONE
+            "STATUS": lambda: i["next"] | i["exec"] << 1 | i["fault"] << 2 | self.scan_done << 3,
+            "DISPATCH_INSTR": lambda: i["instr"],
+            "DISPATCH_CTX": lambda: i["ctx"],
+            "DISPATCH_MS": lambda: self.ms if first else self.disp_ms,
+            "DISPATCH_IW": lambda: sext16(named if first else self.disp_iw),
+            "TIME_MS": lambda: self.ms,
+            "TICK_DIV": lambda: self.tick_div,
+            "CLOCK": lambda: self.clock_count,
+            "T_STATUS_LO": lambda: lo(i["t_stat"]), "T_STATUS_HI": lambda: hi(i["t_stat"]),
+            "C_STATUS_LO": lambda: lo(i["c_stat"]), "C_STATUS_HI": lambda: hi(i["c_stat"]),
+            "T_ENABLE_LO": lambda: lo(i["t_en"]), "T_ENABLE_HI": lambda: hi(i["t_en"]),
+            "C_PULSE_LO": lambda: lo(i["c_pulse"]), "C_PULSE_HI": lambda: hi(i["c_pulse"]),
+            "T_WRITTEN_LO": lambda: lo(i["t_wr"]), "T_WRITTEN_HI": lambda: hi(i["t_wr"]),
+            "C_WRITTEN_LO": lambda: lo(i["c_wr"]), "C_WRITTEN_HI": lambda: hi(i["c_wr"]),
+            # the enable / pulse bit of the timer / counter the last TC_WAIT write chose
+            "TC_WAIT": lambda: self.tc_wait_bit(i, "t_en", "c_pulse"),
+            # pops channel n: its condition in bit 0 (a channel the build lacks: 0)
+            "FBY": lambda: int(bool(i["re"] and n < CHANNELS and i["fby_data"] >> n & 1)),
+            # bits 7..0 FBY n full, bits 15..8 FBI n full
+            "CHAN_STATUS": lambda: i["fby_full"] | i["fbi_full"] << 8,
+            "IW": lambda: sext16(word(i["in_words"], n)),
+            "QW": lambda: sext16(self.out_words[n]),
+            "STALLS_BIT": lambda: self.stalls_bit,
+            "STALLS_BYTE": lambda: self.stalls_byte,
+            "BYTE_FLAGS": lambda: self.byte_flags,
+            "QUEUE_OVERFLOWS": lambda: i["qov"],
+            "QUEUE_UNDERFLOWS": lambda: i["qun"],
+        }
+        readable = {r.name for r in REG.values() if "R" in r.access}
+        assert readable == set(values), "BusModel: the register map changed"
+        return values[name]() if name in values else 0     # write-only registers read 0
+
+    def outputs(self, i: dict) -> dict:
+        reg, n = register_at(i["addr"])
+        name = reg.name if reg else None
+        chan = i["addr"] & 7
+        fby_rd = i["re"] and name == "FBY"
+        fbi_wr = i["we"] and name == "FBI"
+        have = chan < CHANNELS
+        ready = not (fby_rd and have and not i["fby_ready"] >> chan & 1) and \
+            not (fbi_wr and have and not i["fbi_ready"] >> chan & 1) and \
+            not (i["re"] and name == "TC_WAIT" and not self.tc_wait_bit(i, "t_wr", "c_wr"))
+        w = i["wdata"]
+        return {
+            "bus_rdata_o": self.read_value(name, n, i) if name else 0,
+            "bus_ready_o": int(ready),
+            "fby_rd_req_o": (1 << chan) if fby_rd and have else 0,
+            "fbi_wr_req_o": (1 << chan) if fbi_wr and have else 0,
+            "fbi_wr_data_o": w & 1,
+            "done_we_o": int(bool(i["we"] and name == "DONE")),
+            "done_data_o": (w & (F["DONE_RLO"] | F["DONE_RLO_WE"])),
+            "tc_we_o": int(bool(i["we"] and name == "TC_BIT")),
+            "tc_is_counter_o": int(bool(w & F["TC_COUNTER"])),
+            "tc_idx_o": w & F["TC_INDEX_MASK"] & (STATUS_BITS - 1),
+            "tc_val_o": int(bool(w & F["TC_VALUE"])),
+            "byte_scan_end_o": int(bool(i["we"] and name == "SCAN_DONE")),
+        }
+
+    def clock(self, i: dict, out: dict) -> None:
+        reg, n = register_at(i["addr"])
+        name = reg.name if reg else None
+        if i["next"] and not self.pending:                 # the snapshot of a dispatch
+            self.disp_ms = self.ms
+            self.disp_iw = word(i["in_words"], i["instr"] & 0xF)
+        self.pending = bool(i["next"] and not out["done_we_o"])
+        if self.started or i["latch"] or i["time_start"]:
+            self.started = True
+            self.clock_count = (self.clock_count + 1) & M32
+            self.since_step += 1
+            if self.since_step >= self.tick_div:
+                self.ms, self.since_step = (self.ms + 1) & M32, 0
+        self.stalls_bit = (self.stalls_bit + i["bit_stall"]) & M32
+        if (i["re"] or i["we"]) and not out["bus_ready_o"]:
+            self.stalls_byte = (self.stalls_byte + 1) & M32
+        if i["we"] and name == "SCAN_DONE":
+            self.scan_done = 1
+        elif i["latch"]:
+            self.scan_done = 0
+        if i["we"] and name == "TICK_DIV":
+            self.tick_div = i["wdata"]
+        if i["we"] and name == "BYTE_FLAGS":
+            self.byte_flags = i["wdata"]
+        if i["we"] and name == "TC_WAIT":
+            self.tc_wait_sel = i["wdata"] & (F["TC_COUNTER"] | F["TC_INDEX_MASK"])
+        if i["we"] and name == "QW":
+            self.out_words[n] = i["wdata"] & 0xFFFF
+
+    def registers(self) -> dict:
+        return {"out_words_o": sum(v << (16 * k) for k, v in enumerate(self.out_words)),
+                "byte_flags_o": self.byte_flags, "byte_scan_done_o": self.scan_done,
+                "stalls_bit_o": self.stalls_bit, "stalls_byte_o": self.stalls_byte}
+
+
+INPUTS = {"addr": "bus_addr_i", "wdata": "bus_wdata_i", "we": "bus_we_i", "re": "bus_re_i",
+          "latch": "latch_i", "time_start": "time_start_i", "exec": "exec_i",
+          "fault": "fault_i", "next": "next_i", "instr": "dispatch_instr_i",
+          "ctx": "dispatch_ctx_i", "t_stat": "timer_status_i", "c_stat": "counter_status_i",
+          "t_en": "timer_enable_i", "c_pulse": "counter_pulse_i",
+          "t_wr": "timer_written_i", "c_wr": "counter_written_i",
+          "fby_data": "fby_rd_data_i", "fby_ready": "fby_rd_ready_i",
+          "fby_full": "fby_full_i", "fbi_ready": "fbi_wr_ready_i", "fbi_full": "fbi_full_i",
+          "in_words": "in_words_i", "bit_stall": "bit_stall_i",
+          "qov": "queue_overflows_i", "qun": "queue_underflows_i"}
+
+
+def random_inputs(rng: random.Random, addr: int, kind: str, tick_div_small: bool) -> dict:
+    """One clock's inputs: an access of `kind` ('r', 'w', '-') to `addr`, every other
+    input random (each bit of every vector at 0 or 1)."""
+    ch = (1 << CHANNELS) - 1
+    wdata = rng.getrandbits(32)
+    if tick_div_small and addr == REG["TICK_DIV"].addr:
+        wdata = rng.randrange(0, 5)               # short milliseconds, 0 counting like 1
+    return {"addr": addr, "wdata": wdata, "we": int(kind == "w"), "re": int(kind == "r"),
+            "latch": int(rng.random() < 0.03), "time_start": int(rng.random() < 0.01),
+            "exec": rng.getrandbits(1), "fault": rng.getrandbits(1),
+            "next": int(rng.random() < 0.6), "instr": rng.getrandbits(32),
+            "ctx": rng.getrandbits(32), "t_stat": rng.getrandbits(STATUS_BITS),
+            "c_stat": rng.getrandbits(STATUS_BITS), "t_en": rng.getrandbits(STATUS_BITS),
+            "c_pulse": rng.getrandbits(STATUS_BITS), "t_wr": rng.getrandbits(STATUS_BITS),
+            "c_wr": rng.getrandbits(STATUS_BITS), "fby_data": rng.getrandbits(CHANNELS),
+            "fby_ready": rng.getrandbits(CHANNELS) | (ch if rng.random() < 0.5 else 0),
+            "fby_full": rng.getrandbits(CHANNELS),
+            "fbi_ready": rng.getrandbits(CHANNELS) | (ch if rng.random() < 0.5 else 0),
+            "fbi_full": rng.getrandbits(CHANNELS), "in_words": rng.getrandbits(16 * WORDS),
+            "bit_stall": rng.getrandbits(1), "qov": rng.getrandbits(32),
+            "qun": rng.getrandbits(32)}
+
+
+async def against_model(dut, model: BusModel, accesses, rng: random.Random,
+                        tick_div_small: bool = True) -> None:
+    """Run `accesses` ((addr, kind) per clock) with random other inputs; compare every
+    output with the model in every clock (the combinational ones before the edge, the
+    registers after it)."""
+    for clk, (addr, kind) in enumerate(accesses):
+        i = random_inputs(rng, addr, kind, tick_div_small)
+        for key, sig in INPUTS.items():
+            getattr(dut, sig).value = i[key]
+        await Timer(1, unit="ns")
+        want = model.outputs(i)
+        got = {k: int(getattr(dut, k).value) for k in want}
+        assert got == want, (clk, hex(addr), kind, {k: (hex(got[k]), hex(want[k]))
+                                                    for k in want if got[k] != want[k]})
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+        model.clock(i, want)
+        want_r = model.registers()
+        got_r = {k: int(getattr(dut, k).value) for k in want_r}
+        assert got_r == want_r, (clk, hex(addr), kind, {k: (hex(got_r[k]), hex(want_r[k]))
+                                                        for k in want_r if got_r[k] != want_r[k]})
+    for sig in ("bus_we_i", "bus_re_i"):
+        getattr(dut, sig).value = 0
+
+
+def mapped_addresses() -> list[int]:
+    return [r.addr + n for r in REG.values() for n in range(r.count)]
+
+
+@cocotb.test()
+async def every_address_against_model(dut):
+    """Every one of the 256 addresses read, then written, then read again (the written
+    registers read back), in clocks whose other inputs are all random: each register's
+    every bit, the write-only and unmapped addresses reading 0, the strobes only at
+    their address."""
+    rng = random.Random(15)
+    await reset(dut)
+    model = BusModel()
+    sweep = [(a, "r") for a in range(256)] + [(a, "w") for a in range(256)] + \
+        [(a, "r") for a in range(256)]
+    await against_model(dut, model, sweep, rng)
+
+
+@cocotb.test()
+async def random_traffic_against_model(dut):
+    """Random reads, writes and idle clocks (mostly at mapped addresses) with random
+    inputs, the time base running from a random latch, TICK_DIV rewritten with small
+    values: reads, strobes, readiness, the stall counts, SCAN_DONE, the output words and
+    the dispatch snapshot against the model in every clock."""
+    rng = random.Random(1515)
+    await reset(dut)
+    model = BusModel()
+    mapped = mapped_addresses()
+    seq = []
+    for _ in range(1500):
+        addr = rng.choice(mapped) if rng.random() < 0.8 else rng.randrange(256)
+        seq.append((addr, rng.choice("rrw-")))
+    await against_model(dut, model, seq, rng)
+
+
+@cocotb.test()
+async def every_output_word_bit(dut):
+    """Each QW n written with walking ones and zeros: out_words_o carries exactly the
+    written word in its 16 bits (the others untouched), and QW n reads it back."""
+    await reset(dut)
+    qw = REG["QW"]
+    words = [0] * WORDS
+    for bit in range(16):
+        for pattern in (1 << bit, 0xFFFF ^ (1 << bit)):
+            for n in range(WORDS):
+                value = pattern ^ (n * 0x1111 & 0xFFFF) if n % 2 else pattern
+                await access(dut, qw.addr + n, value | 0xABCD0000)
+                words[n] = value
+                assert int(dut.out_words_o.value) == sum(v << 16 * k for k, v in enumerate(words))
+            for n in range(WORDS):
+                assert await read(dut, qw.addr + n) == sext16(words[n])
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)
