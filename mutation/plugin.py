@@ -66,6 +66,7 @@ class Campaign:
                                                    self.cfg["seed"], "sample")
             for i, m in enumerate(self.mutations, 1):
                 m.id = i
+            self.keep_kills()
             self.home = (sigs, cands)
             mapped = {m.id: m for m in self.mutations}
         else:
@@ -76,6 +77,19 @@ class Campaign:
         self.elabs.append({"top": top, "params": params, "dir": str(work),
                            "mapped": sorted(mapped), "candidates": len(cands)})
         return self.netlists[key]
+
+    def keep_kills(self) -> None:
+        """The test kills of an earlier run of this sample (cfg "keep": its results.json):
+        only the mutants it left alive run again. Sound when tests were only added since
+        (run_mutate.py --keep-kills); the sample must be the same mutations."""
+        if not self.cfg.get("keep"):
+            return
+        prev = json.loads(Path(self.cfg["keep"]).read_text())
+        if prev["mutations"] != [m.to_json() for m in self.mutations]:
+            raise mutlib.MutationError(f"{self.cfg['keep']}: another sample (seed, count or "
+                                       "the RTL changed): its kills do not apply")
+        for k, (nodeid, outcome) in prev["killed"].items():
+            self.killed[int(k)] = (nodeid, f"{outcome} (kept)")
 
     # -- results ---------------------------------------------------------------------
     def record(self, nodeid: str, mut: int, outcome: str) -> None:

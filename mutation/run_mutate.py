@@ -77,10 +77,12 @@ def proofs_of(module: str) -> list[mutlib.Sby]:
             if module in s.modules()]
 
 
-def run_tests(c: Campaign, seed: int, count: int, work: Path) -> dict:
-    """The campaign's tests against every mutant (one pytest session): plugin results."""
+def run_tests(c: Campaign, seed: int, count: int, work: Path, keep: Path | None = None) -> dict:
+    """The campaign's tests against every mutant (one pytest session): plugin results.
+    `keep`: an earlier run's results.json whose test kills stand (its survivors run)."""
     cfg = {"work": str(work), "modules": c.modules, "count": count, "seed": seed,
-           "harness": c.harness, "results": str(work / "results.json")}
+           "harness": c.harness, "results": str(work / "results.json"),
+           "keep": str(keep) if keep else None}
     (work / "config.json").write_text(json.dumps(cfg))
     env = dict(os.environ, BITBYTE_MUTATION=str(work / "config.json"), BITBYTE_SEED=str(seed),
                PYTHONPATH=os.pathsep.join([str(ROOT / "mutation"), os.environ.get("PYTHONPATH", "")]),
@@ -143,12 +145,12 @@ def home_candidates(work: Path) -> list:
 
 
 def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
-              timeout: float, reuse: bool = False) -> dict:
+              timeout: float, reuse: bool = False, keep: Path | None = None) -> dict:
     t0 = time.time()
     if reuse:   # the tests' results of an interrupted run (their time is not known)
         res = json.loads((work / "results.json").read_text())
     else:
-        res = run_tests(c, seed, count, work)
+        res = run_tests(c, seed, count, work, keep)
     t_tests = time.time() - t0
     muts = [mutlib.Mutation.from_json(d) for d in res["mutations"]]
     base_bad = {n: o for n, o in res["baseline"].items() if o[0] != "pass"}
@@ -187,6 +189,7 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
         "seconds": {"tests": round(t_tests, 1), "proofs": round(t_proofs, 1),
                     "equivalence": round(t_eq, 1)},
         "tests_reused": reuse, "check_timeout": timeout, "eq_depth": eq_depth,
+        "kills_kept": sum(1 for v in killed.values() if v[1].endswith("(kept)")),
     }
     (work / "summary.json").write_text(json.dumps(summary, indent=1))
     return summary
@@ -267,6 +270,9 @@ def write_doc(summaries, total_s: float, path: Path = DOC) -> None:
                      f"tests {tests}{kw}; "
                      + ("tests' results kept from an interrupted run (time not recorded), "
                         if s.get("tests_reused") else f"{sec['tests']} s tests, ")
+                     + (f"{s['kills_kept']} test kills kept from an earlier run of the same "
+                        "sample (--keep-kills; the tests re-run on its survivors only), "
+                        if s.get("kills_kept") else "")
                      + f"{sec['proofs']} s proofs, {sec['equivalence']} s equivalence"
                      + (f" (each proof and check stopped after {s['check_timeout']:.0f} s, "
                         f"k-induction depth {s['eq_depth']})" if "check_timeout" in s else "")
@@ -311,6 +317,10 @@ def main(argv=None) -> int:
     ap.add_argument("--reuse-tests", action="store_true",
                     help="keep a campaign's test results (build/mutation/<c>/results.json) "
                          "and redo only its proofs and equivalence checks")
+    ap.add_argument("--keep-kills", metavar="RESULTS",
+                    help="an earlier run's results.json (one campaign, the same seed and "
+                         "count): its test kills stand and the tests run on its survivors "
+                         "only; sound when tests were only added since")
     ap.add_argument("--doc-only", action="store_true",
                     help="rewrite the doc from the campaigns' last summaries, run nothing")
     args = ap.parse_args(argv)
@@ -323,12 +333,18 @@ def main(argv=None) -> int:
         return 2
     def one(c):
         work = BUILD / c.name
+        keep = None
+        if args.keep_kills:   # copied first: it may be this campaign's own, about to go
+            keep = BUILD / f"{c.name}.kept.json"
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            keep.write_bytes(Path(args.keep_kills).read_bytes())
         reuse = args.reuse_tests and (work / "results.json").exists()
         if work.exists() and not reuse:
             subprocess.run(["rm", "-rf", str(work)], check=True)
         work.mkdir(parents=True, exist_ok=True)
         t = time.time()
-        s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout, reuse)
+        s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout, reuse,
+                      keep)
         print(f"{c.name}: {len(s['mutants'])} mutants, {time.time() - t:.0f} s", flush=True)
         return s
     try:
