@@ -17,6 +17,10 @@ status read in strings.  A few programs contain what the front end rejects
 (NOT after `O` in a string, a jump target reached with different /FC): the test
 expects `unsupported:` for those, never a silent difference.
 
+With calls=True (tests/test_stl_calls.py, soak/test_stl_soak.py): FC 1, FC 2 and FB 1
+with DB 1 and DB 2, whose bodies are random networks over their `#name`s, called from
+OB 1 with CALL / UC / CC, and jump lists SPL (JL) with their SPA (JU) lists.
+
 random_program(seed) -> (source text, language); random_inputs(seed, scans) -> the
 input bytes 0 and 1 per scan.
 """
@@ -51,6 +55,7 @@ class Gen:
                  calls: bool = False):
         self.r = random.Random(seed)
         self.calls = calls
+        self.jump_lists = calls         # (programs without calls stay as they were)
         self.local_bits: list[str] = []     # `#name`s a body in a block may read ...
         self.local_out: list[str] = []      # ... and write
         self.local_words: list[str] = []
@@ -279,6 +284,11 @@ class Gen:
                 target = r.randrange(n + 1, networks)
                 name = labels.setdefault(target, f"M{target:03d}")
                 jumps[n] = (r.choice(JUMPS[self.lang]), name)
+                if self.words and self.jump_lists and r.random() < 0.3:
+                    # a jump list: SPL (JL) with 1..3 SPA (JU) to later networks
+                    entries = [labels.setdefault(t, f"M{t:03d}") for t in (
+                        r.randrange(n + 1, networks) for _ in range(r.randrange(1, 4)))]
+                    jumps[n] = ("JL", entries, name)
         for n in range(networks):
             if self.calls and r.random() < 0.4:
                 self.lines.append(f"NETWORK\nTITLE = network {n}")
@@ -287,7 +297,17 @@ class Gen:
                 self.call_network()
             else:
                 self.network(n, labels)
-            if n in jumps:
+            if n in jumps and jumps[n][0] == "JL":
+                _, entries, default = jumps[n]
+                self.emit(f"L\t{r.choice(('0', '1', '2', '3', '-255', '257'))}"
+                          if r.random() < 0.5 else f"L\t{self.word()}")
+                spa = JUMPS[self.lang][0]
+                self.emit(f"{'SPL' if self.lang == 'de' else 'JL'}\tL{n:03d}")
+                for entry in entries:
+                    self.emit(f"{spa}\t{entry}")
+                self.label = f"L{n:03d}:"
+                self.emit(f"{spa}\t{default}")
+            elif n in jumps:
                 mnem, name = jumps[n]
                 if r.random() < 0.3:
                     self.string(0)                  # a condition of its own

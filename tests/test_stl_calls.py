@@ -464,14 +464,14 @@ CALL_PROGRAMS = int(os.environ.get("BITBYTE_STL_CALL_PROGRAMS", "6"))
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
 
 
-def random_call_programs(tmp: Path, count: int, offset: int = 0
-                         ) -> tuple[int, list[int], set[str]]:
+def random_call_programs(tmp: Path, count: int, offset: int = 0,
+                         base_seed: int | None = None) -> tuple[int, list[int], set[str]]:
     """(compared, rejected seeds, the call mnemonics seen in compared programs);
     asserts 0 mismatches against awlsim.  Program i has the seed
     BITBYTE_SEED * 10000 + i."""
     compared, rejected, seen = 0, [], set()
     for index in range(offset, offset + count):
-        seed = BASE_SEED * 10_000 + index
+        seed = (BASE_SEED if base_seed is None else base_seed) * 10_000 + index
         text, lang = random_program(seed, calls=True)
         path = tmp / f"call{seed}.awl"
         path.write_text(text)
@@ -504,7 +504,7 @@ def test_random_call_programs_catch_one_instance_for_two_dbs(tmp_path, monkeypat
     of per instance DB (the mutation of test_oracle_catches_one_instance_for_two_dbs)."""
     one_instance(monkeypatch)
     with pytest.raises(AssertionError, match="differs from awlsim"):
-        random_call_programs(tmp_path, 40)
+        random_call_programs(tmp_path, 40, base_seed=0)    # (seed 6 shows it)
 
 
 def test_symbols_as_actual_parameters(tmp_path):
@@ -525,3 +525,22 @@ def test_symbols_as_actual_parameters(tmp_path):
     got = bitbyte_scans(path, stim, tmp_path, words=WORDS, symbols=table)
     assert first_difference(expected, got) is None
     assert {row["Q0.0"] for row in expected} == {0, 1}
+
+
+def test_random_call_programs_catch_a_jump_list_without_the_low_byte(tmp_path,
+                                                                     monkeypatch):
+    """The random programs' jump lists (SPL/JL on constants and words, 257 and -255
+    among them) can catch a chain that compares all 16 bits of ACCU1 — rarely: 1 of
+    the first 300 programs of seed 0 (program 205) shows it, since the entries and
+    the default often lead to the same effect; test_stl_jumplist.py's program is
+    the strong check."""
+    original = stl.StlFrontEnd.jump_list
+
+    def sixteen_bits(self, stmt, st, edges):
+        if st.acc[0] is not None:
+            st.acc = (stl.Known(0), st.acc[1])
+        return original(self, stmt, st, edges)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "jump_list", sixteen_bits)
+    with pytest.raises(AssertionError, match="differs from awlsim"):
+        random_call_programs(tmp_path, 1, offset=205, base_seed=0)
