@@ -152,9 +152,9 @@ static int status_bit(bb_state *s, uint16_t lo, unsigned n) {
 /* Parallel mode adds BB_STATUS_WAIT: the bit side writes the bit in this scan, maybe
  * after the byte side gets here, so the bit is read through TC_WAIT: a write selects
  * timer / counter n, the read is not ready (a bus stall, as an empty channel's) until
- * the bit side has written it since the scan's latch. The compiler puts the write and
- * this instruction in one row, so the bit side reaches the write without waiting for
- * anything the byte side does after it: the wait ends (docs/exchange.md). Like a
+ * the bit side has written it since the scan's latch. The compiler puts the bit row
+ * `= T n` right before this instruction's row, so the bit side reaches the write without
+ * waiting for anything the byte side does after it: the wait ends (docs/exchange.md). Like a
  * channel read's, the clocks it takes count against the instruction's cost. */
 static int status_input(bb_state *s, uint32_t instr, uint16_t lo, unsigned n) {
   if (instr & BB_STATUS_WAIT) {

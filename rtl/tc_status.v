@@ -146,6 +146,30 @@ module tc_status #(
             ($past(f_wc) || ($past(counter_written_o[f_n]) && !$past(latch_i))));
   end
   always @(*) if (!rst_ni) assert (timer_written_o == 0 && counter_written_o == 0);
+  // What the waiting byte procedure relies on: while the bit is written, the enable /
+  // pulse bit holds the value of the bit processor's last write (unless a serial-mode
+  // dispatch wrote it since: a mode change inside a scan, which the CPU never makes).
+  reg f_tv, f_cv, f_t_own, f_c_own;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_t_own <= 1'b0;
+      f_c_own <= 1'b0;
+    end else begin
+      if (f_wt) begin
+        f_tv <= bit_val_i;
+        f_t_own <= 1'b1;
+      end else if (!partitioned_i && ctl_we_i && !ctl_is_counter_i && ctl_idx_i == f_n)
+        f_t_own <= 1'b0;
+      if (f_wc) begin
+        f_cv <= bit_val_i;
+        f_c_own <= 1'b1;
+      end else if (!partitioned_i && ctl_we_i && ctl_is_counter_i && ctl_idx_i == f_n)
+        f_c_own <= 1'b0;
+    end
+  always @(*) if (rst_ni) begin
+    if (timer_written_o[f_n] && f_t_own) assert (timer_enable_o[f_n] == f_tv);
+    if (counter_written_o[f_n] && f_c_own) assert (counter_pulse_o[f_n] == f_cv);
+  end
   // reachable: a counter's written bit set, then cleared by the next scan's latch
   always @(posedge clk_i) if (rst_ni)
     cover (f_past_valid && $past(counter_written_o[f_n]) && !counter_written_o[f_n]);

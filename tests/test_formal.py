@@ -147,6 +147,9 @@ MUTATIONS = [
      "if (partitioned_i && bit_we_i && !bit_is_counter_i) timer_written_o[bit_idx_i]   <= 1'b1;",
      "if (en_we && !en_cnt) timer_written_o[en_idx]   <= 1'b1;",
      "timer_written_o[f_n] =="),                 # a serial dispatch marks it written
+    ("tc_status", "tc_status.v", "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;",
+     "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val && ctl_we_i;",
+     "timer_enable_o[f_n] == f_tv"),             # the waiting reader gets a wrong enable
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",

@@ -661,6 +661,41 @@ def test_adversarial_programs_match_serial(gen, timers):
         assert scheduled >= 15, f"only {scheduled} programs rescheduled"
 
 
+@pytest.mark.parametrize("gen", ["soup", "adv"])
+def test_status_path_programs_match_serial(gen):
+    """--tc-path status in parallel mode (docs/exchange.md): a timer's enable / a
+    counter's input through the status buffer, the byte side waiting (TC_WAIT) for
+    this scan's `= T n` / `= C n`; every interleaving policy, both exchanges, against
+    serial mode. The path must be taken, and the check can fail: with the wait
+    switched off (ParSim._byte_blocked ignoring it) some programs differ."""
+    taken = differ = 0
+    for seed in range(60):
+        got = _program_and_expectation(gen, seed, True)
+        if got is None:
+            continue
+        program, stim, expected = got
+        rng = random.Random(seed)
+        part = P.partition(program, rng.choice([1, 2, 3, 4]), tc_path="status",
+                           hardware_wait=rng.random() < 0.7)
+        if not any(i.status_wait for i in part.byte):
+            continue
+        taken += 1
+        runs = random_runs(rng, 3)
+        compare(part, stim, expected, True, runs)
+        real = ParSim._byte_blocked
+        ParSim._byte_blocked = lambda self, ins: None if getattr(ins, "status_wait", False) \
+            else real(self, ins)
+        try:
+            compare(part, stim, expected, True, [(ex, qd, "byte-first", s) for ex, qd, _, s in runs])
+        except AssertionError:
+            differ += 1
+        finally:
+            ParSim._byte_blocked = real
+    print(f"{gen}: status path in {taken} programs, {differ} differ without the wait")
+    assert taken >= 15, f"the status path taken in {taken} programs only"
+    assert differ > 0, "no program needs the wait: this test cannot fail"
+
+
 def test_schedule_swaps_only_independent_rungs_on_soup_programs():
     """tests/test_partition.py's independent re-statement of the rules, on the
     crowded soup programs."""

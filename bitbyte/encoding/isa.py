@@ -5,8 +5,10 @@ so that a wrong opcode here shows up as a mismatch between RTL and reference ins
 of hiding in both.  The numbers come from bitbyte/lang/definition.toml, as do those of the
 generated `rtl/bit_isa.vh` and `firmware_byte/bb_isa.h`.
 
-Word layout (bits):  31..24 opcode | 23..16 reserved (0) | 15..12 area | 11..0 index,
-or 15..0 the jump target, or all operand bits 0.
+Word layout (bits):  31..24 opcode | 23..16 reserved (0, except bit 16 wait-for-update
+of a bit-side T/C read, bits 17/18 from-status / status-wait of a byte T/C instruction:
+docs/isa.md) | 15..12 area | 11..0 index, or 15..0 the jump target, or all operand
+bits 0.
 """
 from __future__ import annotations
 

@@ -92,6 +92,11 @@ class ParSim(RefSim):
         self.queues: dict[tuple[str, int], deque] = {}
         self.stalls = {TO_BYTE: 0, TO_BIT: 0, "status": 0}
         self.max_fill = 0
+        # --tc-path status (docs/exchange.md): the status buffer's enable / pulse bits
+        # (kept over scans, as tc_status.v keeps them) and the ones the bit side wrote
+        # in this scan (its `written` bits, cleared at the scan's start)
+        self.tc_enable: dict[tuple[str, int], int] = {}
+        self.tc_written: set[tuple[str, int]] = set()
 
     # --- channels --------------------------------------------------------------------
 
@@ -116,6 +121,23 @@ class ParSim(RefSim):
     def write_fby(self, k: int, value: int) -> None:
         self._push(TO_BYTE, k, value)
 
+    def _write(self, op, value: int, clock: int) -> None:
+        if op.area in ("T", "C"):           # the bit part's `= T n` / `= C n`
+            self.tc_enable[(op.area, op.index)] = value & 1
+            self.tc_written.add((op.area, op.index))
+        else:
+            super()._write(op, value, clock)
+
+    def byte_instruction(self, ins: Instr, clock: int) -> int:
+        if not getattr(ins, "from_status", False):
+            return super().byte_instruction(ins, clock)
+        # its input is the status buffer's bit, not F_B, which it leaves as it was
+        f_b = self.rlo
+        self.rlo = self.tc_enable.get((ins.operand.area, ins.operand.index), 0)
+        cost = super().byte_instruction(ins, clock)
+        self.rlo = f_b
+        return cost
+
     def exchange_instruction(self, ins: Instr, clock: int) -> None:
         k = ins.operand.index
         if ins.mnemonic == "READ":
@@ -138,6 +160,9 @@ class ParSim(RefSim):
         return None
 
     def _byte_blocked(self, ins: Instr) -> str | None:
+        if getattr(ins, "status_wait", False) and \
+                (ins.operand.area, ins.operand.index) not in self.tc_written:
+            return "status"                  # TC_WAIT: until this scan's `= T n` ran
         if ins.mnemonic == "READ":
             return TO_BYTE if not self._queue(TO_BYTE, ins.operand.index) else None
         if ins.mnemonic == "WRITE":
@@ -188,6 +213,7 @@ class ParSim(RefSim):
         bit_clock = byte_clock = start
         bit_done = byte_done = False
         self.updated: set[tuple[str, int]] = set()     # T/C written by the byte side
+        self.tc_written = set()                        # enables written by the bit side
         choose = self._chooser()
         steps = 0
         self.program = self.bit_program          # RefSim._jump reads the labels here
