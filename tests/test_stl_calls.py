@@ -269,6 +269,81 @@ def test_calls_against_awlsim(tmp_path, name, lang):
     assert len({tuple(sorted(r.items())) for r in expected}) > 4
 
 
+# Review finding: every call of the OB1 table is followed by `=`, so a block end that
+# kept /FC (instead of S7's /FC = 0, OR = 0) went unnoticed; here `O`, `U`, `X`, `S`
+# and a conditional jump follow calls whose blocks end in every state (an open `O`,
+# after `X`/`NOT`).
+STATUS_AFTER_CALL = """\
+FUNCTION FC 4 : VOID
+BEGIN
+NETWORK
+TITLE =
+      U     E 1.0
+      U     E 1.1
+      O
+      U     E 1.2
+END_FUNCTION
+
+FUNCTION FC 5 : VOID
+BEGIN
+NETWORK
+TITLE =
+      U     E 1.3
+      O
+END_FUNCTION
+
+FUNCTION FC 6 : VOID
+BEGIN
+NETWORK
+TITLE =
+      O     E 1.4
+      X     E 1.5
+      NOT
+END_FUNCTION
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      U     E 0.0
+      CALL  FC 4
+      O
+      U     E 0.1
+      =     A 0.0
+      U     E 0.2
+      CALL  FC 4
+      X     E 0.3
+      =     A 0.1
+      CALL  FC 5
+      =     A 0.2
+      U     E 0.4
+      O
+      CALL  FC 6
+      NOT
+      =     A 0.3
+      CALL  FC 6
+      S     A 0.4
+      U     E 0.5
+      CALL  FC 5
+      U     E 0.6
+      =     A 0.5
+      CALL  FC 4
+      SPB   L1
+      U     E 0.7
+      =     A 0.6
+L1:   =     A 0.7
+END_ORGANIZATION_BLOCK
+"""
+
+
+def test_status_after_a_block_end_against_awlsim(tmp_path):
+    path = tmp_path / "status_after_call.awl"
+    path.write_text(STATUS_AFTER_CALL)
+    expected, _, diff = compare(path, "de", tmp_path)
+    assert diff is None, diff
+    assert len({tuple(sorted(r.items())) for r in expected}) > 4
+
+
 def test_fb_instances_count_apart(tmp_path):
     """Two instance DBs of FB 1 keep their counts apart (awlsim agrees, and so do
     the words: DB 1's count goes up by 1, DB 2's down by 2)."""
@@ -364,7 +439,22 @@ CALL_ERRORS = [
      "END_FUNCTION\n" + ob("SET"), "FUNCTION FC", 1, "duplicate block FC 1"),
     ("FUNCTION FC 1 : VOID\nBEGIN\nEND_FUNCTION\n", None, 0,
      "no ORGANIZATION_BLOCK OB 1"),
+    # review findings (tracebacks before): an argument in the other language, a call
+    # without a block; and a silent collision of a call's copy with a timer's scratch bit
+    (ob("CALL FC 1 (a := I 0.0)", FC1), "U #a", 9,
+     "mixed mnemonics: `#a = I 0.0` is English, but this source is German"),
+    (ob("UC"), "UC", 1, "missing operand: `UC` needs a block"),
+    (ob("U E 0.0\nL S5T#1S\nSE T 1\nU T 1\n= A 0.0\nCALL FB 9, DB 9 (a := M 255.7)", FB9),
+     "CALL FB", 23, "unsupported: `M 255.7` uses M255.7, which the translation"),
 ]
+
+
+def test_a_line_of_only_a_semicolon(tmp_path, capsys):
+    """Review finding: a line holding only `;` (awlsim runs it) raised an IndexError."""
+    path = tmp_path / "semi.awl"
+    path.write_text(ob("U E 0.0\n;\n= A 0.0"))
+    code, out, err = run_cli(["run", str(path), "--scans", "1"], capsys)
+    assert code == 0 and "Traceback" not in err, err
 
 
 @pytest.mark.parametrize("text,at,col,message", CALL_ERRORS)

@@ -547,6 +547,9 @@ class StlFrontEnd:
                stack: list[Block]) -> list[Stmt]:
         info: CallInfo = stmt.extra
         m = stmt.canon
+        if info is None:                    # `UC` alone: the call pattern did not match
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             f"missing operand: `{stmt.mnemonic.text}` needs a block")
         written = f"{stmt.mnemonic.text} {info.kind} {info.number}"
         callee = self.blocks.get((info.kind, info.number))
         if callee is None:
@@ -679,16 +682,24 @@ class StlFrontEnd:
                              f"`{' '.join(w.text for w in words)}`")
         return Binding(words, const, None, const)
 
+    def used_operands(self, stmt: Stmt):
+        """The operand word lists a statement uses: its own and, for a block call's
+        copies in and out, each copy's two sides (not the block's own locals, not a
+        jump's label)."""
+        if self.is_jump(stmt):
+            return
+        for ops in [stmt.operands] + [w for c in (stmt.extra if stmt.canon in (
+                "@CALL", "@END") else []) for w in (c[1] or [], c[2])]:
+            if ops and not ops[0].local:
+                yield ops
+
     def check_local_region(self) -> None:
         """The program's own operands stay out of the region the block-local data
         lives in (M bytes 128..223), once there is such data."""
         if not self.cells:
             return
         for stmt in self.stmts:
-            for ops in [stmt.operands] + [w for c in (stmt.extra if stmt.canon in (
-                    "@CALL", "@END") else []) for w in (c[1] or [], c[2])]:
-                if not ops or ops[0].local or self.is_jump(stmt):
-                    continue
+            for ops in self.used_operands(stmt):
                 text = "".join(w.text for w in ops[:2]).upper()
                 area, rest = _split_area(text)
                 canon = AREA_TABLE.get(area, {}).get(self.lang)
@@ -827,10 +838,8 @@ class StlFrontEnd:
         if not self.scratch_bits:
             return
         taken = {(op.byte, op.bit): op for op in self.scratch_bits.values()}
-        for stmt in self.stmts:
-            if not stmt.operands or self.is_jump(stmt):
-                continue
-            text = "".join(w.text for w in stmt.operands[:2]).upper()
+        for stmt, ops in ((s, o) for s in self.stmts for o in self.used_operands(s)):
+            text = "".join(w.text for w in ops[:2]).upper()
             area, rest = _split_area(text)
             canon = AREA_TABLE.get(area, {}).get(self.lang)
             hit = None
@@ -841,13 +850,13 @@ class StlFrontEnd:
                 hit = next((op for (b, _), op in taken.items()
                             if b in (int(rest), int(rest) + 1)), None)
             if hit is not None:
-                first = stmt.operands[0].text
-                written = " ".join(w.text for w in stmt.operands[:2]) if \
+                first = ops[0].text
+                written = " ".join(w.text for w in ops[:2]) if \
                     _split_area(first)[1] == "" else first
                 raise self.unsupported(stmt, f"`{written}` uses "
                                        f"{hit.text}, which the translation of this "
                                        "program's timers keeps for itself (the top "
-                                       "marker bits)", stmt.operands[0].col)
+                                       "marker bits)", ops[0].col)
 
     def prepare_timers(self) -> None:
         """One S7 kind per timer, and its scratch bits: the status S7 shows (V, the
@@ -909,6 +918,8 @@ class StlFrontEnd:
                 continue
             col = len(text) - len(text.lstrip()) + 1
             words = stripped.replace(";", " ").split()
+            if not words:                       # a line holding only `;`
+                continue
             head = words[0].upper()
             if state == "outside":
                 block = self.block_head(n, col, stripped, words)
@@ -1184,6 +1195,11 @@ class StlFrontEnd:
         langs = AREA_TABLE.get(area)
         if langs is None or not area:
             raise self.error(stmt.line, first.col, f"invalid operand `{written}`")
+        if self.lang not in langs:          # e.g. a CALL argument in the other language
+            other = next(iter(langs))
+            raise self.error(stmt.line, first.col,
+                             f"mixed mnemonics: `{written}` is {LANGUAGE_NAME[other]}, "
+                             f"but this source is {LANGUAGE_NAME[self.lang]}")
         return first, langs[self.lang], rest, written
 
     def bit_operand(self, stmt: Stmt, targets: tuple[str, ...] = BIT_AREAS) -> Operand:
