@@ -1184,6 +1184,14 @@ class StlFrontEnd:
         text = first.text
         if text.startswith("#"):
             raise self.unsupported(stmt, f"local variable `{text}`", first.col)
+        # a data block operand with a space (`DB1.DBW 2`) or indirect addressing
+        # (`M [MD 0]`): named as what it is, not as an extra operand
+        if re.fullmatch(r"DB\d+\.D[BI][XBWD]?", text, re.I):
+            raise self.unsupported(stmt, "data block operand `" + " ".join(
+                w.text for w in ops[:2]) + f"` in `{stmt.mnemonic.text}`", first.col)
+        if any(w.text.startswith("[") for w in ops):
+            raise self.unsupported(stmt, "indirect addressing `" + " ".join(
+                w.text for w in ops) + f"` in `{stmt.mnemonic.text}`", first.col)
         area, rest = _split_area(text)
         used = 1
         if area and rest == "" and len(ops) > 1:
