@@ -1761,7 +1761,8 @@ class StlFrontEnd:
         if value == CLOBBERED or isinstance(value, Known) and value.il_value is not None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    "which the translation of an earlier timer or "
-                                   "counter instruction changed (S7 leaves it alone)")
+                                   "counter instruction, block call or jump list "
+                                   "changed (S7 leaves it alone)")
 
     def word_statement(self, stmt: Stmt, st: _State, m: str) -> None:
         if m == "L":
