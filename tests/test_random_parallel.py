@@ -85,19 +85,25 @@ def test_cases_keep_timers(cases):
     assert starts > len(cases) // 2 and on > 0, (starts, on)
 
 
+def run_on_harness(case, exchange: str, tmp_path, capsys, *extra: str) -> None:
+    """`bitbyte run` the case in parallel mode on the harness (extra: more options) and
+    check its trace against serial mode."""
+    trace = tmp_path / f"{case.seed}.csv"
+    argv = ["run", str(case.il), "--mode", "parallel", "--exchange", exchange, *extra,
+            "--stimulus", str(case.stim), "--scans", str(SCANS),
+            "--watchdog", str(WATCHDOG), "--trace", str(trace)]
+    if case.watch:
+        argv += ["--watch", case.watch]
+    rc = cli.main(argv)
+    assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
+    case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
+               " ".join(["harness, parallel,", exchange, *extra]))
+
+
 @pytest.mark.parametrize("exchange", ["handshake", "queue"])
 def test_parallel_on_harness(cases, exchange, tmp_path, capsys):
     for case in cases:
-        trace = tmp_path / f"{case.seed}.csv"
-        argv = ["run", str(case.il), "--mode", "parallel", "--exchange", exchange,
-                "--stimulus", str(case.stim), "--scans", str(SCANS),
-                "--watchdog", str(WATCHDOG), "--trace", str(trace)]
-        if case.watch:
-            argv += ["--watch", case.watch]
-        rc = cli.main(argv)
-        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
-        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
-                   f"harness, parallel, {exchange}")
+        run_on_harness(case, exchange, tmp_path, capsys)
 
 
 def test_parallel_status_path_on_harness(cases, tmp_path, capsys):
@@ -106,20 +112,11 @@ def test_parallel_status_path_on_harness(cases, tmp_path, capsys):
     write; the same trace as serial mode. Handshake and queue alternate; the path must
     be taken in most programs with a timer or counter (else this proves little)."""
     used = with_tc = 0
-    for i, case in enumerate(cases):
-        exchange = "queue" if i % 2 else "handshake"
-        trace = tmp_path / f"{case.seed}.csv"
-        argv = ["run", str(case.il), "--mode", "parallel", "--exchange", exchange,
-                "--tc-path", "status", "--stimulus", str(case.stim), "--scans",
-                str(SCANS), "--watchdog", str(WATCHDOG), "--trace", str(trace)]
-        if case.watch:
-            argv += ["--watch", case.watch]
-        rc = cli.main(argv)
-        assert rc in (0, cli.EXIT_WATCHDOG), capsys.readouterr().err
-        case.check(read_trace_rows(trace, case.columns), rc == cli.EXIT_WATCHDOG,
-                   f"harness, parallel, {exchange}, --tc-path status")
-        with_tc += any(byte_kind(i) in STATUS_UPDATES for i in case.program.instrs)
-        used += any(i.status_wait for i in partition(case.program, tc_path="status").byte)
+    for k, case in enumerate(cases):
+        run_on_harness(case, "queue" if k % 2 else "handshake", tmp_path, capsys,
+                       "--tc-path", "status")
+        with_tc += any(byte_kind(ins) in STATUS_UPDATES for ins in case.program.instrs)
+        used += any(ins.status_wait for ins in partition(case.program, tc_path="status").byte)
     assert used > with_tc // 2, f"the status path in {used} of {with_tc} programs"
     print(f"--tc-path status taken in {used} of {with_tc} programs with a timer or counter")
 
