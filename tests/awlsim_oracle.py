@@ -46,19 +46,25 @@ def scan_inputs_csv(inputs: list[dict[int, int]], in_bytes: int,
     return "\n".join(rows) + "\n"
 
 
-def columns_of(out_bytes: int, marker_bytes: int, words: tuple[str, ...] = ()
-               ) -> list[str]:
-    return ([f"Q{b}.{n}" for b in range(out_bytes) for n in BITS]
-            + [f"M{b}.{n}" for b in range(marker_bytes) for n in BITS] + list(words))
+def byte_numbers(count) -> tuple[int, ...]:
+    """Bytes 0..count-1 for an int, or the byte numbers given (out_bytes=(4, 5))."""
+    return tuple(range(count)) if isinstance(count, int) else tuple(count)
+
+
+def columns_of(out_bytes, marker_bytes, words: tuple[str, ...] = ()) -> list[str]:
+    return ([f"Q{b}.{n}" for b in byte_numbers(out_bytes) for n in BITS]
+            + [f"M{b}.{n}" for b in byte_numbers(marker_bytes) for n in BITS]
+            + list(words))
 
 
 def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: str,
-                 out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
+                 out_bytes=2, marker_bytes=2, words: tuple[str, ...] = (),
                  scan_times_s: list[float] | None = None, timers: tuple[int, ...] = (),
                  symbols: str | Path | None = None) -> list[dict[str, int]]:
     """Run `path` in awlsim for len(inputs) scans; mnemonics "de" or "en"; `words`
     ("QW2", "MW10") are read as S7 words (bytes n and n+1) of the output image and
-    the marker area; `timers` adds "@T n", the status of timer n after the cycle, and
+    the marker area; out_bytes / marker_bytes: a count (bytes 0..n-1) or the byte
+    numbers; `timers` adds "@T n", the status of timer n after the cycle, and
     "@T n<", as at the scan's latch (not compared: stimuli for timer programs are
     made with them); `symbols`: a STEP 7 .asc symbol table, loaded as awlsim loads
     one (SymTabParser, loadSymbolTable)."""
@@ -100,10 +106,10 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
         sim.runCycle()
         markers = cpu.flags.getDataBytes()
         row = {}
-        for b in range(out_bytes):
+        for b in byte_numbers(out_bytes):
             value = cpu.fetchOutputByte(b)
             row.update({f"Q{b}.{n}": (value >> n) & 1 for n in BITS})
-        for b in range(marker_bytes):
+        for b in byte_numbers(marker_bytes):
             row.update({f"M{b}.{n}": (markers[b] >> n) & 1 for n in BITS})
         for name in words:
             n = int(name[2:])
@@ -121,7 +127,7 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
 
 def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
-                  out_bytes: int = 2, marker_bytes: int = 2, words: tuple[str, ...] = (),
+                  out_bytes=2, marker_bytes=2, words: tuple[str, ...] = (),
                   in_words: tuple[int, ...] = (), clock_mhz: str = "100",
                   mnemonics: str | None = None, symbols: str | Path | None = None
                   ) -> list[dict[str, int]]:
@@ -206,18 +212,22 @@ def quiet_inputs(inputs: list[dict[int, int]], busy: set[int]) -> list[dict[int,
 
 def timer_scans(path, inputs, tmp, *, mnemonics: str, timers: tuple[int, ...],
                 clock_mhz: str = "0.02", words: tuple[str, ...] = (),
-                in_words: tuple[int, ...] = (), quiet: bool = True, **kw):
+                in_words: tuple[int, ...] = (), quiet: bool = True, out_bytes=2,
+                marker_bytes=2, awlsim_path=None, **kw):
     """(awlsim's rows, bitbyte's rows, the inputs used) for a timer program: awlsim
     runs at bitbyte's latch times, the inputs kept quiet around awlsim's timer
     transitions (quiet_inputs; the busy scans only grow, so this settles), unless
-    `quiet` is False (hand-written stimuli that keep clear of them by design)."""
+    `quiet` is False (hand-written stimuli that keep clear of them by design);
+    `awlsim_path`: the file awlsim runs, when it is not `path` itself."""
     busy: set[int] = set()
     for _ in range(12):
         stimulus = quiet_inputs(inputs, busy)
         got = bitbyte_scans(path, stimulus, tmp, clock_mhz=clock_mhz, words=words,
-                            in_words=in_words, **kw)
-        expected = awlsim_scans(path, stimulus, mnemonics=mnemonics, words=words,
-                                scan_times_s=latch_times(got), timers=timers)
+                            in_words=in_words, out_bytes=out_bytes,
+                            marker_bytes=marker_bytes, **kw)
+        expected = awlsim_scans(awlsim_path or path, stimulus, mnemonics=mnemonics,
+                                words=words, scan_times_s=latch_times(got), timers=timers,
+                                out_bytes=out_bytes, marker_bytes=marker_bytes)
         grown = busy | timer_busy(expected) if quiet else busy
         if grown == busy:
             break

@@ -207,6 +207,9 @@ _CALL_START = re.compile(r"\s*(?:[A-Za-z_]\w*\s*:(?!=)\s*)*(CALL|UC|CC)\b", re.I
 _CALL_STMT = re.compile(r"\s*(CALL|UC|CC)\s+(.*?)\s*$", re.I | re.S)
 _CALLEE = re.compile(r"(FC|FB)\s*(\d+)\s*(?:,\s*(DB)\s*(\d+))?\s*(\((.*)\))?", re.I | re.S)
 _PARAM = re.compile(r"\s*([A-Za-z_]\w*)\s*:=\s*(.*?)\s*", re.S)
+# one parameter a line after a CALL without parentheses, as STEP 7's STL editor shows
+# a call (`CALL FB 10, DB 10` / `Start :=E 0.0` / ...): read as `CALL ... (Start := ...)`
+_PARAM_LINE = re.compile(r'\s*[A-Za-z_]\w*\s*:=\s*(?:"[^"]*"|[^\s;(),"][^;(),"]*?)\s*;?\s*')
 _DECL = re.compile(r"\s*([A-Za-z_]\w*)\s*(?:\{[^}]*\}\s*)?:\s*([^:;]+?)\s*"
                    r"(?::=\s*([^;]+?))?\s*;?\s*$")
 _TOKEN = re.compile(r'"[^"]*"|\(|\)|[^\s()"]+')
@@ -903,7 +906,7 @@ class StlFrontEnd:
         DB operands are rejected).  Other OBs and TYPE are unsupported."""
         self.blocks: dict[tuple[str, int], Block] = {}
         state, block, section = "outside", None, ""
-        struct_depth, call = 0, None
+        struct_depth, call, listed = 0, None, None
         for n, raw in enumerate(self.lines, start=1):
             text = _strip_comment(raw.rstrip("\r"))
             if call is not None:                # a CALL's parameters over lines
@@ -913,6 +916,14 @@ class StlFrontEnd:
                     self.read_statements(call[0], joined)
                     call = None
                 continue
+            if listed is not None:              # `name :=actual` lines, no parentheses
+                if _PARAM_LINE.fullmatch(text):
+                    listed[2].append(text.strip().rstrip(";").strip())
+                    continue
+                self.stmts = listed[3]
+                self.read_statements(listed[0], listed[1].rstrip().rstrip(";")
+                                     + " (" + ", ".join(listed[2]) + ")")
+                listed = None
             stripped = text.strip()
             if not stripped:
                 continue
@@ -977,8 +988,16 @@ class StlFrontEnd:
                     self.stmts = block.stmts
                     if _CALL_START.match(text) and text.count("(") > text.count(")"):
                         call = (n, [text])
+                    elif (_CALL_START.match(text) and "(" not in text
+                          and n < len(self.lines) and _PARAM_LINE.fullmatch(
+                              _strip_comment(self.lines[n].rstrip("\r")))):
+                        listed = (n, text, [], block.stmts)
                     else:
                         self.read_statements(n, text)
+        if listed is not None:
+            self.stmts = listed[3]
+            self.read_statements(listed[0], listed[1].rstrip().rstrip(";")
+                                 + " (" + ", ".join(listed[2]) + ")")
         if call is not None:
             raise self.error(call[0], 1, "unbalanced parentheses: the parameter list of "
                              "this CALL is never closed")
