@@ -18,6 +18,7 @@ checked on a program of our own (LISTED_CALL), which always runs.
 """
 from __future__ import annotations
 
+import csv
 import hashlib
 import os
 import re
@@ -40,7 +41,19 @@ PUBLIC = {
         file="04_SPS_Programm_FB-01.awl",
         sha256="eb11d234cd9b213b20bdf25ce1cc8f4ddb6b5e032ddc865b4f54278286624b49",
         symbols="05_Symboltabelle_FB-01.sdf", lang="de", scans=250, clock="0.001",
-        out_bytes=(4,), marker_bytes=(10,), words=("MW100",), timers=(5,)),
+        in_bytes=1, out_bytes=(4,), marker_bytes=(10,), words=("MW100",),
+        timers=(5,)),
+    "umroller": dict(
+        file="04_SPS_Programm_UR-01.awl",
+        sha256="0dd1df1614c031cdb60031ccbb233f2b4b9a1224b54e4734710b3b57b451b682",
+        symbols=None, lang="de", scans=210, clock="0.001", in_bytes=3,
+        out_bytes=(4, 5), marker_bytes=(10,), words=("MW100",), timers=(20,)),
+    "aufrollung": dict(
+        file="04_SPS_Programm_PM1-AR.awl",
+        sha256="bb8da65911ad7515bb37a3bcd4b9e6b46ed21c0b5565bf90d3e205facb991c66",
+        symbols=None, lang="de", scans=270, clock="0.001", in_bytes=3,
+        out_bytes=(4, 5), marker_bytes=(10, 30), words=("MW102",),
+        timers=(30, 31, 32)),
 }
 
 
@@ -93,7 +106,7 @@ def rows_of(name: str, path: Path, tmp: Path, stimulus: Path | None = None, **kw
     expected, got, _ = timer_scans(
         path, inputs, tmp, mnemonics=case["lang"], timers=case["timers"],
         clock_mhz=case["clock"], words=case["words"], quiet=False,
-        out_bytes=case["out_bytes"], marker_bytes=case["marker_bytes"],
+        in_bytes=case["in_bytes"], out_bytes=case["out_bytes"], marker_bytes=case["marker_bytes"],
         awlsim_path=awlsim_copy(path, tmp), **kw)
     return expected, got, transition_difference(expected, got)
 
@@ -116,6 +129,25 @@ def test_public_program_one_liner(tmp_path, name, capsys):
     assert cli.main(argv) == 0, capsys.readouterr().err
 
 
+def test_foerderband_watched_by_its_symbol_table(tmp_path, capsys):
+    """The program's own .sdf table names the watched operands: K1_Vorwaerts is
+    A 4.0, H2_Stoerung A 4.3, Stueckzahl MW 100 (equal to the columns by address)."""
+    case, path = PUBLIC["foerderband"], public_source("foerderband")
+    symbols = path.parent / case["symbols"]
+    if not symbols.is_file():
+        pytest.skip(f"{symbols} is not here")
+    trace = tmp_path / "T.csv"
+    argv = ["run", str(path), "--symbols", str(symbols), "--stimulus",
+            str(EXAMPLES / "foerderband" / "foerderband.stim.csv"), "--scans", "250",
+            "--clock-mhz", case["clock"], "--trace", str(trace),
+            "--watch", "Q4.0,Q4.3,MW100,K1_Vorwaerts,H2_Stoerung,Stueckzahl"]
+    assert cli.main(argv) == 0, capsys.readouterr().err
+    rows = list(csv.DictReader(trace.open()))
+    assert all(r["K1_Vorwaerts"] == r["Q4.0"] and r["H2_Stoerung"] == r["Q4.3"]
+               and r["Stueckzahl"] == r["MW100"] for r in rows)
+    assert rows[-1]["Stueckzahl"] == "3" and {r["H2_Stoerung"] for r in rows} == {"0", "1"}
+
+
 def test_foerderband_behaviour(tmp_path):
     """Start (scan 2) runs the belt; parts leaving at scans 14 and 20 are counted;
     a part held at the infeed from scan 30 is a blockage after 20 s (T 5; scans
@@ -125,6 +157,35 @@ def test_foerderband_behaviour(tmp_path):
     assert transitions(expected, "Q4.0") == [(2, 1), (187, 0), (231, 1), (240, 0)]
     assert transitions(expected, "Q4.3") == [(186, 1), (230, 0)]
     assert transitions(expected, "MW100") == [(14, 1), (20, 2), (236, 3)]
+
+
+def test_umroller_behaviour(tmp_path):
+    """Start (scan 3) enables the five drives; a finished log (scan 10) feeds a
+    core (K3) and pushes the log off 3 s later (K4, T 20) until the end switch; a
+    parent roll at its minimum (50) stops its unwinder alone; a web break (80),
+    a drive not ready (110) and a motor protection trip (180) are faults with the
+    horn until acknowledged; jogging (195) runs embosser and perforator alone."""
+    expected, _, _ = rows_of("umroller", public_source("umroller"), tmp_path)
+    assert transitions(expected, "Q4.6")[:2] == [(25, 1), (35, 0)]
+    assert transitions(expected, "Q4.0")[:3] == [(3, 1), (50, 0), (60, 1)]
+    assert [k for k, v in transitions(expected, "Q5.2") if v] == [80, 110, 180]
+    assert expected[195]["Q4.2"] == expected[195]["Q4.3"] == 1
+    assert expected[195]["Q4.4"] == 0
+    assert transitions(expected, "MW100") == [(10, 1), (150, 2)]
+
+
+def test_aufrollung_behaviour(tmp_path):
+    """The reel change runs its step chain (M 30.0 .. 30.3): arm out (Y1), cut for
+    2 s (Y3, T 32), arm back (Y2) until home, counted in MW 102; a web break, low
+    oil, no hydraulic pressure 5 s after the pump starts (T 31) and low oil 10 s
+    after the lubrication restarts (T 30) are faults."""
+    expected, _, _ = rows_of("aufrollung", public_source("aufrollung"), tmp_path)
+    assert transitions(expected, "Q4.4")[:2] == [(40, 1), (51, 0)]
+    assert transitions(expected, "Q4.6")[:2] == [(50, 1), (58, 0)]
+    assert transitions(expected, "M30.3")[:2] == [(57, 1), (70, 0)]
+    assert [k for k, v in transitions(expected, "Q5.0") if v] == [115, 140, 172, 190,
+                                                                   243]
+    assert transitions(expected, "MW102") == [(0, 1), (70, 2), (105, 3)]
 
 
 def test_foerderband_on_verilator_serial_and_parallel(tmp_path):
@@ -142,7 +203,7 @@ def test_comparison_fails_on_a_wrong_stimulus(tmp_path):
     right = stimulus_inputs(EXAMPLES / name / f"{name}.stim.csv", case["scans"])
     wrong = [dict(image) for image in right]
     wrong[14][0] &= ~0x20                       # E 0.5 comes at scan 15, not 14
-    got = bitbyte_scans(path, wrong, tmp_path, clock_mhz=case["clock"],
+    got = bitbyte_scans(path, wrong, tmp_path, clock_mhz=case["clock"], in_bytes=1,
                         out_bytes=case["out_bytes"], marker_bytes=case["marker_bytes"],
                         words=case["words"])
     expected = awlsim_scans(awlsim_copy(path, tmp_path), right, mnemonics="de",
