@@ -3,11 +3,12 @@ runs unmodified with `bitbyte run` and its trace equals awlsim's scan for scan
 (timer programs: the same transitions, each within one scan), on a stimulus of
 our own (examples/s7/public/NAME/NAME.stim.csv).
 
-The sources themselves are not in this tree: examples/s7/public/NAME/NOTICE names
-the repository, commit, path, author and license of each, and PUBLIC below its
-SHA-256.  The tests read them from $BITBYTE_S7_PUBLIC/NAME/FILE, else from
-../shared/s7-public/NAME/FILE beside the repository, check that the bytes are the
-published ones, and are skipped where the file is absent.
+The sources themselves are not in this tree (code by others stays out of it):
+examples/s7/public/NAME/NOTICE names the repository, commit, path, author and
+license of each, and PUBLIC below the SHA-256 of the copy these tests were written
+on.  `make s7-public S7_PUBLIC=DIR` runs this file on DIR/NAME/FILE; a missing file
+or other bytes is a failure, not a skip (this file is outside `make test`'s
+testpaths for that reason: CI has no copy).
 
 These programs write a block call as STEP 7's STL editor shows it — `CALL FB 10,
 DB 10` and then one `name :=actual` a line, without parentheses — which awlsim
@@ -21,7 +22,6 @@ from __future__ import annotations
 import csv
 import hashlib
 import os
-import re
 from pathlib import Path
 
 import pytest
@@ -29,7 +29,8 @@ import pytest
 from awlsim_oracle import awlsim_scans, bitbyte_scans, timer_scans
 from bitbyte import cli
 from test_stl_examples import stimulus_inputs
-from tracecmp import first_difference, transition_difference, transitions
+from test_stl_listed_call import awlsim_copy
+from tracecmp import transition_difference, transitions
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples" / "s7" / "public"
@@ -58,45 +59,18 @@ PUBLIC = {
 
 
 def public_dir() -> Path:
-    return Path(os.environ.get("BITBYTE_S7_PUBLIC", ROOT.parent / "shared" / "s7-public"))
+    assert os.environ.get("BITBYTE_S7_PUBLIC"), "set BITBYTE_S7_PUBLIC (make s7-public S7_PUBLIC=DIR)"
+    return Path(os.environ["BITBYTE_S7_PUBLIC"])
 
 
 def public_source(name: str) -> Path:
-    """The published file, checked byte for byte; the test is skipped without it."""
+    """The published file, checked byte for byte; its absence fails the test."""
     path = public_dir() / name / PUBLIC[name]["file"]
-    if not path.is_file():
-        pytest.skip(f"{path} is not here (examples/s7/public/{name}/NOTICE says where "
-                    "it is published)")
+    assert path.is_file(), (f"{path} is not here (examples/s7/public/{name}/NOTICE says "
+                            "where it is published)")
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
     assert digest == PUBLIC[name]["sha256"], f"{path} is not the published file"
     return path
-
-
-def parenthesized(text: str) -> str:
-    """The same source with every CALL whose parameters follow one a line without
-    parentheses written as `CALL ... (p := a, ...);`, the form awlsim reads."""
-    lines, out, i = text.split("\n"), [], 0
-    while i < len(lines):
-        line = lines[i]
-        j, params = i + 1, []
-        if re.match(r"\s*CALL\b", line, re.I) and "(" not in line:
-            while j < len(lines) and re.fullmatch(r"\s*\w+\s*:=[^(),;/]*;?\s*(//.*)?",
-                                                  lines[j]):
-                params.append(lines[j].split("//")[0].strip().rstrip(";").strip())
-                j += 1
-        if params:
-            out.append(line.rstrip().rstrip(";") + " (" + ", ".join(params) + ");")
-            i = j
-        else:
-            out.append(line)
-            i += 1
-    return "\n".join(out)
-
-
-def awlsim_copy(path: Path, tmp: Path) -> Path:
-    copy = tmp / ("awlsim_" + path.name)
-    copy.write_bytes(parenthesized(path.read_bytes().decode("cp1252")).encode("cp1252"))
-    return copy
 
 
 def rows_of(name: str, path: Path, tmp: Path, stimulus: Path | None = None, **kw):
@@ -134,8 +108,7 @@ def test_foerderband_watched_by_its_symbol_table(tmp_path, capsys):
     A 4.0, H2_Stoerung A 4.3, Stueckzahl MW 100 (equal to the columns by address)."""
     case, path = PUBLIC["foerderband"], public_source("foerderband")
     symbols = path.parent / case["symbols"]
-    if not symbols.is_file():
-        pytest.skip(f"{symbols} is not here")
+    assert symbols.is_file(), f"{symbols} is not here"
     trace = tmp_path / "T.csv"
     argv = ["run", str(path), "--symbols", str(symbols), "--stimulus",
             str(EXAMPLES / "foerderband" / "foerderband.stim.csv"), "--scans", "250",
@@ -210,114 +183,3 @@ def test_comparison_fails_on_a_wrong_stimulus(tmp_path):
                             out_bytes=case["out_bytes"],
                             marker_bytes=case["marker_bytes"], words=case["words"])
     assert transition_difference(expected, got) is not None
-
-
-# Our own program in the same form: FB 2 with an instance DB and FC 3, each
-# called with one `name :=actual` a line (comments and `;` after some of them, a
-# symbol-free constant actual), then a statement that ends the list.
-LISTED_CALL = """\
-FUNCTION FC 3 : VOID
-VAR_INPUT
-  a : BOOL ;
-  n : INT ;
-END_VAR
-VAR_OUTPUT
-  q : BOOL ;
-  w : INT ;
-END_VAR
-BEGIN
-NETWORK
-TITLE =
-      U     #a
-      =     #q
-      L     #n
-      L     2
-      *I
-      T     #w
-END_FUNCTION
-
-FUNCTION_BLOCK FB 2
-VAR_INPUT
-  en : BOOL ;
-END_VAR
-VAR_OUTPUT
-  out : BOOL ;
-  cnt : INT ;
-END_VAR
-VAR
-  edge : BOOL ;
-  c : INT ;
-END_VAR
-BEGIN
-NETWORK
-TITLE =
-      U     #en
-      FP    #edge
-      SPBN  m001
-      L     #c
-      L     1
-      +I
-      T     #c
-m001: L     #c
-      T     #cnt
-      U     #en
-      UN    E      0.3
-      =     #out
-END_FUNCTION_BLOCK
-
-DATA_BLOCK DB 2
- FB 2
-BEGIN
-END_DATA_BLOCK
-
-DATA_BLOCK DB 3
- FB 2
-BEGIN
-END_DATA_BLOCK
-
-ORGANIZATION_BLOCK OB 1
-BEGIN
-NETWORK
-TITLE =
-      CALL  FB     2 , DB     2
-       en                       :=E      0.0
-       out                      :=A      0.0
-       cnt                      :=MW    10
-      CALL  FB     2 , DB     3
-       en                       :=E      0.1    // the second belt
-       out                      :=A      0.1;
-       cnt                      :=MW    12
-      NOP   0
-NETWORK
-TITLE =
-      U     E      0.2
-      CALL  FC     3
-       a                        :=E      0.2
-       n                        :=7
-       q                        :=A      0.2
-       w                        :=MW    14
-      =     A      0.3
-END_ORGANIZATION_BLOCK
-"""
-
-
-def test_listed_call_parameters_against_awlsim(tmp_path):
-    path = tmp_path / "listed.awl"
-    path.write_text(LISTED_CALL)
-    inputs = [{0: k % 2 | (k // 3 % 2) << 1 | (k // 5 % 2) << 2 | (k // 7 % 2) << 3}
-              for k in range(40)]
-    words = ("MW10", "MW12", "MW14")
-    expected = awlsim_scans(awlsim_copy(path, tmp_path), inputs, mnemonics="de",
-                            words=words)
-    got = bitbyte_scans(path, inputs, tmp_path, words=words)
-    assert first_difference(expected, got) is None
-    assert {row["MW10"] for row in expected} > {0, 1} and expected[-1]["MW14"] == 14
-    assert expected[-1]["MW10"] != expected[-1]["MW12"]       # two instances apart
-
-
-def test_a_parameter_line_without_a_call_is_an_error(tmp_path, capsys):
-    path = tmp_path / "stray.awl"
-    path.write_text("ORGANIZATION_BLOCK OB 1\nBEGIN\n      NOP   0\n"
-                    "       en :=E 0.0\nEND_ORGANIZATION_BLOCK\n")
-    assert cli.main(["asm", str(path)]) == 1
-    assert "stray.awl:4:8:" in capsys.readouterr().err
