@@ -46,7 +46,7 @@ _BOTH = ("O ON X XN O( ON( X( XN( ) = S R FP FN NOT SET CLR SAVE BE NOP BLD "
          "*D /D MOD +R -R *R /R +AR1 +AR2 ==I <>I >I <I >=I <=I ==D <>D >D <D >=D <=D "
          "==R <>R >R <R >=R <=R ITD ITB BTI BTD DTB DTR RND RND+ RND- TRUNC INVI INVD "
          "NEGI NEGD NEGR ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN CAW CAD SLW SRW "
-         "SLD SRD RLD RRD RLDA RRDA SSI SSD OW XOW OD XOD LAR1 LAR2 TAR1 TAR2 CAR "
+         "SLD SRD RLD RRD RLDA RRDA SSI SSD OW XOW OD XOD LAR1 LAR2 TAR1 TAR2 "
          "MCRA MCRD MCR( )MCR").split()
 _DE_ONLY = {
     "U": "A", "UN": "AN", "U(": "A(", "UN(": "AN(", "SPA": "JU", "SPB": "JC",
@@ -54,12 +54,12 @@ _DE_ONLY = {
     "SPO": "JO", "SPS": "JOS", "SPZ": "JZ", "SPN": "JN", "SPP": "JP", "SPM": "JM",
     "SPPZ": "JPZ", "SPMZ": "JMZ", "SPU": "JUO", "SPL": "JL", "ZV": "CU", "ZR": "CD",
     "SI": "SP", "SV": "SE", "SA": "SF", "AUF": "OPN", "TDB": "CDB", "TAW": "CAW",
-    "TAD": "CAD", "BEB": "BEC", "BEA": "BEU", "UW": "AW", "UD": "AD",
+    "TAD": "CAD", "BEB": "BEC", "BEA": "BEU", "UW": "AW", "UD": "AD", "TAR": "CAR",
 }
 _EN_ONLY = {m: m for m in (
     "A", "AN", "A(", "AN(", "JU", "JC", "JCN", "JCB", "JNB", "JBI", "JNBI", "JO",
     "JOS", "JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO", "JL", "CU", "CD", "SP", "SD",
-    "SF", "OPN", "CDB", "BEC", "BEU", "AW", "AD")}
+    "SF", "OPN", "CDB", "BEC", "BEU", "AW", "AD", "CAR")}
 # SE is both: German SE is the on-delay (English SD), English SE the extended pulse.
 MNEMONIC_TABLE: dict[str, dict[str, str]] = {m: {"de": m, "en": m} for m in _BOTH}
 for _m, _c in _DE_ONLY.items():
@@ -102,6 +102,52 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 # target starting with them is judged by the first statement after them
 FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
+# operands that name a register or a status word bit rather than an address: what
+# each is, and why this CPU has none (rejected as `unsupported:` by name)
+_NO_CC = "the byte processor keeps no condition codes CC 1/CC 0"
+REGISTER_OPERANDS = {
+    "BR": "status bit", "BIE": "status bit", "OV": "status bit", "OS": "status bit",
+    "UO": "status bit", "==0": "status bit", "<>0": "status bit", ">0": "status bit",
+    "<0": "status bit", ">=0": "status bit", "<=0": "status bit",
+    "STW": "status word", "DBLG": "DB register", "DBNO": "DB register",
+    "DILG": "DB register", "DINO": "DB register", "AR1": "address register",
+    "AR2": "address register"}
+# why the instructions this front end rejects by name have no translation (canonical
+# English mnemonics; docs/s7.md's instruction reference has the same, row by row)
+_WHY = {
+    "DINT: the byte processor's accumulators hold 16 bits":
+        "==D <>D >D <D >=D <=D +D -D *D /D MOD ITD BTD DTB NEGD INVD",
+    "REAL: no floating point in the byte processor":
+        "==R <>R >R <R >=R <=R +R -R *R /R ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS "
+        "ATAN DTR NEGR RND RND+ RND- TRUNC",
+    "BCD conversion: no such word instruction": "BTI ITB",
+    "word logic: the byte processor has none": "AW OW XOW AD OD XOD INVI",
+    "shifts and rotations: the byte processor has none":
+        "SSI SSD SLW SRW SLD SRD RLD RRD RLDA RRDA",
+    "byte access to the accumulator: the byte processor has none": "CAW CAD",
+    "it changes ACCU1 in place, and the IL's arithmetic would change ACCU2":
+        "+ INC DEC NEGI LOOP",
+    "accumulator moves: the byte processor has no exchange, two accumulators":
+        "TAK PUSH POP ENT LEAVE",
+    "address registers: the bit and byte processors address directly":
+        "LAR1 LAR2 TAR1 TAR2 CAR +AR1 +AR2",
+    "data block registers: no global data blocks, instance DBs are inlined": "OPN CDB",
+    "BR is not modelled (no ENO, no error state of instructions)": "JCB JNB JBI JNBI",
+    "the byte processor keeps no overflow bits OV/OS": "JO JOS",
+    "the byte processor keeps no condition codes CC 1/CC 0":
+        "JZ JN JP JM JPZ JMZ JUO",
+    "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
+    "enabling a timer or counter: the IL's have no enable edge memory": "FR",
+    "a timer's or counter's value as BCD: no BCD conversion": "LC",
+}
+UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
+REGISTER_REASONS = {
+    "BR": "BR is not modelled", "BIE": "BR is not modelled",
+    "OV": "the byte processor keeps no overflow bit",
+    "OS": "the byte processor keeps no stored overflow bit",
+    "STW": "only the RLO and /FC exist here, /FC known statically",
+    "DB register": "no global data blocks, instance DBs are inlined",
+    "address register": "the bit and byte processors address directly"}
 END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
 
 # Blocks (docs/s7.md, "Blocks and calls")
@@ -1088,8 +1134,12 @@ class StlFrontEnd:
             mnem = words[0]
             rest = words[1:]
             if rest and rest[0].text == "(" and mnem.text.upper() in (
-                    "U", "UN", "A", "AN", "O", "ON", "X", "XN"):
+                    "U", "UN", "A", "AN", "O", "ON", "X", "XN", "MCR"):
                 mnem = Word(mnem.text + "(", mnem.col)
+                rest = rest[1:]
+            elif mnem.text == ")" and rest and rest[0].text.upper() == "MCR" \
+                    and rest[0].col == mnem.col + 1:
+                mnem = Word(")" + rest[0].text, mnem.col)
                 rest = rest[1:]
             self.stmts.append(Stmt(n, mnem.col, source, mnem, rest, labels))
 
@@ -1203,6 +1253,11 @@ class StlFrontEnd:
         text = first.text
         if text.startswith("#"):
             raise self.unsupported(stmt, f"local variable `{text}`", first.col)
+        kind = REGISTER_OPERANDS.get(text.upper())
+        if kind:
+            why = REGISTER_REASONS.get(text.upper(), REGISTER_REASONS.get(kind, _NO_CC))
+            raise self.unsupported(stmt, f"{kind} `{text}` in `{stmt.mnemonic.text}` "
+                                   f"({why})", first.col)
         # a data block operand with a space (`DB1.DBW 2`) or indirect addressing
         # (`M [MD 0]`): named as what it is, not as an extra operand
         if re.fullmatch(r"DB\d+\.D[BI][XBWD]?", text, re.I):
@@ -1578,7 +1633,9 @@ class StlFrontEnd:
             raise self.error(stmt.line, stmt.mnemonic.col,
                              f"missing operand: `{stmt.mnemonic.text}` needs a bit")
         else:
-            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}`")
+            why = UNSUPPORTED_WHY.get(m)
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}`"
+                                   + (f" ({why})" if why else ""))
         return True
 
     def prepend_timer_update(self) -> None:
@@ -1815,6 +1872,10 @@ class StlFrontEnd:
             raise self.error(stmt.line, stmt.mnemonic.col,
                              f"missing operand: `{stmt.mnemonic.text}` needs a value")
         text = ops[0].text
+        if text.upper().startswith("P#"):
+            raise self.unsupported(stmt, "pointer constant `" + " ".join(
+                w.text for w in ops) + "` (no address registers, no indirect "
+                "addressing)", ops[0].col)
         if text[0].isdigit() or text[0] in "+-" or "#" in text or text[0] == "'":
             if len(ops) > 1:
                 raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
@@ -1836,6 +1897,13 @@ class StlFrontEnd:
 
         prefix, sep, digits = up.rpartition("#")
         bases = {"W#16": 16, "B#16": 16, "16": 16, "2": 2, "W#2": 2, "B#2": 2}
+        if up.startswith("'"):
+            raise bad(f"unsupported: character constant `{text}` (this slice loads "
+                      "INT, W#16#, B#16#, 2#, S5T# and C# constants)")
+        if not sep and re.fullmatch(r"[+-]?\d+(\.\d*)?(E[+-]?\d+)?", up) and (
+                "." in up or "E" in up):
+            raise bad(f"unsupported: REAL constant `{text}` (no floating point in the "
+                      "byte processor)")
         if not sep:
             sign, body = (up[0], up[1:]) if up[0] in "+-" else ("", up)
             if not body.isdigit():
@@ -1873,6 +1941,10 @@ class StlFrontEnd:
         """`EW 2` / `IW2` / `AW 4` / `MW 10` -> a word Operand (English area)."""
         first, canon, rest, written = self.address(stmt, "word")
         if canon not in areas:
+            if canon == "IW" and stmt.canon == "T":
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text} {written}` writes "
+                                       "the input image (word inputs are stimuli "
+                                       "here)", first.col)
             if canon in ("I", "Q", "M") and canon + "W" in areas or canon in WORD_AREAS:
                 raise self.error(stmt.line, first.col,
                                  f"operand of the wrong kind: `{stmt.mnemonic.text}` "
