@@ -22,6 +22,7 @@ from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
+from bitbyte.lang.program import Operand
 from stlgen import (IN_WORDS, WORDS, random_inputs, random_program, slow_inputs,
                     symbol_table, with_symbols)
 from tracecmp import first_difference, transition_difference, transitions
@@ -406,6 +407,30 @@ WORD_PROGRAM = {
         L     EW 4
         <=I
         R     A 0.5
+        """,
+    # `+ n` adds to ACCU1-L (S7 leaves ACCU2 alone, here it is changed: only ACCU1
+    # is read after it), wrapping at the ends of INT; a jump target after it
+    "add_constant": """
+        L     EW 2
+        +     1
+        T     MW 10
+        L     EW 4
+        +     -100
+        +     32767
+        T     MW 12
+        L     EW 2
+        L     EW 4
+        +     5
+        T     MW 14
+        U     E 0.0
+        SPB   M1
+        +     -32768
+M1:     +     0
+        T     MW 16
+        L     MW 16
+        L     EW 2
+        >I
+        =     A 0.0
         """,
     # the accumulators across jumps: the meet of the paths into a label
     "jumps": """
@@ -965,7 +990,12 @@ ERRORS = [
     ("L     1\nL     2\nMOD\nT     MW 0", 10, 1, "unsupported: `MOD`"),
     ("L     1\nL     2\n+D\nT     MW 0", 10, 1, "unsupported: `+D`"),
     ("L     1\nL     2\nTAK", 10, 1, "unsupported: `TAK`"),
-    ("L     1\n+     1", 9, 1, "unsupported: `+`"),
+    ("L     1\nL     2\n+     1\n+I", 11, 1, "unsupported: `+I` reads ACCU2, which "
+     "the translation of an earlier timer or counter instruction, block call, jump "
+     "list or `+ n` changed"),
+    ("L     1\n+     L#1", 9, 7, "unsupported: `+ L#1` (`+` adds INT constants here"),
+    ("L     1\n+     40000", 9, 7, "unsupported: DINT constant `40000`"),
+    ("+     1", 8, 1, "unsupported: `+` reads ACCU1, which here holds what an earlier"),
     ("L     MW 256", 8, 7, "operand out of range: `MW 256`"),
     ("U     E 0.0\nU     I 0.1\n=     A 0.0", 9, 7, "mixed mnemonics: `I` is English"),
     ("U     E 0.0\nA     I 0.1", 9, 1, "mixed mnemonics: `A` is English"),
@@ -1271,3 +1301,15 @@ def test_oracle_catches_counters_past_999(tmp_path, monkeypatch):
                                          words=("MW10",)),
                             bitbyte_scans(path, counter_inputs(), tmp_path,
                                           words=("MW10",))) is not None
+
+
+def test_oracle_catches_plus_a_constant_as_a_load(tmp_path, monkeypatch):
+    """`+ n` translated as `L n` alone (no `+I`): caught."""
+    def load_only(self, stmt, st):
+        text = stmt.operands[0].text
+        self.emit("L", Operand("const", area="INT", value=int(text), text=text))
+        st.acc = (stl.ANY, stl.CLOBBERED)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "add_constant", load_only)
+    with pytest.raises(AssertionError):
+        test_word_instructions_against_awlsim(tmp_path, "add_constant", "de")

@@ -100,7 +100,7 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
 # instructions that neither read nor change /FC, the OR bit or the RLO: a jump
 # target starting with them is judged by the first statement after them
-FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + ARITHMETIC
+FC_PASS = ("L", "T", "NOP", "BLD", "SAVE", "+") + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
@@ -1629,6 +1629,8 @@ class StlFrontEnd:
             return self.jump(stmt, st, m, edges)
         elif m in ("L", "T") + ARITHMETIC + COMPARES:
             self.word_statement(stmt, st, m)
+        elif m == "+":
+            self.add_constant(stmt, st)
         elif m in COMBINE:
             raise self.error(stmt.line, stmt.mnemonic.col,
                              f"missing operand: `{stmt.mnemonic.text}` needs a bit")
@@ -1837,8 +1839,8 @@ class StlFrontEnd:
         if value == CLOBBERED or isinstance(value, Known) and value.il_value is not None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    "which the translation of an earlier timer or "
-                                   "counter instruction, block call or jump list "
-                                   "changed (S7 leaves it alone)")
+                                   "counter instruction, block call, jump list or "
+                                   "`+ n` changed (S7 leaves it alone)")
 
     def word_statement(self, stmt: Stmt, st: _State, m: str) -> None:
         if m == "L":
@@ -1863,6 +1865,28 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit(m)
             st.ner = 1
+
+    def add_constant(self, stmt: Stmt, st: _State) -> None:
+        """`+ n` (an INT constant): S7 adds n to ACCU1-L and leaves ACCU2 and the
+        status word alone (awlsim's insn_pl.py); here `L n`, `+I`, which gives the
+        same ACCU1-L but changes ACCU2 (an instruction that reads it before the
+        next load is rejected)."""
+        ops = stmt.operands
+        if not ops:
+            raise self.error(stmt.line, stmt.mnemonic.col,
+                             "missing operand: `+` needs an INT constant")
+        if len(ops) > 1:
+            raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+        text = ops[0].text
+        if not re.fullmatch(r"[+-]?\d+", text):
+            raise self.unsupported(stmt, f"`+ {text}` (`+` adds INT constants here; "
+                                   "DINT and other constants are not supported)",
+                                   ops[0].col)
+        known = self.constant(stmt, ops[0])          # DINT: unsupported
+        self.read_acc(stmt, st, 1)
+        self.emit("L", Operand("const", area="INT", value=known.value, text=text))
+        self.emit("+I")
+        st.acc = (ANY, CLOBBERED)
 
     def load_operand(self, stmt: Stmt) -> tuple[Operand, Known | None]:
         """The operand of `L`: a constant (with what the compiler knows of it) or a
