@@ -22,7 +22,6 @@ from bitbyte import cli
 from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
-from bitbyte.lang.program import Operand
 from stlgen import (IN_WORDS, WORDS, random_inputs, random_program, slow_inputs,
                     symbol_table, with_symbols)
 from tracecmp import first_difference, transition_difference, transitions
@@ -429,6 +428,24 @@ M1:     +     0
         T     MW 16
         L     MW 16
         L     EW 2
+        >I
+        =     A 0.0
+        """,
+    # NEGI and INVI change ACCU1-L in place (ACCU2 changed here: only ACCU1 is read
+    # after them), at the ends of INT too
+    "negate_invert": """
+        L     EW 2
+        NEGI
+        T     MW 10
+        L     EW 4
+        INVI
+        T     MW 12
+        L     EW 2
+        INVI
+        NEGI
+        T     MW 14
+        L     MW 14
+        L     EW 4
         >I
         =     A 0.0
         """,
@@ -1303,13 +1320,11 @@ def test_oracle_catches_counters_past_999(tmp_path, monkeypatch):
                                           words=("MW10",))) is not None
 
 
-def test_oracle_catches_plus_a_constant_as_a_load(tmp_path, monkeypatch):
-    """`+ n` translated as `L n` alone (no `+I`): caught."""
-    def load_only(self, stmt, st):
-        text = stmt.operands[0].text
-        self.emit("L", Operand("const", area="INT", value=int(text), text=text))
-        st.acc = (stl.ANY, stl.CLOBBERED)
-
-    monkeypatch.setattr(stl.StlFrontEnd, "add_constant", load_only)
+@pytest.mark.parametrize("name,wrong", [
+    ("add_constant", {"+": ("n",)}),                  # `+ n` as `L n` alone
+    ("negate_invert", {"NEGI": (-1, "*I"), "INVI": (-1, "*I")}),   # INVI as NEGI
+])
+def test_oracle_catches_wrong_in_place_steps(tmp_path, monkeypatch, name, wrong):
+    monkeypatch.setattr(stl, "IN_PLACE", {**stl.IN_PLACE, **wrong})
     with pytest.raises(AssertionError):
-        test_word_instructions_against_awlsim(tmp_path, "add_constant", "de")
+        test_word_instructions_against_awlsim(tmp_path, name, "de")

@@ -100,7 +100,10 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
 # instructions that neither read nor change /FC, the OR bit or the RLO: a jump
 # target starting with them is judged by the first statement after them
-FC_PASS = ("L", "T", "NOP", "BLD", "SAVE", "+") + ARITHMETIC
+# ACCU1-L changed in place, ACCU2 left alone in S7 (here: IL steps that change
+# ACCU2 too, a constant or an IL arithmetic instruction each; `+ n` reads its n)
+IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I")}
+FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
@@ -121,12 +124,14 @@ _WHY = {
         "==R <>R >R <R >=R <=R +R -R *R /R ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS "
         "ATAN DTR NEGR RND RND+ RND- TRUNC",
     "BCD conversion: no such word instruction": "BTI ITB",
-    "word logic: the byte processor has none": "AW OW XOW AD OD XOD INVI",
+    "word logic: the byte processor has none": "AW OW XOW AD OD XOD",
     "shifts and rotations: the byte processor has none":
         "SSI SSD SLW SRW SLD SRD RLD RRD RLDA RRDA",
     "byte access to the accumulator: the byte processor has none": "CAW CAD",
-    "it changes ACCU1 in place, and the IL's arithmetic would change ACCU2":
-        "+ INC DEC NEGI LOOP",
+    "it changes the low byte of ACCU1 alone: the IL's words have no byte arithmetic":
+        "INC DEC",
+    "a counted jump on ACCU1-L: the IL's compare would change the RLO and ACCU2":
+        "LOOP",
     "accumulator moves: the byte processor has no exchange, two accumulators":
         "TAK PUSH POP ENT LEAVE",
     "address registers: the bit and byte processors address directly":
@@ -1629,8 +1634,8 @@ class StlFrontEnd:
             return self.jump(stmt, st, m, edges)
         elif m in ("L", "T") + ARITHMETIC + COMPARES:
             self.word_statement(stmt, st, m)
-        elif m == "+":
-            self.add_constant(stmt, st)
+        elif m in IN_PLACE:
+            self.in_place(stmt, st, m)
         elif m in COMBINE:
             raise self.error(stmt.line, stmt.mnemonic.col,
                              f"missing operand: `{stmt.mnemonic.text}` needs a bit")
@@ -1866,26 +1871,34 @@ class StlFrontEnd:
             self.emit(m)
             st.ner = 1
 
-    def add_constant(self, stmt: Stmt, st: _State) -> None:
-        """`+ n` (an INT constant): S7 adds n to ACCU1-L and leaves ACCU2 and the
-        status word alone (awlsim's insn_pl.py); here `L n`, `+I`, which gives the
-        same ACCU1-L but changes ACCU2 (an instruction that reads it before the
-        next load is rejected)."""
-        ops = stmt.operands
-        if not ops:
-            raise self.error(stmt.line, stmt.mnemonic.col,
-                             "missing operand: `+` needs an INT constant")
-        if len(ops) > 1:
-            raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
-        text = ops[0].text
-        if not re.fullmatch(r"[+-]?\d+", text):
-            raise self.unsupported(stmt, f"`+ {text}` (`+` adds INT constants here; "
-                                   "DINT and other constants are not supported)",
-                                   ops[0].col)
-        known = self.constant(stmt, ops[0])          # DINT: unsupported
+    def in_place(self, stmt: Stmt, st: _State, m: str) -> None:
+        """`+ n` (an INT constant), `NEGI`, `INVI`: S7 changes ACCU1-L and leaves
+        ACCU2 alone (awlsim's insn_pl.py, insn_negi.py, insn_invi.py); here the IL
+        steps of IN_PLACE (`L n`, `+I`; `L -1`, `*I`; `L -1`, `*I`, `L -1`, `+I`:
+        -x-1 is the ones' complement), which give the same ACCU1-L but change
+        ACCU2 (an instruction that reads it before the next load is rejected)."""
+        steps = IN_PLACE[m]
+        if m != "+":
+            self.no_operand(stmt)
+        else:
+            ops = stmt.operands
+            if not ops:
+                raise self.error(stmt.line, stmt.mnemonic.col,
+                                 "missing operand: `+` needs an INT constant")
+            if len(ops) > 1:
+                raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+            if not re.fullmatch(r"[+-]?\d+", ops[0].text):
+                raise self.unsupported(stmt, f"`+ {ops[0].text}` (`+` adds INT constants "
+                                       "here; DINT and other constants are not "
+                                       "supported)", ops[0].col)
+            n = self.constant(stmt, ops[0]).value          # DINT: unsupported
+            steps = tuple(n if s == "n" else s for s in steps)
         self.read_acc(stmt, st, 1)
-        self.emit("L", Operand("const", area="INT", value=known.value, text=text))
-        self.emit("+I")
+        for s in steps:
+            if isinstance(s, int):
+                self.emit("L", Operand("const", area="INT", value=s, text=str(s)))
+            else:
+                self.emit(s)
         st.acc = (ANY, CLOBBERED)
 
     def load_operand(self, stmt: Stmt) -> tuple[Operand, Known | None]:
