@@ -64,9 +64,10 @@ def read_table(text: str) -> list[Row]:
     for n, line in enumerate(lines[start + 1:], start + 2):
         if line.startswith("## "):
             break
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if not line.startswith("| `") or len(cells) != 5:
+        if not line.startswith("| `"):
             continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        assert len(cells) == 5, f"docs/s7.md:{n}: {len(cells)} cells, not 5: {line}"
         de, en, chapter, status, note = cells
         rows.append(Row(n, de.strip("`"), en.strip("`"), chapter, status, note))
     return rows
