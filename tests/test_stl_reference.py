@@ -181,6 +181,11 @@ def test_the_table_covers_the_manual():
         have = {getattr(r, col).split()[0] for r in rows}
         missing = sorted(n for n in names if not n.startswith("__") and n not in have)
         assert not missing, f"awlsim's {lang} instructions without a row: {missing}"
+    stated = re.search(r"(\d+) rows: (\d+) supported, (\d+) unsupported",
+                       DOC.read_text())
+    counts = [len(rows)] + [sum(r.status == s for r in rows)
+                            for s in ("supported", "unsupported")]
+    assert stated and [int(g) for g in stated.groups()] == counts, counts
     pairs = [(r.de, r.en) for r in rows]
     assert len(pairs) == len(set(pairs)), "a row is there twice"
 
