@@ -4,9 +4,11 @@ the tree) runs an S7 program scan by scan, and `bitbyte run` runs the same file;
 helpers here put both into one shape so that tests compare them scan for scan.
 
 awlsim is driven as its own `awlsim-test` drives it: `Project.fromProjectOrRawAwlFile`,
-`AwlParser` per source, `AwlSim.load`, `build`, `startup` (OB 100 would run there),
-then one `runCycle()` per scan.  Before each cycle the scan's input bytes are written
-into the process image (`cpu.storeInputByte`); simulated time replaces
+`AwlParser` per source, `AwlSim.load`, `build`, `startup` (OB 100 runs there, at
+time 0), then one `runCycle()` per scan.  Before each cycle the scan's input bytes
+are written into the process image (`cpu.storeInputByte`), and scan 0's before
+`startup` too (awlsim's own `AwlSim.startup` reads the hardware inputs before OB
+100, as `runCycle` does before OB 1); simulated time replaces
 `cpu.updateTimestamp`, so that `cpu.now` is each scan's latch time (seconds since
 reset), never the wall clock.  After each cycle the output image and the marker bytes
 are read back.
@@ -95,6 +97,8 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
         cpu.now = clock["now"]
 
     cpu.updateTimestamp = update_timestamp
+    for b, value in (inputs[0] if inputs else {}).items():
+        cpu.storeInputByte(b, value)            # OB 100 sees scan 0's inputs
     sim.startup()
     scans = []
     for k, image in enumerate(inputs):
@@ -154,8 +158,10 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
         from bitbyte.sim.verilator import run_harness
         records, fault, _ = run_harness(job, columns)
     assert not fault, f"{path}: watchdog"
-    rows, latch = [], 0
-    for rec in records:          # LATCH: the scan's latch time in s (awlsim's cpu.now)
+    # LATCH: the scan's latch time in s (awlsim's cpu.now); scan 0 latches at 0, or
+    # after the startup scan (OB 100), which awlsim runs at 0
+    rows, latch = [], records[0].end_clock - records[0].cycles if records else 0
+    for rec in records:
         rows.append({name: rec.values[name] for name in watch} | {LATCH: latch / f / 1e6})
         latch = rec.end_clock
     return rows

@@ -1046,8 +1046,8 @@ def test_errors_point_at_the_statement(tmp_path, capsys, body, line, col, messag
 
 @pytest.mark.parametrize("text,message", [
     ("TYPE UDT 1\nSTRUCT\nEND_STRUCT\nEND_TYPE\n", "1:1: unsupported: TYPE"),
-    ("ORGANIZATION_BLOCK OB 100\nBEGIN\nEND_ORGANIZATION_BLOCK\n",
-     "1:1: unsupported: `ORGANIZATION_BLOCK OB 100`"),
+    ("ORGANIZATION_BLOCK OB 35\nBEGIN\nEND_ORGANIZATION_BLOCK\n",
+     "1:1: unsupported: `ORGANIZATION_BLOCK OB 35`"),
     ("ORGANIZATION_BLOCK OB 1\nBEGIN\nU E 0.0\n", "2:1: missing END_ORGANIZATION_BLOCK"),
     ("", "no ORGANIZATION_BLOCK OB 1"),
 ])

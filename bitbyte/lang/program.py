@@ -121,6 +121,9 @@ class Program:
     symbols: upper-case symbol -> Operand it stands for (VAR_GLOBAL names included).
     globals: the VAR_GLOBAL declarations in source order (empty for a single-core
     program); the linker (bitbyte.plant.link) reads them, the encoder does not.
+    startup_scans: how many hardware scans run before scan 0 and are not scans of the
+    trace (an S7 source's OB 100: 1, docs/s7.md "OB 100: the startup"); every runner
+    honours it (bitbyte.run.startup, the reference interpreter).
     """
 
     path: str
@@ -129,6 +132,7 @@ class Program:
     symbols: dict[str, Operand] = field(default_factory=dict)
     globals: list[GlobalVar] = field(default_factory=list)
     symbol_names: dict[str, str] = field(default_factory=dict)  # upper-case -> as declared
+    startup_scans: int = 0
 
 
 def display_text(instr: Instr) -> str:

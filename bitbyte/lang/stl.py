@@ -154,6 +154,12 @@ REGISTER_REASONS = {
     "DB register": "no global data blocks, instance DBs are inlined",
     "address register": "the bit and byte processors address directly"}
 END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
+# OB 100 (docs/s7.md, "OB 100: the startup"): translated after OB 1's END as the
+# startup part, which the first hardware scan runs (and only it: a marker bit the
+# translation keeps, set at the part's end, guards it); the runner does not trace
+# that scan (Program.startup_scans).  Its labels are prefixed `OB100.`.
+STARTUP_LABEL = "OB100"
+STARTUP_END = "OB100.END"
 
 # Blocks (docs/s7.md, "Blocks and calls")
 BLOCK_HEADS = {"ORGANIZATION_BLOCK": "OB", "FUNCTION": "FC", "FUNCTION_BLOCK": "FB",
@@ -197,6 +203,7 @@ class Block:
     stmts: list = field(default_factory=list)
     instance_of: int | None = None      # a DB: the FB it is an instance of
     begin: int = 0
+    end: int = 0                        # the line of its END_... statement
 
     @property
     def name(self) -> str:
@@ -400,6 +407,7 @@ class StlFrontEnd:
         self.prepare_timers()
         program = self.translate()
         program.symbols = self.symbol_operands()
+        program.startup_scans = 1 if self.startup else 0
         return program
 
     # -- symbols -------------------------------------------------------------------
@@ -507,6 +515,20 @@ class StlFrontEnd:
         scope = {"block": ob1, "prefix": "", "bindings": self.temp_bindings(ob1),
                  "ret": None, "returns": False}
         self.stmts = self.expand(ob1.stmts, scope, [ob1])
+        ob100 = self.blocks.get(("OB", 100))
+        self.startup = ob100 is not None
+        if ob100 is not None:               # the startup part, after OB 1 (translate)
+            scope = {"block": ob100, "prefix": STARTUP_LABEL, "ret": STARTUP_END,
+                     "bindings": self.temp_bindings(ob100), "returns": False}
+            body = self.expand(ob100.stmts, scope, [ob100])
+
+            def mark(line: int, canon: str, labels: list[Word]) -> Stmt:
+                source = self.lines[line - 1].rstrip("\r")
+                col = len(source) - len(source.lstrip()) + 1
+                return Stmt(line, col, source, Word(source.split()[0], col), [], labels,
+                            canon)
+            self.stmts += [mark(ob100.line, "@STARTUP", [])] + body + [
+                mark(ob100.end, "@STARTED", [Word(STARTUP_END, 1)])]
 
     def temp_bindings(self, block: Block) -> dict[str, Binding]:
         return {key: Binding(decl=d, cell=(block.name, "TEMP", key))
@@ -569,7 +591,7 @@ class StlFrontEnd:
             operands = []
             for w in stmt.operands:
                 if self.is_jump(stmt) and prefix:
-                    operands.append(Word(f"{prefix}.{w.text}", w.col))
+                    operands.append(Word(f"{prefix}.{w.text}", w.col, w.shown or w.text))
                 elif w.text.startswith("#"):
                     binding, words = self.bound_words(stmt, w, scope)
                     if stmt.canon in WRITES and binding.const:
@@ -786,7 +808,7 @@ class StlFrontEnd:
         label = self.label_operand(stmt)
         if label not in self.label_defs:
             raise self.error(stmt.line, stmt.operands[0].col,
-                             f"unknown label `{stmt.operands[0].text}`")
+                             f"unknown label `{stmt.operands[0].shown or stmt.operands[0].text}`")
         if st.parens or st.orm != "none":
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses or "
                                    "after `O`")
@@ -918,6 +940,8 @@ class StlFrontEnd:
         that `R T n` resets, a block bit (B: S7 keeps the edge memory across the
         reset, this CPU clears it)."""
         self.scratch_bits: dict[tuple, Operand] = {}
+        if self.startup:                # set once the startup part (OB 100) has run
+            self.scratch(("started",))
         self.timer_kinds: dict[int, tuple[str, Stmt]] = {}
         resets: dict[int, Stmt] = {}
         for stmt in self.stmts:
@@ -1029,7 +1053,7 @@ class StlFrontEnd:
                     self.read_db_value(block, n, col, stripped)
             elif state == "body":
                 if head == BLOCK_ENDS[block.kind]:
-                    state = "outside"
+                    state, block.end = "outside", n
                 elif head in ("NETWORK",) or head.startswith("TITLE"):
                     pass
                 elif head.startswith("END_"):
@@ -1058,6 +1082,11 @@ class StlFrontEnd:
             raise self.error(block.begin, 1, f"missing {BLOCK_ENDS[block.kind]} for "
                              f"the {block.name} that begins here")
         if ("OB", 1) not in self.blocks:
+            ob100 = self.blocks.get(("OB", 100))
+            if ob100 is not None:
+                raise self.error(ob100.line, ob100.col, "OB 100 without ORGANIZATION_BLOCK "
+                                 "OB 1: OB 100 runs once before the first scan of OB 1, "
+                                 "the cyclic program, which this source lacks")
             raise SourceError(self.path, 0, 0, "no ORGANIZATION_BLOCK OB 1 in the source")
         self.stmts = [st for b in self.blocks.values() for st in b.stmts]
 
@@ -1072,9 +1101,9 @@ class StlFrontEnd:
             raise self.error(n, col, f"expected ORGANIZATION_BLOCK OB 1, FUNCTION, "
                              f"FUNCTION_BLOCK or DATA_BLOCK, found `{words[0]}`")
         m = re.fullmatch(kind + r"\s*(\d+)\s*(:\s*\w+)?", " ".join(words[1:]), re.I)
-        if kind == "OB" and (m is None or int(m.group(1)) != 1):
+        if kind == "OB" and (m is None or int(m.group(1)) not in (1, 100)):
             raise self.error(n, col, "unsupported: `" + stripped + "` (this slice runs "
-                             "ORGANIZATION_BLOCK OB 1 only)")
+                             "ORGANIZATION_BLOCK OB 1 and OB 100 only)")
         if m is None:
             raise self.error(n, col, f"expected `{head} {kind} <number>`, found "
                              f"`{stripped}`")
@@ -1378,6 +1407,10 @@ class StlFrontEnd:
                     raise self.error(stmt.line, w.col, f"duplicate label `{w.text}` "
                                      f"(first defined at {first.line}:{first.col})")
                 self.label_defs[w.text.upper()] = stmt
+        if self.startup and STARTUP_LABEL in self.label_defs:
+            stmt = self.label_defs[STARTUP_LABEL]
+            raise self.error(stmt.line, stmt.labels[0].col, f"unsupported: the label "
+                             f"`{STARTUP_LABEL}` (the listing's name of the OB 100 part)")
         assumed: dict[str, tuple[int, str]] = {}
         assumed_acc: dict[str, tuple] = {}
         for _ in range(6):
@@ -1459,8 +1492,20 @@ class StlFrontEnd:
         edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
+        if self.startup:            # the guard: OB 100 in the first scan only
+            self.stmt = next(s for s in self.stmts if s.canon == "@STARTUP")
+            self.emit("LDN", self.scratch(("started",)))
+            self.emit("JC", Operand("label", label=STARTUP_LABEL, text=STARTUP_LABEL))
         for i, stmt in enumerate(self.stmts):
             self.stmt = stmt
+            if stmt.canon in ("@STARTUP", "@STARTED"):
+                self.end_block(st)
+            if stmt.canon == "@STARTUP":    # OB 1 ends; OB 100 starts as a scan does
+                self.pending.append(END_LABEL)
+                self.emit("END", line=len(self.lines) + 1, col=1, source="")
+                st, reachable = _State(), True
+                self.pending.append(STARTUP_LABEL)
+                continue
             name = stmt.labels[0].text.upper() if stmt.labels else ""
             ner, fix = assumed.get(name, (None, ""))
             if fix and reachable and st.ner == 0:
@@ -1489,13 +1534,10 @@ class StlFrontEnd:
                 continue
             falls = self.statement(stmt, st, edges)
             reachable = reachable and falls
-        if st.parens:
-            opener = st.parens[-1][1]
-            raise self.error(opener.line, opener.col, f"unbalanced parentheses: "
-                             f"`{opener.mnemonic.text}` is never closed")
-        self.close_term(st)
-        self.pending.append(END_LABEL)
-        self.emit("END", line=len(self.lines) + 1, col=1, source="")
+        if not self.startup:
+            self.end_block(st)
+            self.pending.append(END_LABEL)
+            self.emit("END", line=len(self.lines) + 1, col=1, source="")
         self.prepend_timer_update()
         for ins in self.out:
             if ins.operand is not None and ins.operand.kind == "label" \
@@ -1504,6 +1546,16 @@ class StlFrontEnd:
                                  f"unknown label `{ins.operand.text}`")
         program = Program(self.path, self.out, dict(self.labels), {})
         return program, {n: e for n, e in edges.items() if e}
+
+    def end_block(self, st: _State) -> None:
+        """The end of OB 1 or OB 100: every parenthesis closed, an open AND term
+        closed."""
+        if st.parens:
+            opener = st.parens[-1][1]
+            raise self.error(opener.line, opener.col, f"unbalanced parentheses: "
+                             f"`{opener.mnemonic.text}` is never closed")
+        self.close_term(st)
+        st.need_set = False
 
     def prev_stmt(self, i: int) -> Stmt:
         return self.stmts[i - 1] if i > 0 else self.stmts[i]
@@ -1568,6 +1620,11 @@ class StlFrontEnd:
                 return False
         elif m == "@END":
             self.copy(stmt, st, stmt.extra)
+        elif m == "@STARTED":                   # OB 100's end: marked as run, END
+            self.emit("SET")
+            self.emit("=", self.scratch(("started",)))
+            self.emit("END")
+            return False
         elif m in COMBINE and stmt.operands:
             self.combine(stmt, st, m)
         elif m == "O":                          # O without operand: AND before OR
@@ -2095,7 +2152,7 @@ class StlFrontEnd:
             label = self.label_operand(stmt)
             if label not in self.label_defs:
                 raise self.error(stmt.line, stmt.operands[0].col,
-                                 f"unknown label `{stmt.operands[0].text}`")
+                                 f"unknown label `{stmt.operands[0].shown or stmt.operands[0].text}`")
         if st.parens:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
         target = Operand("label", label=label,

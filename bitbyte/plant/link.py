@@ -519,6 +519,13 @@ def link(plant: Plant) -> SharedMap:
 
     config = plant.config()
     programs = [(core, parse_file(core.program, config)) for core in plant.cores]
+    for core, program in programs:
+        if program.startup_scans:       # an S7 OB 100 (docs/s7.md): single CPU only
+            first = program.instrs[program.labels["OB100"]]
+            raise SourceError(core.program, first.line, first.col,
+                              f"unsupported: OB 100 in a plant's core ({core.name}): the "
+                              "plant runs every core's scans from t = 0 (OB 100 runs "
+                              "with `bitbyte run` of one program)", first.source)
     order: list[str] = []                                   # names, first seen first
     decls: dict[str, list[tuple[int, str, Program, GlobalVar]]] = {}
     for index, (core, program) in enumerate(programs):

@@ -181,6 +181,10 @@ class RefSim:
         self.current: Instr | None = None    # the instruction executing (for messages)
         # progress
         self.scan = 0                # number of the scan that runs next / is running
+        # the startup scans (Program.startup_scans: an S7 source's OB 100) run first,
+        # with scan 0's inputs, and are no scans of the trace (run_scan runs them)
+        self.startup_left = program.startup_scans
+        self.in_startup = False
         self.clock = 0               # latch clock of the next scan
         self.watchdog_fault = False
         self.fault_scan: int | None = None
@@ -237,7 +241,18 @@ class RefSim:
         return records
 
     def run_scan(self) -> ScanRecord | None:
-        """One scan: latch, instructions up to END, PIO -> outputs.  None on a fault."""
+        """One scan: latch, instructions up to END, PIO -> outputs.  None on a fault.
+        Before scan 0 the startup scans, if any, which leave no record."""
+        while self.startup_left and not self.watchdog_fault:
+            self.startup_left -= 1
+            self.in_startup = True
+            try:
+                self._one_scan()
+            finally:
+                self.in_startup = False
+        return self._one_scan()
+
+    def _one_scan(self) -> ScanRecord | None:
         if self.watchdog_fault:
             return None
         start = self._start_scan()
@@ -266,7 +281,7 @@ class RefSim:
         in the clock after."""
         self._update_outputs(end)
         rec = ScanRecord(self.scan, end + 1, cycles, self._values(end))
-        self.scan += 1
+        self.scan += 0 if self.in_startup else 1
         self.clock = end + 1
         return rec
 

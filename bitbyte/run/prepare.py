@@ -172,7 +172,8 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
                  stim=[(key, pins, input_words(kind, key)) for kind, key, pins in events],
                  cols=[(c.header, *hw_column(c.operand)) for c in columns],
                  costs=costs, pool=pool, mode=mode, exchange=exchange,
-                 marker_write_buffer=marker_write_buffer, byte_prog=byte_words)
+                 marker_write_buffer=marker_write_buffer, byte_prog=byte_words,
+                 startup_scans=program.startup_scans)
     return Prepared(program, columns, job, f, stim.changes(f), stim, config,
                     list(part.bit) if mode in ("parallel", "free") else list(program.instrs),
                     list(part.byte) if mode in ("parallel", "free") else [])

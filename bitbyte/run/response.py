@@ -96,7 +96,8 @@ class _OnHardwareLatches(RefSim):
         self.latches, self.meter = latches, meter
 
     def _start_scan(self) -> int:
-        self.clock = self.latches[self.scan]
+        if not self.in_startup:             # a startup scan (OB 100) starts at 0
+            self.clock = self.latches[self.scan]
         return super()._start_scan()
 
     def run_scan(self) -> ScanRecord | None:
@@ -192,7 +193,9 @@ def response_times(prep, records: list[ScanRecord], replay_clocks: int = REPLAY_
         return Responses([], len(clocks), 0 if clocks else None, "",
                          "not measured in free-running mode" if clocks else None)
     ends = [r.end_clock for r in records]
-    latches = [0] + ends[:-1]
+    # scan 0 latches at 0, or after the startup scans (OB 100), which no record shows
+    latches = [records[0].end_clock - records[0].cycles
+               if prep.program.startup_scans else 0] + ends[:-1]
     starts = [bisect.bisect_right(ends, c) for c in clocks]    # a counterfactual's start
     # change k is withheld up to the first change after the first latch at or after it
     # (changes before that latch are taken in with it: withheld, it stays out of them)

@@ -53,6 +53,9 @@ class RunJob:
     # --force: (scan, in mask, in values, out mask, out values), the force table a host
     # writes during that scan (-1: before RUN); bitbyte.run.force
     force: list[tuple[int, int, int, int, int]] = field(default_factory=list)
+    # scans the hardware runs before scan 0 that are no scans of the trace (an S7
+    # source's OB 100); bitbyte.run.startup.hardware_job adds them
+    startup_scans: int = 0
 
     def to_json(self) -> dict:
         return asdict(self)

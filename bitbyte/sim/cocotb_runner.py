@@ -18,6 +18,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import ScanRecord, write_trace
+from bitbyte.run.startup import hardware_job, traced
 from bitbyte.run.summary import Retired, RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -154,10 +155,10 @@ def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
     """One RunJob on cocotb: (records, watchdog fault?, RunStats); the trace CSV
     written to `trace` when given (the Verilator harness writes its own)."""
     try:
-        (result,) = run_jobs([job], sim)
+        (result,) = run_jobs([hardware_job(job)], sim)
     except (SystemExit, RuntimeError, OSError) as e:
         raise SimError(f"cocotb on {sim} failed: {e}") from None
-    records = records_from_rows(columns, result.rows)
+    records = traced(job, records_from_rows(columns, result.rows))
     if trace:
         write_trace(trace, columns, records, f)
     stats = RunStats(clocks=result.clocks, stalls=result.stalls, byte_scans=result.byte_scans,

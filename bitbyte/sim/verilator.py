@@ -5,6 +5,7 @@ figures as `stat NAME VALUE` lines; the summary text is bitbyte/run/summary.py's
 from __future__ import annotations
 
 import fcntl
+from fractions import Fraction
 import os
 import subprocess
 import sys
@@ -12,7 +13,8 @@ import tempfile
 from pathlib import Path
 
 from bitbyte.lang.errors import SimError
-from bitbyte.lang.trace import read_trace_rows
+from bitbyte.lang.trace import read_trace_rows, write_trace
+from bitbyte.run.startup import hardware_job, traced
 from bitbyte.run.summary import RunStats, parse_block_status, parse_stats
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,12 +50,15 @@ def progress_fd() -> tuple[int, int] | None:
 
 def run_harness(job, columns, trace: str | None = None, waves: str | None = None):
     """Run `job`; returns (records, watchdog fault?, RunStats).  trace: where the
-    harness writes the trace CSV (else a temporary file); waves: FST/VCD."""
+    harness writes the trace CSV (else a temporary file; with startup scans it is
+    written here, without them); waves: FST/VCD."""
     harness = ensure_harness()
+    user_job, job = job, hardware_job(job)
     with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
         hex_path = Path(tmp) / "prog.hex"
         hex_path.write_text("".join(f"{w:08x}\n" for w in job.prog))
-        trace_path = Path(trace).resolve() if trace else Path(tmp) / "trace.csv"
+        trace_path = Path(trace).resolve() if trace and not user_job.startup_scans \
+            else Path(tmp) / "trace.csv"
         waves = str(Path(waves).resolve()) if waves else None
         if waves:
             Path(waves).parent.mkdir(parents=True, exist_ok=True)
@@ -83,6 +88,9 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
     if st.get("scans") != len(records):
         raise SimError(f"Verilator harness: {st.get('scans')} scans reported, "
                        f"{len(records)} in its trace")
+    records = traced(user_job, records)
+    if trace and user_job.startup_scans:
+        write_trace(trace, columns, records, Fraction(job.clock_hz, 1_000_000))
     stats = RunStats(clocks=st["clocks"], stalls=(st["stalls_bit"], st["stalls_byte"]),
                      byte_scans=st.get("byte_scans"),
                      queue_losses=(st["queue_overflows"], st["queue_underflows"])

@@ -1,0 +1,330 @@
+"""OB 100, the startup (issue 19; docs/s7.md "OB 100: the startup"): an S7 source's
+OB 100 runs once, in the first hardware scan, before OB 1's scan 0; that scan is no
+scan of the trace and its clocks are not scan 0's.  Checked against awlsim (which
+runs OB 100 in `startup`, before the first `runCycle`) scan for scan, on the
+reference interpreter and on the Verilator harness in serial and parallel mode; the
+comparison is shown to catch an OB 100 run every scan, never run, or traced as
+scan 0."""
+from __future__ import annotations
+
+import re
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from awlsim_oracle import awlsim_scans, bitbyte_scans, timer_scans
+from tracecmp import first_difference, transition_difference, transitions
+
+from bitbyte import cli
+from bitbyte.lang.config import Config
+from bitbyte.lang.definition import DEF
+from bitbyte.lang.parser import parse_file
+from bitbyte.lang.stimulus import load_stimulus
+from bitbyte.ref.refsim import refsim_trace
+from bitbyte.run.prepare import prepare_run
+
+
+def block(number: int, body: str, head: str = "") -> str:
+    return (f"ORGANIZATION_BLOCK OB {number}\n{head}BEGIN\nNETWORK\nTITLE =\n"
+            + textwrap.dedent(body).strip("\n") + "\nEND_ORGANIZATION_BLOCK\n\n")
+
+
+# OB 100 sets an output and markers, loads words, presets a counter, reads an input
+# (scan 0's, as awlsim reads its inputs before OB 100) and jumps over a part with
+# `SPBN`/`BEB` at labels also spelt in OB 1; OB 1 reads all of it and goes on from there.
+STARTUP_DE = block(100, """
+      SET
+      =     A 0.1
+      S     M 0.0
+      L     100
+      T     MW 10
+      L     C#5
+      S     Z 1
+      U     E 0.3
+      =     M 0.2
+      SPBN  M1
+      L     -7
+      T     MW 12
+M1:   U     E 0.2
+      BEB
+      S     M 0.3
+""") + block(1, """
+      U     M 0.0
+      UN    E 0.2
+      =     A 0.0
+      U     E 0.0
+      ZV    Z 1
+      U     E 0.1
+      ZR    Z 1
+      U     Z 1
+      =     A 0.2
+      L     Z 1
+      T     MW 14
+      U     M 0.2
+      O     M 0.3
+      =     A 0.3
+      L     MW 10
+      L     MW 12
+      +I
+      T     MW 10
+      U     E 0.1
+      SPBN  M1
+      R     M 0.0
+      L     0
+      T     MW 12
+M1:   U     E 0.0
+      FP    M 1.0
+      =     M 0.4
+""")
+
+SWAPS = {"U": "A", "UN": "AN", "SPBN": "JCN", "BEB": "BEC", "ZV": "CU", "ZR": "CD",
+         "SE": "SD", "SV": "SE"}
+AREAS = {"E": "I", "A": "Q", "Z": "C"}
+
+
+def english(text: str) -> str:
+    """The German program in English mnemonics (statement lines only)."""
+    out = []
+    for line in text.splitlines():
+        label, _, rest = line.rpartition(":") if ":" in line else ("", "", line)
+        words = rest.split()
+        if not words or words[0] in ("ORGANIZATION_BLOCK", "END_ORGANIZATION_BLOCK",
+                                     "BEGIN", "NETWORK", "TITLE"):
+            out.append(line)
+            continue
+        words[0] = SWAPS.get(words[0], words[0])
+        if len(words) > 1:
+            words[1] = AREAS.get(words[1], words[1])
+        out.append((label + ": " if label else "      ") + " ".join(words))
+    return "\n".join(out) + "\n"
+
+
+WORDS = ("MW10", "MW12", "MW14")
+
+
+def inputs(scans: int = 24) -> list[dict[int, int]]:
+    """E 0.3 at scans 0 and 1 (OB 100 reads it), pulses on E 0.0 / E 0.1 / E 0.2."""
+    rows = []
+    for k in range(scans):
+        image = 0b1000 if k < 2 else 0
+        image |= 1 if k % 3 == 1 else 0
+        image |= 2 if k in (5, 6, 14) else 0
+        image |= 4 if k in (9, 10) else 0
+        rows.append({0: image})
+    return rows
+
+
+def startup_file(tmp: Path, lang: str) -> Path:
+    path = tmp / f"startup_{lang}.awl"
+    path.write_text(STARTUP_DE if lang == "de" else english(STARTUP_DE))
+    return path
+
+
+def compare(path: Path, lang: str, tmp: Path, stimulus, **kw):
+    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=WORDS)
+    got = bitbyte_scans(path, stimulus, tmp, words=WORDS, **kw)
+    return expected, got, first_difference(expected, got)
+
+
+def test_english_translation_of_the_program():
+    text = english(STARTUP_DE + TIMER_DE)
+    assert not re.search(r"\b(U|UN|E|Z|SPBN|BEB|ZV|ZR|SV)\b", text), text
+    for statement in ("JCN M1", "BEC", "CU C 1", "A I 0.0", "= Q 0.1", "S C 1",
+                      "SD T 1", "SE T 2", "M1: A I 0.2"):
+        assert statement in text, statement
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+@pytest.mark.parametrize("first", [0b1000, 0b0100, 0])
+def test_startup_against_awlsim(tmp_path, lang, first):
+    """Outputs, markers, words and the counter OB 100 sets, as OB 1 reads them, equal
+    awlsim's scan for scan; with E 0.3 / E 0.2 at scan 0 (OB 100's `SPBN`, `BEB`)."""
+    stimulus = inputs()
+    stimulus[0] = {0: first}
+    path = startup_file(tmp_path, lang)
+    expected, got, diff = compare(path, lang, tmp_path, stimulus)
+    assert diff is None, diff
+    assert expected[0]["Q0.1"] == 1 and expected[0]["MW14"] == 5     # from OB 100
+    assert expected[0]["Q0.3"] == (first != 0b0100)      # M 0.2 = E 0.3, or no BEB
+    assert expected[0]["MW10"] == 100 + (-7 if first & 0b1000 else 0)
+
+
+def test_startup_on_verilator_serial_and_parallel(tmp_path):
+    stimulus = inputs()
+    path = startup_file(tmp_path, "de")
+    for mode in ("serial", "parallel"):
+        expected, got, diff = compare(path, "de", tmp_path, stimulus, sim="verilator",
+                                      mode=mode)
+        assert diff is None, (mode, diff)
+    ref = bitbyte_scans(path, stimulus, tmp_path, words=WORDS)
+    ver = bitbyte_scans(path, stimulus, tmp_path, words=WORDS, sim="verilator")
+    assert [r["@latch_s"] for r in ref] == [r["@latch_s"] for r in ver]
+
+
+# --------------------------------------------------------------------------------------
+# The comparison fails on a startup run every scan, never, or traced as scan 0
+
+def ob100_body(text: str) -> str:
+    return text.split("BEGIN\nNETWORK\nTITLE =\n", 1)[1].split("END_ORGANIZATION_BLOCK")[0]
+
+
+def test_comparison_catches_wrong_startups(tmp_path, monkeypatch):
+    stimulus = inputs()
+    path = startup_file(tmp_path, "de")
+    expected = awlsim_scans(path, stimulus, mnemonics="de", words=WORDS)
+    ob1_text = STARTUP_DE.split("\n\n", 1)[1].strip() + "\n"
+    # never: OB 100 dropped
+    never = tmp_path / "never.awl"
+    never.write_text(ob1_text)
+    got = bitbyte_scans(never, stimulus, tmp_path, words=WORDS)
+    assert first_difference(expected, got)[0] == 0
+    # every scan: OB 100's statements in front of OB 1's (its BEB then ends the scan)
+    body = ob100_body(STARTUP_DE).replace("M1", "M9")
+    every = tmp_path / "every.awl"
+    every.write_text(ob1_text.replace("TITLE =\n", "TITLE =\n" + body, 1))
+    got = bitbyte_scans(every, stimulus, tmp_path, words=WORDS)
+    assert first_difference(expected, got) is not None
+    # traced: the runner ignores startup_scans (the startup scan is trace row 0)
+    from bitbyte.lang import stl
+    parse = stl.StlFrontEnd.parse
+
+    def untraced(self):
+        program = parse(self)
+        program.startup_scans = 0
+        return program
+    monkeypatch.setattr(stl.StlFrontEnd, "parse", untraced)
+    for sim in ("ref", "verilator"):
+        got = bitbyte_scans(path, stimulus, tmp_path, words=WORDS, sim=sim)
+        assert first_difference(expected, got)[0] == 0, sim
+    # inputs of OB 100 all 0 (not scan 0's): awlsim without them differs from awlsim
+    zero = awlsim_scans(path, [{0: 0}] + stimulus[1:], mnemonics="de", words=WORDS)
+    assert first_difference(expected, zero)[0] == 0
+
+
+# --------------------------------------------------------------------------------------
+# Timers started in OB 100
+
+TIMER_DE = block(100, """
+      SET
+      L     S5T#50MS
+      SE    T 1
+      L     S5T#30MS
+      SV    T 2
+""") + block(1, """
+      U     T 1
+      =     A 0.0
+      U     T 2
+      =     A 0.1
+      U     E 0.0
+      L     S5T#20MS
+      SE    T 3
+      U     T 3
+      =     A 0.2
+""")
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_timer_started_in_ob100(tmp_path, lang):
+    """An on-delay started in OB 100 and never executed again runs out at 50 ms of
+    the time base; an extended pulse started there is on from scan 0 for 30 ms."""
+    text = TIMER_DE if lang == "de" else english(TIMER_DE)
+    path = tmp_path / f"timer_{lang}.awl"
+    path.write_text(text)
+    stimulus = [{0: 1 if 4 <= k < 30 else 0} for k in range(45)]
+    expected, got, _ = timer_scans(path, stimulus, tmp_path, mnemonics=lang,
+                                   timers=(1, 2, 3), quiet=False, clock_mhz="0.02")
+    assert transition_difference(expected, got) is None, (expected, got)
+    for column in ("Q0.0", "Q0.1", "Q0.2"):
+        assert transitions(expected, column), column
+    assert expected[0]["Q0.1"] == 1 and expected[0]["Q0.0"] == 0
+
+
+# --------------------------------------------------------------------------------------
+# Scan 0's clocks do not include OB 100's
+
+def test_scan0_cycles_exclude_the_startup(tmp_path):
+    """OB 100 writes a marker OB 1 never reads: every scan's cycles are those of the
+    program without OB 100 plus the guard's 2 (`LDN` the started bit, `JC` not
+    taken); scan 0 latches when the startup scan ends, which runs the guard (`LDN`,
+    `JC` taken: 3 clocks), OB 100 and `SET`, `=`, `END` (3)."""
+    ob1 = block(1, """
+      U     E 0.0
+      =     A 0.0
+      L     MW 10
+      L     1
+      +I
+      T     MW 10
+""")
+    ob100 = block(100, """
+      SET
+      =     M 20.0
+      L     5
+      T     MW 30
+""")
+    plain, started = tmp_path / "plain.awl", tmp_path / "started.awl"
+    plain.write_text(ob1)
+    started.write_text(ob100 + ob1)
+    stimulus = tmp_path / "s.csv"
+    stimulus.write_text("scan,I0.0\n0,1\n3,0\n")
+    runs = {}
+    for path in (plain, started):
+        program = parse_file(str(path))
+        _, records, fault = refsim_trace(program, Config(), load_stimulus(str(stimulus)),
+                                         ["MW10", "M20.0", "MW30"], scans=5)
+        assert not fault
+        runs[path.stem] = records
+    assert [r.cycles for r in runs["started"]] == [r.cycles + 2 for r in runs["plain"]]
+    # the guard, SET / =, L / T (10 clocks each), SET / = / END
+    startup = 1 + DEF.jump_taken_clocks + 2 + 2 * 10 + 3
+    r0 = runs["started"][0]
+    assert r0.end_clock - r0.cycles == startup
+    assert runs["plain"][0].end_clock - runs["plain"][0].cycles == 0
+    assert [r.values["MW10"] for r in runs["started"]] == [1, 2, 3, 4, 5]
+    assert r0.values["M20.0"] == 1 and r0.values["MW30"] == 5
+    # the CLI's trace on the Verilator harness: the same rows, t_us counted from reset
+    trace = tmp_path / "t.csv"
+    assert cli.main(["run", str(started), "--stimulus", str(stimulus), "--scans", "5",
+                     "--trace", str(trace), "--watch", "MW10"]) == 0
+    rows = trace.read_text().splitlines()
+    assert rows[0] == "scan,t_us,cycles,Q0.0,MW10"
+    c = r0.cycles
+    assert rows[1] == f"0,{(startup + c) / 100:g},{c},1,1"
+    assert [row.split(",")[0] for row in rows[1:]] == ["0", "1", "2", "3", "4"]
+
+
+def test_listing_labels_the_startup_part(tmp_path, capsys):
+    path = tmp_path / "l.awl"
+    path.write_text(block(100, "SET\n= M 20.0") + block(1, "U E 0.0\n= A 0.0"))
+    assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 0
+    lst = (tmp_path / "l.lst").read_text()
+    assert "\n                OB100:\n" in lst and "OB100.END:" in lst
+    words = re.findall(r"^[0-9A-F]{4}  [0-9A-F]{8} +\d+: (.*?)\s*(?:;.*)?$", lst, re.M)
+    assert words[:2] == ["ORGANIZATION_BLOCK OB 100"] * 2     # the guard
+    program, _, job, _ = prepare_run(str(path), mode="parallel")
+    assert program.startup_scans == 1 and job.startup_scans == 1
+
+
+# --------------------------------------------------------------------------------------
+# Errors
+
+@pytest.mark.parametrize("text,where", [
+    (block(100, "SET") + block(100, "CLR") + block(1, "SET"),
+     "8:1: duplicate block OB 100 (first at line 1)"),
+    (block(100, "SET"), "1:1: OB 100 without ORGANIZATION_BLOCK OB 1"),
+    (block(1, "SET") + block(35, "SET"),
+     "8:1: unsupported: `ORGANIZATION_BLOCK OB 35`"),
+    (block(1, "OB100: SET\n= A 0.0") + block(100, "SET"),
+     "5:1: unsupported: the label `OB100`"),
+    (block(100, "U(\nU E 0.0") + block(1, "SET"), "5:1: unbalanced parentheses"),
+    (block(100, "SPA M1") + block(1, "M1: SET"), "5:5: unknown label `M1`"),
+    (block(100, "L MW 10\n+I\nT MW 12") + block(1, "SET"), "6:1: unsupported: `+I` reads"),
+])
+def test_errors(tmp_path, capsys, text, where):
+    path = tmp_path / "bad.awl"
+    path.write_text(text)
+    code = cli.main(["asm", str(path), "-o", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_SOURCE, err
+    assert err.startswith(f"{path}:{where}"), err
+    assert "Traceback" not in err
