@@ -19,6 +19,7 @@ from tracecmp import first_difference, transition_difference, transitions
 from bitbyte import cli
 from bitbyte.lang.config import Config
 from bitbyte.lang.definition import DEF
+from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.ref.refsim import refsim_trace
@@ -328,3 +329,48 @@ def test_errors(tmp_path, capsys, text, where):
     assert code == cli.EXIT_SOURCE, err
     assert err.startswith(f"{path}:{where}"), err
     assert "Traceback" not in err
+
+
+def test_startup_with_calls_temps_and_the_started_bit(tmp_path):
+    """OB 100 calls an FC (inlined) and has a TEMP; the started bit M 255.7 and a word
+    over it are the translation's."""
+    fc = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  a : BOOL;\nEND_VAR\nVAR_OUTPUT\n"
+          "  q : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n      U     #a\n"
+          "      =     #q\nEND_FUNCTION\n\n")
+    text = fc + block(100, """
+      U     E 0.0
+      =     #t
+      CALL  FC 1 (a := #t, q := M 0.5)
+""", head="VAR_TEMP\n  t : BOOL;\nEND_VAR\n") + block(1, """
+      U     M 0.5
+      =     A 0.0
+      CALL  FC 1 (a := E 0.1, q := A 0.1)
+""")
+    path = tmp_path / "calls.awl"
+    path.write_text(text)
+    stimulus = [{0: 1}, {0: 2}, {0: 0}, {0: 3}]
+    expected, got, diff = compare(path, "de", tmp_path, stimulus)
+    assert diff is None, diff
+    assert [r["Q0.0"] for r in expected] == [1, 1, 1, 1]
+    for use in ("U M 255.7", "L MW 254"):
+        path.write_text(block(100, "SET") + block(1, use + "\n= A 0.0"))
+        with pytest.raises(SourceError) as e:
+            parse_file(str(path))
+        assert "M255.7" in str(e.value) and "keeps for itself" in str(e.value), use
+
+
+def test_watchdog_in_the_startup_scan(tmp_path, capsys):
+    """The startup scan is timed as any scan: OB 100 longer than --watchdog is a
+    fault before scan 0, reported as scan 0 with no trace row."""
+    path = tmp_path / "long.awl"
+    path.write_text(block(100, "L 1\nT MW 10\nL 2\nT MW 12") + block(1, "SET\n= A 0.0"))
+    trace = tmp_path / "t.csv"
+    code = cli.main(["run", str(path), "--scans", "3", "--watchdog", "30",
+                     "--trace", str(trace)])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_WATCHDOG and "scan watchdog: scan 0 exceeded 30" in err
+    assert trace.read_text() == "scan,t_us,cycles,Q0.0\n"
+    _, records, fault = refsim_trace(parse_file(str(path)), Config(), scans=3,
+                                     watchdog=30)
+    assert fault and records == []
+    assert cli.main(["run", str(path), "--scans", "3", "--watchdog", "60"]) == 0
