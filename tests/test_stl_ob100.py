@@ -13,7 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from awlsim_oracle import awlsim_scans, bitbyte_scans, timer_scans
+from awlsim_oracle import awlsim_scans, bitbyte_scans, equal_or_rejected, timer_scans
+from stlgen import IN_WORDS, random_inputs, random_program
+from stlgen import WORDS as WORDS_RANDOM
 from tracecmp import first_difference, transition_difference, transitions
 
 from bitbyte import cli
@@ -248,7 +250,7 @@ def test_scan0_cycles_exclude_the_startup(tmp_path):
     """OB 100 writes a marker OB 1 never reads: every scan's cycles are those of the
     program without OB 100 plus the guard's 2 (`LDN` the started bit, `JC` not
     taken); scan 0 latches when the startup scan ends, which runs the guard (`LDN`,
-    `JC` taken: 3 clocks), OB 100 and `SET`, `=`, `END` (3)."""
+    `JC` taken), `CLR` (S7's RLO at a block start), OB 100 and `SET`, `=`, `END`."""
     ob1 = block(1, """
       U     E 0.0
       =     A 0.0
@@ -276,8 +278,8 @@ def test_scan0_cycles_exclude_the_startup(tmp_path):
         assert not fault
         runs[path.stem] = records
     assert [r.cycles for r in runs["started"]] == [r.cycles + 2 for r in runs["plain"]]
-    # the guard, SET / =, L / T (10 clocks each), SET / = / END
-    startup = 1 + DEF.jump_taken_clocks + 2 + 2 * 10 + 3
+    # the guard, CLR, SET / =, L / T (10 clocks each), SET / = / END
+    startup = 1 + DEF.jump_taken_clocks + 1 + 2 + 2 * 10 + 3
     r0 = runs["started"][0]
     assert r0.end_clock - r0.cycles == startup
     assert runs["plain"][0].end_clock - runs["plain"][0].cycles == 0
@@ -331,6 +333,22 @@ def test_errors(tmp_path, capsys, text, where):
     assert "Traceback" not in err
 
 
+def test_ob100_starts_with_rlo_0(tmp_path):
+    """S7 starts a block with RLO 0 (and /FC 0): an `=` or `SPBN` first in OB 100
+    sees 0, although the guard's jump arrives with 1 (a random program found it)."""
+    path = tmp_path / "rlo.awl"
+    path.write_text(block(100, """
+      =     M 0.6
+      SPBN  M2
+      S     M 0.7
+M2:   NOT
+      =     A 0.5
+""") + block(1, "=     A 0.6\nU     M 0.6\n=     A 0.7"))
+    expected, got, diff = compare(path, "de", tmp_path, [{0: 0}] * 3)
+    assert diff is None, diff
+    assert expected[0]["Q0.5"] == 0 and expected[0]["M0.7"] == 0
+
+
 def test_startup_with_calls_temps_and_the_started_bit(tmp_path):
     """OB 100 calls an FC (inlined) and has a TEMP; the started bit M 255.7 and a word
     over it are the translation's."""
@@ -374,3 +392,91 @@ def test_watchdog_in_the_startup_scan(tmp_path, capsys):
                                      watchdog=30)
     assert fault and records == []
     assert cli.main(["run", str(path), "--scans", "3", "--watchdog", "60"]) == 0
+
+
+# --------------------------------------------------------------------------------------
+# Random programs: a random OB 100 in front of a random OB 1
+
+def random_startup_program(seed: int) -> tuple[str, str]:
+    """tests/stlgen.py's OB 1 of `seed`, and another of the same language as OB 100."""
+    ob1, lang = random_program(seed)
+    other = seed + 1
+    while True:
+        text, other_lang = random_program(other * 7 + 50_000)
+        if other_lang == lang:
+            break
+        other += 1
+    return text.replace("ORGANIZATION_BLOCK OB 1", "ORGANIZATION_BLOCK OB 100", 1) + ob1, lang
+
+
+def test_random_startup_programs_against_awlsim(tmp_path):
+    """20 random OB 100 + OB 1 programs equal awlsim's scans (or are rejected as
+    `unsupported:`), two of them on the Verilator harness in parallel mode too; and
+    OB 100 changes what OB 1 shows in most of them."""
+    compared, changed, on_harness = 0, 0, 0
+    for seed in range(20):
+        text, lang = random_startup_program(seed)
+        path = tmp_path / f"r{seed}.awl"
+        path.write_text(text)
+        stimulus = random_inputs(seed, 12)
+        if not equal_or_rejected(seed, path, lang, stimulus, tmp_path, words=WORDS_RANDOM,
+                                 in_words=IN_WORDS):
+            continue
+        compared += 1
+        alone = tmp_path / f"r{seed}_ob1.awl"
+        alone.write_text(text[text.index("ORGANIZATION_BLOCK OB 1\n"):])
+        expected = awlsim_scans(path, stimulus, mnemonics=lang, words=WORDS_RANDOM)
+        changed += first_difference(expected, awlsim_scans(
+            alone, stimulus, mnemonics=lang, words=WORDS_RANDOM)) is not None
+        if on_harness < 2:
+            got = bitbyte_scans(path, stimulus, tmp_path, sim="verilator", mode="parallel",
+                                words=WORDS_RANDOM, in_words=IN_WORDS)
+            assert first_difference(expected, got) is None, seed
+            on_harness += 1
+    assert compared >= 14 and changed >= compared // 2 and on_harness == 2, (
+        compared, changed)
+
+
+# --------------------------------------------------------------------------------------
+# The CLI on every engine, --force and --status
+
+def cli_trace(tmp: Path, path: Path, name: str, *args: str) -> str:
+    trace = tmp / f"{name}.csv"
+    assert cli.main(["run", str(path), "--scans", "8", "--trace", str(trace), "--watch",
+                     "MW10,MW12,MW14,M0.0,M0.2,M0.3,M0.4", *args]) == 0
+    return trace.read_text()
+
+
+def stimulus_file(tmp: Path, rows: list[dict[int, int]]) -> Path:
+    from awlsim_oracle import scan_inputs_csv
+    path = tmp / f"stim{len(list(tmp.iterdir()))}.csv"
+    path.write_text(scan_inputs_csv(rows, 1))
+    return path
+
+
+def test_cli_on_verilator_and_cocotb_force_and_status(tmp_path, capsys):
+    """`bitbyte run` on the Verilator harness and on cocotb (Icarus): identical
+    traces in serial and parallel mode; `--force I0.3=0@0` is what OB 100 reads
+    too (the table before RUN holds through the startup scan); `--status 0` is OB
+    1's first scan, OB 100's lines not executed in it."""
+    path = startup_file(tmp_path, "de")
+    stim = stimulus_file(tmp_path, inputs(8))
+    for mode in ("serial", "parallel"):
+        traces = {sim: cli_trace(tmp_path, path, f"{mode}_{sim}", "--stimulus", str(stim),
+                                 "--mode", mode, "--sim", sim)
+                  for sim in ("verilator", "icarus")}
+        assert traces["verilator"] == traces["icarus"], mode
+    forced = cli_trace(tmp_path, path, "forced", "--stimulus", str(stim),
+                       "--force", "I0.3=0@0")
+    zero = inputs(8)
+    zero[0] = {0: 0}
+    assert forced == cli_trace(tmp_path, path, "zero", "--stimulus",
+                               str(stimulus_file(tmp_path, zero)))
+    assert forced != traces["verilator"]
+    capsys.readouterr()
+    assert cli.main(["run", str(path), "--stimulus", str(stim), "--scans", "3",
+                     "--status", "0"]) == 0
+    status = capsys.readouterr().out
+    lines = {m.group(1): m.group(2) for m in re.finditer(
+        r"^\s+(\d+)  \S.*?\s{2,}(not executed|\d.*)$", status, re.M)}
+    assert lines["5"] == "not executed" and lines["26"] != "not executed"   # SET / U M 0.0

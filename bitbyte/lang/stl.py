@@ -1505,6 +1505,7 @@ class StlFrontEnd:
                 self.emit("END", line=len(self.lines) + 1, col=1, source="")
                 st, reachable = _State(), True
                 self.pending.append(STARTUP_LABEL)
+                self.emit("CLR")            # S7's RLO at a block start (the guard's is 1)
                 continue
             name = stmt.labels[0].text.upper() if stmt.labels else ""
             ner, fix = assumed.get(name, (None, ""))
