@@ -480,3 +480,42 @@ def test_cli_on_verilator_and_cocotb_force_and_status(tmp_path, capsys):
     lines = {m.group(1): m.group(2) for m in re.finditer(
         r"^\s+(\d+)  \S.*?\s{2,}(not executed|\d.*)$", status, re.M)}
     assert lines["5"] == "not executed" and lines["26"] != "not executed"   # SET / U M 0.0
+
+
+def test_time_stimulus_plants_and_free_mode(tmp_path, capsys):
+    """A `t_us` stimulus: the startup scan sees the pins at t = 0 (reference
+    interpreter and harness alike); a plant's core and free-running mode refuse OB
+    100 (their scans are not one startup scan and then OB 1's)."""
+    path = tmp_path / "t.awl"
+    path.write_text(block(100, "U E 0.0\n= M 0.1\nL 3\nT MW 10")
+                    + block(1, "U M 0.1\n= A 0.0\nU E 0.0\n= A 0.1\nL MW 10\nT MW 12"))
+    stim = tmp_path / "t.csv"
+    stim.write_text("t_us,I0.0\n0,1\n0.2,0\n")
+    program = parse_file(str(path))
+    _, records, _ = refsim_trace(program, Config(), load_stimulus(str(stim)),
+                                 ["M0.1", "MW12"], scans=3)
+    trace = tmp_path / "trace.csv"
+    assert cli.main(["run", str(path), "--stimulus", str(stim), "--scans", "3",
+                     "--trace", str(trace), "--watch", "M0.1,MW12"]) == 0
+    rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
+    assert [(r.cycles, r.values["Q0.0"], r.values["Q0.1"], r.values["MW12"])
+            for r in records] == [(int(c), int(q0), int(q1), int(w))
+                                  for _, _, c, q0, q1, _, w in rows]
+    assert records[0].values["M0.1"] == 1 and records[0].values["Q0.1"] == 0
+    plant = tmp_path / "plant.toml"
+    plant.write_text('[[core]]\nname = "a"\nprogram = "t.awl"\nperiod_us = 1000\n')
+    capsys.readouterr()
+    assert cli.main(["link", str(plant)]) == cli.EXIT_SOURCE
+    assert "unsupported: OB 100 in a plant's core (a)" in capsys.readouterr().err
+    assert cli.main(["run", str(path), "--mode", "free"]) == cli.EXIT_USAGE
+    assert "--mode free: this program has an OB 100" in capsys.readouterr().err
+
+
+def test_timer_started_in_ob100_on_the_harness_in_parallel_mode(tmp_path):
+    path = tmp_path / "timer.awl"
+    path.write_text(TIMER_DE)
+    stimulus = [{0: 1 if 4 <= k < 30 else 0} for k in range(45)]
+    expected, got, _ = timer_scans(path, stimulus, tmp_path, mnemonics="de",
+                                   timers=(1, 2, 3), quiet=False, clock_mhz="0.02",
+                                   sim="verilator", mode="parallel")
+    assert transition_difference(expected, got) is None, (expected, got)

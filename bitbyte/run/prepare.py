@@ -137,6 +137,11 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
     program = parse_file(program_path, config, lang=lang, mnemonics=mnemonics,
                          symbols=symbols)
     byte_words: list[int] = []
+    if mode == "free" and program.startup_scans:
+        raise UsageError("--mode free: this program has an OB 100, which runs in a "
+                         "startup scan before scan 0; free-running sides have scans of "
+                         "their own, so the byte side would not run its part of it "
+                         "(docs/s7.md, OB 100: the startup); use serial or parallel mode")
     if mode in ("parallel", "free"):
         # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
         free = mode == "free"
