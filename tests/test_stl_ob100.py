@@ -519,3 +519,23 @@ def test_timer_started_in_ob100_on_the_harness_in_parallel_mode(tmp_path):
                                    timers=(1, 2, 3), quiet=False, clock_mhz="0.02",
                                    sim="verilator", mode="parallel")
     assert transition_difference(expected, got) is None, (expected, got)
+
+
+def test_response_times_with_a_startup(tmp_path, capsys):
+    """The summary's response times replay the startup scan: an input change answered
+    in the scan that latches it takes that scan's clocks, 2 more than without OB 100."""
+    ob1 = block(1, "U E 0.0\n= A 0.0\nL MW 10\nL 1\n+I\nT MW 10")
+    plain, started = tmp_path / "plain.awl", tmp_path / "started.awl"
+    plain.write_text(ob1)
+    started.write_text(block(100, "SET\n= M 20.0\nL 5\nT MW 30") + ob1)
+    stim = tmp_path / "r.csv"
+    stim.write_text("scan,I0.0\n0,0\n2,1\n4,0\n")
+    clocks = {}
+    for path in (plain, started):
+        capsys.readouterr()
+        assert cli.main(["run", str(path), "--stimulus", str(stim), "--scans", "6"]) == 0
+        m = re.search(r"response \[clk\]\s+min (\d+)\s+median (\d+)\s+max (\d+)\s+\(2 of 2",
+                      capsys.readouterr().out)
+        assert m and len(set(m.groups())) == 1, path
+        clocks[path.stem] = int(m.group(1))
+    assert clocks["started"] == clocks["plain"] + 2
