@@ -636,3 +636,64 @@ def test_random_call_programs_catch_a_jump_list_without_the_low_byte(tmp_path,
     monkeypatch.setattr(stl.StlFrontEnd, "jump_list", sixteen_bits)
     with pytest.raises(AssertionError, match="differs from awlsim"):
         random_call_programs(tmp_path, 1, offset=205, base_seed=0)
+
+
+# --------------------------------------------------------------------------------------
+# FC return values: RET_VAL, an implicit VAR_OUTPUT of the declared type
+# --------------------------------------------------------------------------------------
+
+RET_BLOCKS = """
+FUNCTION FC 4 : INT
+VAR_INPUT
+  a : INT ;
+END_VAR
+BEGIN
+NETWORK
+TITLE =
+      L     #a
+      L     3
+      +I
+      T     #RET_VAL
+END_FUNCTION
+
+FUNCTION FC 5 : BOOL
+BEGIN
+NETWORK
+TITLE =
+      U     E 0.1
+      UN    E 0.2
+      =     #RET_VAL
+END_FUNCTION
+
+FUNCTION FC 6 : WORD
+BEGIN
+NETWORK
+TITLE =
+      L     W#16#00F0
+      T     #RET_VAL
+END_FUNCTION
+"""
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_fc_return_value_against_awlsim(tmp_path, lang):
+    """Review finding: `FUNCTION FC 4 : INT` had its type ignored and RET_VAL was
+    neither a local nor a parameter.  Now RET_VAL is an output of that type."""
+    text = ob("CALL FC 4 (a := EW 2, RET_VAL := MW 10)\n"
+              "CALL FC 5 (RET_VAL := A 0.0)\n"
+              "CALL FC 6 (RET_VAL := MW 14)\n"
+              "CALL FC 4 (a := MW 10,\n           RET_VAL := MW 12)", RET_BLOCKS)
+    path = tmp_path / "ret.awl"
+    path.write_text(text if lang == "de" else english(text))
+    expected, got, diff = compare(path, lang, tmp_path)
+    assert diff is None, diff
+    assert {r["MW12"] for r in expected} != {0} and {r["Q0.0"] for r in expected} == {0, 1}
+
+
+def test_fc_return_value_of_another_type_is_unsupported(tmp_path, capsys):
+    path = tmp_path / "ret.awl"
+    path.write_text(ob("SET", RET_BLOCKS.replace("FC 6 : WORD", "FC 6 : REAL")))
+    code, _, err = run_cli(["asm", str(path), "-o", str(tmp_path)], capsys)
+    line = next(i for i, t in enumerate(path.read_text().split("\n"), 1) if "REAL" in t)
+    assert code == 1 and err.startswith(
+        f"{path}:{line}:17: unsupported: FC with a return value of type REAL"), err

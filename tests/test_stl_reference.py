@@ -94,7 +94,9 @@ def context(en: str, lang: str) -> tuple[list[str], list[str], str]:
         blocks = ("FUNCTION FC 1 : VOID\nBEGIN\nNETWORK\nTITLE =\nO     M 0.0\n"
                   "=     M 0.3\nEND_FUNCTION\n\nFUNCTION_BLOCK FB 1\nBEGIN\nNETWORK\n"
                   "TITLE =\nO     M 0.0\n=     M 0.4\nEND_FUNCTION_BLOCK\n\n"
-                  "DATA_BLOCK DB 1\nFB 1\nBEGIN\nEND_DATA_BLOCK\n")
+                  "DATA_BLOCK DB 1\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\n"
+                  "FUNCTION FC 2 : INT\nBEGIN\nNETWORK\nTITLE =\nL     7\n"
+                  "T     #RET_VAL\nEND_FUNCTION\n")
     ju = {"de": "SPA", "en": "JU"}[lang]
     return before, [a.replace("{JU}", ju) for a in after], blocks
 

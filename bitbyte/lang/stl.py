@@ -1114,6 +1114,14 @@ class StlFrontEnd:
                              f"{first.line})")
         block = Block(kind, number, n, col)
         self.blocks[(kind, number)] = block
+        ret = (m.group(2) or "").lstrip(":").strip().upper()
+        if kind == "FC" and ret and ret != "VOID":
+            # RET_VAL: an implicit VAR_OUTPUT of the return type (awlsim, STEP 7)
+            if ret not in LOCAL_TYPES:
+                raise self.error(n, col + stripped.upper().rindex(ret), "unsupported: "
+                                 f"FC with a return value of type {ret} (return values "
+                                 "of this slice: BOOL, INT, WORD)")
+            block.decls["RET_VAL"] = Decl("RET_VAL", "OUT", ret, n, col)
         return block
 
     def read_decl(self, block: Block, section: str, n: int, col: int,
