@@ -1022,7 +1022,32 @@ ERRORS = [
     ("SPA   M9", 8, 7, "unknown label `M9`"),
     ("U     E 16.0\n=     A 0.0", 8, 7, "operand out of range"),
     ("U     E 0.8", 8, 7, "operand out of range"),
-    ("U     E 0.0\n=     E 0.1", 9, 7, "operand of the wrong kind"),
+    ("U     E 0.0\n=     E 0.1", 9, 7, "unsupported: `= E 0.1` writes the input image "
+     "(inputs come from the stimulus)"),
+    # review findings: valid S7 rejected as a wrong kind or as undeclared; invalid
+    # constants and operands accepted (Python's int() reads signs and `_`)
+    ("U     E 0.0\nS     E 0.1", 9, 7, "unsupported: `S E 0.1` writes the input image"),
+    ("U     E 0.0\nR     E 0.1", 9, 7, "unsupported: `R E 0.1` writes the input image"),
+    ("U     E 0.0\nFP    E 0.1", 9, 7, "unsupported: `FP E 0.1` writes the input image"),
+    ("L     2#11111111111111111\nT     MW 0", 8, 7,
+     "unsupported: 32-bit constant `2#11111111111111111`"),
+    ("L     B#(1,2,3,4)\nT     MW 0", 8, 7, "unsupported: 32-bit constant `B#(1,2,3,4)`"),
+    ("L     B#(1,256)\nT     MW 0", 8, 7, "malformed constant `B#(1,256)`"),
+    ("U     #s.a\n=     A 0.0", 8, 7, "unsupported: STRUCT/ARRAY member `#s.a`"),
+    ("L     W#16#-1\nT     MW 0", 8, 7, "malformed constant `W#16#-1`"),
+    ("L     B#16#-1\nT     MW 0", 8, 7, "malformed constant `B#16#-1`"),
+    ("L     2#-1\nT     MW 0", 8, 7, "malformed constant `2#-1`"),
+    ("L     2#12\nT     MW 0", 8, 7, "malformed constant `2#12`"),
+    ("L     W#16#1_\nT     MW 0", 8, 7, "malformed constant `W#16#1_`"),
+    ("L     16#-8000\nT     MW 0", 8, 7, "malformed constant `16#-8000`"),
+    ("L     16#FFFF\nT     MW 0", 8, 7, "malformed constant `16#FFFF`"),
+    ("NOP   2", 8, 7, "malformed operand `2`: `NOP` takes a number 0..1"),
+    ("BLD   300", 8, 7, "malformed operand `300`: `BLD` takes a number 0..255"),
+    ("NOP", 8, 1, "missing operand: `NOP` needs a number 0..1"),
+    ("L     1\n+     (", 9, 7, "malformed operand `(`: `+` takes a constant"),
+    ("L     1\n+     )", 9, 7, "malformed operand `)`: `+` takes a constant"),
+    ("CALL  FC", 8, 7, "malformed call `CALL FC`"),
+    ("CALL  FB 1,", 8, 7, "malformed call `CALL FB 1,`"),
     ("U     E 0.0\n=", 9, 1, "missing operand"),
     ("U     E 0.0 E 0.1", 8, 13, "extra operand"),
     ("U     E 0.0\nO\nNOT\n=     A 0.0", 10, 1, "unsupported: NOT after `O`"),
@@ -1050,6 +1075,8 @@ def test_errors_point_at_the_statement(tmp_path, capsys, body, line, col, messag
      "1:1: unsupported: `ORGANIZATION_BLOCK OB 35`"),
     ("ORGANIZATION_BLOCK OB 1\nBEGIN\nU E 0.0\n", "2:1: missing END_ORGANIZATION_BLOCK"),
     ("", "no ORGANIZATION_BLOCK OB 1"),
+    ('FUNCTION_BLOCK "Motor"\nBEGIN\nEND_FUNCTION_BLOCK\n',
+     '1:16: unsupported: block named by a symbol `"Motor"`'),
 ])
 def test_block_errors(tmp_path, capsys, text, message):
     path = tmp_path / "blocks.awl"
@@ -1328,3 +1355,16 @@ def test_oracle_catches_wrong_in_place_steps(tmp_path, monkeypatch, name, wrong)
     monkeypatch.setattr(stl, "IN_PLACE", {**stl.IN_PLACE, **wrong})
     with pytest.raises(AssertionError):
         test_word_instructions_against_awlsim(tmp_path, name, "de")
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_two_byte_constant_against_awlsim(tmp_path, lang):
+    """Review finding: `L B#(1,2)` was an `extra operand`; it is the 16-bit pattern
+    byte1 * 256 + byte2 (awlsim: 258)."""
+    path = write(tmp_path, "bb.awl", "L     B#(1,2)\nT     MW 10\nL     B#( 255 , 255 )\n"
+                 "T     MW 12\nL     2#1111_0000_1111_0000\nT     MW 14")
+    words = ("MW10", "MW12", "MW14")
+    expected = awlsim_scans(path, [{}], mnemonics=lang, words=words)
+    got = bitbyte_scans(path, [{}], tmp_path, words=words, mnemonics=lang)
+    assert first_difference(expected, got) is None
+    assert [expected[0][w] for w in words] == [258, -1, -3856]

@@ -563,6 +563,10 @@ class StlFrontEnd:
                                                                          list[Word]]:
         """`#name` in `stmt` -> (its binding, the words it stands for)."""
         name = word.text[1:]
+        if re.search(r"[.\[]", name):
+            raise self.error(stmt.line, word.col, f"unsupported: STRUCT/ARRAY member "
+                             f"`{word.text}` (block-local data of this slice: BOOL, "
+                             "INT, WORD)")
         binding = scope["bindings"].get(name.upper())
         if binding is None:
             block = scope["block"]
@@ -1093,6 +1097,10 @@ class StlFrontEnd:
     def block_head(self, n: int, col: int, stripped: str, words: list[str]) -> Block:
         head = words[0].upper()
         kind = BLOCK_HEADS.get(head)
+        if kind is not None and len(words) > 1 and words[1].startswith('"'):
+            raise self.error(n, col + stripped.index(words[1]), "unsupported: block "
+                             f"named by a symbol `{words[1]}` (this slice reads blocks by "
+                             f"number: `{head} {kind} n`)")
         if kind is None:
             if head in ("TYPE", "VAR_GLOBAL"):
                 raise self.error(n, col, f"unsupported: {head} (this slice reads "
@@ -1198,6 +1206,11 @@ class StlFrontEnd:
         mnem = Word(call.group(1), col(call.start(1)))
         target = call.group(2)
         m = _CALLEE.fullmatch(target)
+        if m is None and re.match(r"F[CB](?![A-Z_])", target, re.I) \
+                and not re.search(r'["#\[]', target):
+            raise self.error(n, col(call.start(2)), f"malformed call `{call.group(1)} "
+                             f"{' '.join(target.split())}`: {call.group(1)} FC n or "
+                             f"{call.group(1)} FB n, DB m expected")
         if m is None:
             raise self.error(n, col(call.start(2)), f"unsupported: `{call.group(1)} "
                              f"{' '.join(target.split())}` (this slice calls FC n and "
@@ -1338,6 +1351,10 @@ class StlFrontEnd:
                 what = "byte/word operand"
             raise self.unsupported(stmt, f"{what} `{written}` in "
                                    f"`{stmt.mnemonic.text}`", first.col)
+        if canon == "I" and "I" not in targets:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text} {written}` writes the "
+                                   "input image (inputs come from the stimulus)",
+                                   first.col)
         if canon not in targets:
             raise self.error(stmt.line, first.col,
                              f"operand of the wrong kind: `{stmt.mnemonic.text}` needs "
@@ -1688,9 +1705,17 @@ class StlFrontEnd:
         elif m == "SAVE":                       # BR is never read in this slice
             self.no_operand(stmt)
         elif m in ("NOP", "BLD"):               # NOP 0 / NOP 1 / BLD n: display hints
-            if len(stmt.operands) != 1 or not stmt.operands[0].text.isdigit():
-                raise self.error(stmt.line, stmt.mnemonic.col,
-                                 f"`{stmt.mnemonic.text}` needs a number")
+            top = 1 if m == "NOP" else 255
+            if not stmt.operands:
+                raise self.error(stmt.line, stmt.mnemonic.col, f"missing operand: "
+                                 f"`{stmt.mnemonic.text}` needs a number 0..{top}")
+            if len(stmt.operands) > 1:
+                raise self.error(stmt.line, stmt.operands[1].col,
+                                 f"extra operand `{stmt.operands[1].text}`")
+            n = stmt.operands[0]
+            if not (re.fullmatch(r"\d{1,3}", n.text) and int(n.text) <= top):
+                raise self.error(stmt.line, n.col, f"malformed operand `{n.text}`: "
+                                 f"`{stmt.mnemonic.text}` takes a number 0..{top}")
         elif m == "JL":
             return self.jump_list(stmt, st, edges)
         elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC"):
@@ -1953,6 +1978,9 @@ class StlFrontEnd:
                                  "missing operand: `+` needs an INT constant")
             if len(ops) > 1:
                 raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+            if not re.match(r"[+-]?\d|[A-Z0-9#]*#|'", ops[0].text, re.I):
+                raise self.error(stmt.line, ops[0].col, f"malformed operand "
+                                 f"`{ops[0].text}`: `+` takes a constant")
             if not re.fullmatch(r"[+-]?\d+", ops[0].text):
                 raise self.unsupported(stmt, f"`+ {ops[0].text}` (`+` adds INT constants "
                                        "here; DINT and other constants are not "
@@ -1979,6 +2007,10 @@ class StlFrontEnd:
             raise self.unsupported(stmt, "pointer constant `" + " ".join(
                 w.text for w in ops) + "` (no address registers, no indirect "
                 "addressing)", ops[0].col)
+        if text.upper() == "B#" and len(ops) > 1 and ops[1].text == "(":
+            # B#(1, 2): the tokens of the parenthesis put together again
+            text = "".join(w.text for w in ops)
+            ops = [Word(text, ops[0].col)]
         if text[0].isdigit() or text[0] in "+-" or "#" in text or text[0] == "'":
             if len(ops) > 1:
                 raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
@@ -2016,13 +2048,29 @@ class StlFrontEnd:
                 raise bad(f"unsupported: DINT constant `{text}` (INT is "
                           "-32768..32767; DINT comes in a later slice)")
             return Known(value)
+        if up.startswith("B#("):
+            m = re.fullmatch(r"B#\((\d{1,3})((?:,\d{1,3})*)\)", up)
+            parts = [m.group(1)] + m.group(2).split(",")[1:] if m else []
+            if not parts or any(int(b) > 255 for b in parts) or len(parts) not in (2, 4):
+                raise bad(f"malformed constant `{text}`: B#(b1, b2), bytes 0..255")
+            if len(parts) == 4:
+                raise bad(f"unsupported: 32-bit constant `{text}` (the byte "
+                          "processor's accumulators hold 16 bits)")
+            return Known(pattern(int(parts[0]) << 8 | int(parts[1])))
+        if prefix == "16":
+            raise bad(f"malformed constant `{text}`: STL writes a hexadecimal constant "
+                      "as W#16#… or B#16#…")
         if prefix in bases:
             base = bases[prefix]
             limit = 0xFF if prefix.startswith("B#") else 0xFFFF
-            try:
-                value = int(digits.replace("_", ""), base)
-            except ValueError:
-                raise bad(f"malformed constant `{text}`") from None
+            digit = "[01]" if base == 2 else "[0-9A-F]"
+            if not re.fullmatch(rf"{digit}+(_{digit}+)*", digits):
+                raise bad(f"malformed constant `{text}`: digits "
+                          f"{'0, 1' if base == 2 else '0..9, A..F'} expected")
+            value = int(digits.replace("_", ""), base)
+            if prefix == "2" and limit < value <= 0xFFFFFFFF:
+                raise bad(f"unsupported: 32-bit constant `{text}` (the byte processor's "
+                          "accumulators hold 16 bits)")
             if value > limit:
                 raise bad(f"constant out of range: `{text}`")
             return Known(pattern(value))
