@@ -1008,8 +1008,12 @@ ERRORS = [
     ("L     1\nL     2\n+D\nT     MW 0", 10, 1, "unsupported: `+D`"),
     ("L     1\nL     2\nTAK", 10, 1, "unsupported: `TAK`"),
     ("L     1\nL     2\n+     1\n+I", 11, 1, "unsupported: `+I` reads ACCU2, which "
-     "the translation of an earlier timer or counter instruction, block call, jump "
-     "list or `+ n` changed"),
+     "the translation of `+ 1` (line 10) changed (S7 leaves it alone)"),
+    # review finding: after NEGI / INVI the message named only `+ n`
+    ("L     1\nL     2\nNEGI\n+I", 11, 1, "unsupported: `+I` reads ACCU2, which "
+     "the translation of `NEGI` (line 10) changed"),
+    ("L     1\nL     2\nINVI\n<I\n=     A 0.0", 11, 1, "unsupported: `<I` reads ACCU2, "
+     "which the translation of `INVI` (line 10) changed"),
     ("L     1\n+     L#1", 9, 7, "unsupported: `+ L#1` (`+` adds INT constants here"),
     ("L     1\n+     40000", 9, 7, "unsupported: DINT constant `40000`"),
     ("+     1", 8, 1, "unsupported: `+` reads ACCU1, which here holds what an earlier"),

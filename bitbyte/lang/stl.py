@@ -336,6 +336,14 @@ CLOBBERED = "clobbered"  # changed by this translation where S7 leaves it alone
 TOP = "top"             # not known yet (a label reached only by a later jump)
 
 
+@dataclass(frozen=True)
+class ChangedBy:
+    """ACCU2 changed by the translation of one in-place statement (`+ n`, NEGI,
+    INVI) where S7 leaves it alone: as CLOBBERED, but messages name the statement."""
+
+    what: str
+
+
 def _meet(a, b):
     if a == TOP:
         return b
@@ -344,7 +352,7 @@ def _meet(a, b):
     if a is None or b is None:
         return None
     if CLOBBERED in (a, b) or any(isinstance(v, Known) and v.il_value is not None
-                                  for v in (a, b)):
+                                  or isinstance(v, ChangedBy) for v in (a, b)):
         return CLOBBERED
     return ANY
 
@@ -1932,6 +1940,10 @@ class StlFrontEnd:
                                    "which here holds what an earlier scan left (S7 keeps "
                                    "the accumulators from scan to scan, this CPU clears "
                                    "them at the scan start): load it first")
+        if isinstance(value, ChangedBy):
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
+                                   f"which the translation of {value.what} changed (S7 "
+                                   "leaves it alone): load it first")
         if value == CLOBBERED or isinstance(value, Known) and value.il_value is not None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    "which the translation of an earlier timer or "
@@ -1993,7 +2005,8 @@ class StlFrontEnd:
                 self.emit("L", Operand("const", area="INT", value=s, text=str(s)))
             else:
                 self.emit(s)
-        st.acc = (ANY, CLOBBERED)
+        written = " ".join([stmt.mnemonic.text] + [w.text for w in stmt.operands])
+        st.acc = (ANY, ChangedBy(f"`{written}` (line {stmt.line})"))
 
     def load_operand(self, stmt: Stmt) -> tuple[Operand, Known | None]:
         """The operand of `L`: a constant (with what the compiler knows of it) or a
