@@ -176,11 +176,12 @@ bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocatio
 .PHONY: mutate
 MUTATE_SEED  ?= 1
 MUTATE_COUNT ?= 30
+mutate: $(VENV_STAMP)  ## mutation testing (Yosys mutate): kill rate per module -> docs/mutation.md
+	$(VENV)/bin/python mutation/run_mutate.py --seed $(MUTATE_SEED) --count $(MUTATE_COUNT) \
+	  $(if $(MUTATE_ONLY),--only $(MUTATE_ONLY))
+
+# ------------------------------------------------------------------ S7 programs by others
 .PHONY: s7-public
 s7-public: $(HARNESS)  ## S7 programs by others (docs/s7.md), not in the tree: S7_PUBLIC=DIR holds them
 	@test -n "$(S7_PUBLIC)" || { echo "make s7-public: set S7_PUBLIC=DIR (examples/s7/public/*/NOTICE says where each file is published)"; exit 1; }
 	BITBYTE_S7_PUBLIC=$(abspath $(S7_PUBLIC)) $(VENV)/bin/pytest -q -p no:cacheprovider s7public/
-
-mutate: $(VENV_STAMP)  ## mutation testing (Yosys mutate): kill rate per module -> docs/mutation.md
-	$(VENV)/bin/python mutation/run_mutate.py --seed $(MUTATE_SEED) --count $(MUTATE_COUNT) \
-	  $(if $(MUTATE_ONLY),--only $(MUTATE_ONLY))
