@@ -6,7 +6,8 @@ our own (examples/s7/public/NAME/NAME.stim.csv).
 The sources themselves are not in this tree (code by others stays out of it):
 examples/s7/public/NAME/NOTICE names the repository, commit, path, author and
 license of each, and PUBLIC below the SHA-256 of the copy these tests were written
-on.  `make s7-public S7_PUBLIC=DIR` runs this file on DIR/NAME/FILE; a missing file
+on (of its text with CR LF made LF, so that a checkout with either line-end setting
+passes; the program and, for the conveyor, its symbol table).  `make s7-public S7_PUBLIC=DIR` runs this file on DIR/NAME/FILE; a missing file
 or other bytes is a failure, not a skip (this file is outside `make test`'s
 testpaths for that reason: CI has no copy).
 
@@ -35,13 +36,16 @@ from tracecmp import transition_difference, transitions
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples" / "s7" / "public"
 
-# name: the file, its SHA-256 as published, the symbol table (or None), mnemonics,
-# scans, --clock-mhz, output bytes, marker bytes, words, timers
+# name: the file, the SHA-256 of its text with CR LF made LF (lf_sha256), the symbol
+# table (or None) and its lf_sha256, mnemonics, scans, --clock-mhz, output bytes,
+# marker bytes, words, timers
 PUBLIC = {
     "foerderband": dict(
         file="04_SPS_Programm_FB-01.awl",
-        sha256="eb11d234cd9b213b20bdf25ce1cc8f4ddb6b5e032ddc865b4f54278286624b49",
-        symbols="05_Symboltabelle_FB-01.sdf", lang="de", scans=250, clock="0.001",
+        sha256="34eacecef0991a9612da92927fed24b624602a2d789e6be508c55d44abbf01d6",
+        symbols="05_Symboltabelle_FB-01.sdf",
+        symbols_sha256="9974daf609828bfb25dad134efd743b8ef7a39de791096274d4353c504f9c618",
+        lang="de", scans=250, clock="0.001",
         in_bytes=1, out_bytes=(4,), marker_bytes=(10,), words=("MW100",),
         timers=(5,)),
     "umroller": dict(
@@ -63,14 +67,30 @@ def public_dir() -> Path:
     return Path(os.environ["BITBYTE_S7_PUBLIC"])
 
 
-def public_source(name: str) -> Path:
-    """The published file, checked byte for byte; its absence fails the test."""
-    path = public_dir() / name / PUBLIC[name]["file"]
+def lf_sha256(data: bytes) -> str:
+    """The SHA-256 of a text with its CR LF line ends made LF: the same for a copy
+    checked out with either line-end setting."""
+    return hashlib.sha256(data.replace(b"\r\n", b"\n")).hexdigest()
+
+
+def checked(path: Path, name: str, sha256: str) -> Path:
+    """`path`, checked against the SHA-256 of PUBLIC; its absence fails the test."""
     assert path.is_file(), (f"{path} is not here (examples/s7/public/{name}/NOTICE says "
                             "where it is published)")
-    digest = hashlib.sha256(path.read_bytes()).hexdigest()
-    assert digest == PUBLIC[name]["sha256"], f"{path} is not the published file"
+    assert lf_sha256(path.read_bytes()) == sha256, f"{path} is not the published file"
     return path
+
+
+def public_source(name: str) -> Path:
+    """The published program, checked (lf_sha256)."""
+    return checked(public_dir() / name / PUBLIC[name]["file"], name,
+                   PUBLIC[name]["sha256"])
+
+
+def public_symbols(name: str) -> Path:
+    """The published symbol table of a program, checked (lf_sha256)."""
+    case = PUBLIC[name]
+    return checked(public_dir() / name / case["symbols"], name, case["symbols_sha256"])
 
 
 def rows_of(name: str, path: Path, tmp: Path, stimulus: Path | None = None, **kw):
@@ -99,7 +119,7 @@ def test_public_program_one_liner(tmp_path, name, capsys):
             "--scans", str(case["scans"]), "--clock-mhz", case["clock"],
             "--trace", str(tmp_path / "T.csv")]
     if case["symbols"]:
-        argv += ["--symbols", str(path.parent / case["symbols"])]
+        argv += ["--symbols", str(public_symbols(name))]
     assert cli.main(argv) == 0, capsys.readouterr().err
 
 
@@ -107,8 +127,7 @@ def test_foerderband_watched_by_its_symbol_table(tmp_path, capsys):
     """The program's own .sdf table names the watched operands: K1_Vorwaerts is
     A 4.0, H2_Stoerung A 4.3, Stueckzahl MW 100 (equal to the columns by address)."""
     case, path = PUBLIC["foerderband"], public_source("foerderband")
-    symbols = path.parent / case["symbols"]
-    assert symbols.is_file(), f"{symbols} is not here"
+    symbols = public_symbols("foerderband")
     trace = tmp_path / "T.csv"
     argv = ["run", str(path), "--symbols", str(symbols), "--stimulus",
             str(EXAMPLES / "foerderband" / "foerderband.stim.csv"), "--scans", "250",
@@ -183,3 +202,26 @@ def test_comparison_fails_on_a_wrong_stimulus(tmp_path):
                             out_bytes=case["out_bytes"],
                             marker_bytes=case["marker_bytes"], words=case["words"])
     assert transition_difference(expected, got) is not None
+
+
+def test_the_checks_hash_the_text_with_lf_line_ends(tmp_path, monkeypatch):
+    """Review findings: the .sdf's SHA-256 was never checked, and a checkout with
+    other line ends failed.  The symbol table is checked where it is opened; a copy
+    with CR LF or with LF passes, a changed one fails."""
+    original = public_dir()
+    for name in ("foerderband",):
+        for f in (PUBLIC[name]["file"], PUBLIC[name]["symbols"]):
+            data = (original / name / f).read_bytes().replace(b"\r\n", b"\n")
+            for ends, text in (("lf", data), ("crlf", data.replace(b"\n", b"\r\n"))):
+                (tmp_path / ends / name).mkdir(parents=True, exist_ok=True)
+                (tmp_path / ends / name / f).write_bytes(text)
+    for ends in ("lf", "crlf"):
+        monkeypatch.setenv("BITBYTE_S7_PUBLIC", str(tmp_path / ends))
+        public_source("foerderband")
+        public_symbols("foerderband")
+    table = tmp_path / "lf" / "foerderband" / PUBLIC["foerderband"]["symbols"]
+    table.write_bytes(table.read_bytes().replace(b'"A 4.0"', b'"A 4.1"'))
+    assert table.read_bytes() != (original / "foerderband" / table.name).read_bytes()
+    monkeypatch.setenv("BITBYTE_S7_PUBLIC", str(tmp_path / "lf"))
+    with pytest.raises(AssertionError, match="is not the published file"):
+        public_symbols("foerderband")
