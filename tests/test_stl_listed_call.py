@@ -16,16 +16,22 @@ from tracecmp import first_difference
 
 def parenthesized(text: str) -> str:
     """The same source with every CALL whose parameters follow one a line without
-    parentheses written as `CALL ... (p := a, ...);`, the form awlsim reads."""
+    parentheses written as `CALL ... (p := a, ...);`, the form awlsim reads (comment
+    lines and blank lines between the parameters dropped)."""
     lines, out, i = text.split("\n"), [], 0
+    param = r"\s*\w+\s*:=[^(),;/]*;?\s*(//.*)?"
     while i < len(lines):
         line = lines[i]
         j, params = i + 1, []
         if re.match(r"\s*CALL\b", line, re.I) and "(" not in line:
-            while j < len(lines) and re.fullmatch(r"\s*\w+\s*:=[^(),;/]*;?\s*(//.*)?",
-                                                  lines[j]):
-                params.append(lines[j].split("//")[0].strip().rstrip(";").strip())
-                j += 1
+            while j < len(lines):
+                k = j
+                while k < len(lines) and re.fullmatch(r"\s*(//.*)?", lines[k]):
+                    k += 1              # comments, blank lines: inside if one follows
+                if k == len(lines) or not re.fullmatch(param, lines[k]):
+                    break
+                params.append(lines[k].split("//")[0].strip().rstrip(";").strip())
+                j = k + 1
         if params:
             out.append(line.rstrip().rstrip(";") + " (" + ", ".join(params) + ");")
             i = j
@@ -150,3 +156,62 @@ def test_a_parameter_line_without_a_call_is_an_error(tmp_path, capsys):
                     "       en :=E 0.0\nEND_ORGANIZATION_BLOCK\n")
     assert cli.main(["asm", str(path)]) == 1
     assert "stray.awl:4:8:" in capsys.readouterr().err
+
+
+def test_comment_and_blank_lines_inside_the_list(tmp_path):
+    """Review finding: a comment-only or blank line inside the list ended it, and the
+    parameters after it gave misleading errors (`extra operand`, `unknown mnemonic
+    'en'`).  They are skipped; the run equals awlsim's on the parenthesized copy."""
+    text = LISTED_CALL.replace(
+        "       out                      :=A      0.0\n",
+        "       // the outputs\n\n       out                      :=A      0.0\n")
+    text = text.replace("       n                        :=7\n",
+                        "       n                        :=7\n   // w: the product\n")
+    path = tmp_path / "commented.awl"
+    path.write_text(text)
+    assert parenthesized(text) == parenthesized(LISTED_CALL)
+    inputs = [{0: k % 2 | (k // 3 % 2) << 1 | (k // 5 % 2) << 2} for k in range(20)]
+    words = ("MW10", "MW12", "MW14")
+    expected = awlsim_scans(awlsim_copy(path, tmp_path), inputs, mnemonics="de",
+                            words=words)
+    got = bitbyte_scans(path, inputs, tmp_path, words=words)
+    assert first_difference(expected, got) is None
+    assert expected[-1]["MW14"] == 14
+
+
+FC4 = ("FUNCTION FC 4 : VOID\nVAR_INPUT\n  a : BOOL ;\n  en : BOOL ;\nEND_VAR\nBEGIN\n"
+       "NETWORK\nTITLE =\n      U #a\n      U #en\n      = A 0.0\nEND_FUNCTION\n")
+
+
+def errors_of(tmp: Path, body: str, capsys) -> str:
+    path = tmp / "bad.awl"
+    path.write_text(FC4 + "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n" + body
+                    + "\nEND_ORGANIZATION_BLOCK\n")
+    assert cli.main(["asm", str(path), "-o", str(tmp)]) == 1
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    return err.split("bad.awl:", 1)[1].splitlines()[0]
+
+
+def test_parameter_errors_name_the_parameters_line(tmp_path, capsys):
+    """Review finding: an error in a parameter on a line of its own was reported at
+    the CALL's line; it names the parameter's line and column now, in both forms."""
+    body_line = FC4.count("\n") + 5          # the first line of the OB's body
+    assert errors_of(tmp_path, "CALL FC 4\n a :=E 0.0\n xx :=E 0.1", capsys) == \
+        f"{body_line + 2}:2: `xx` is not a parameter of FC 4"
+    assert errors_of(tmp_path, "CALL FC 4\n a :=E 0.0\n en :=MW 2", capsys) == \
+        f"{body_line + 2}:7: operand of the wrong kind: `en` is BOOL, not `MW 2`"
+    assert errors_of(tmp_path, "CALL FC 4 (a := E 0.0,\n   xx := E 0.1)", capsys) == \
+        f"{body_line + 1}:4: `xx` is not a parameter of FC 4"
+    assert errors_of(tmp_path, "CALL FC 4 (a := E 0.0,\n   en = E 0.1)", capsys).startswith(
+        f"{body_line + 1}:4: malformed parameter `en = E 0.1`")
+
+
+def test_a_parameter_line_outside_a_list(tmp_path, capsys):
+    """Review finding: `a :=E 0.0` after a statement that is no CALL gave `unknown
+    mnemonic`; it says what it is now."""
+    body_line = FC4.count("\n") + 5
+    assert errors_of(tmp_path, "U E 0.0\n a :=E 0.0", capsys) == (
+        f"{body_line + 1}:2: parameter line outside a CALL's list (`a :=E 0.0`: such "
+        "lines follow a `CALL` without parentheses, with only comments or blank lines "
+        "between)")

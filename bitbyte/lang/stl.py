@@ -244,6 +244,7 @@ class Word:
     col: int            # 1-based
     shown: str = ""     # how messages name it (a symbol: `"Motor"` for `A4.0`)
     local: bool = False  # a marker the front end allocated for a block-local variable
+    line: int = 0       # a CALL's parameter on a line of its own: that line (else 0)
 
 
 @dataclass(eq=False)
@@ -298,6 +299,19 @@ def _initial(value: str) -> int | None:
             "", "W#16", "16", "B#16", "2", "W#2", "B#2") else None
     except ValueError:
         return None
+
+
+def _joined(pieces: list[tuple[int, int, str]], sep: str) -> tuple[str, list]:
+    """Pieces (line, column of its first character, text) joined by `sep`: the text
+    and the (line, column) of each of its characters."""
+    text, where = [], []
+    for k, (line, col, piece) in enumerate(pieces):
+        if k:
+            text.append(sep)
+            where += [(pieces[k - 1][0], pieces[k - 1][1] + len(pieces[k - 1][2]))] * len(sep)
+        text.append(piece)
+        where += [(line, col + i) for i in range(len(piece))]
+    return "".join(text), where
 
 
 def _split_statements(text: str, sep: str = ";") -> list[tuple[int, str]]:
@@ -672,17 +686,18 @@ class StlFrontEnd:
         prefix = f"{info.kind}{info.number}.{self.inlined}"
         given: dict[str, tuple[Word, Binding]] = {}
         for name, actual in info.params:
+            at = self.param_stmt(stmt, name)     # errors name the parameter's line
             decl = callee.decls.get(name.text.upper())
             if decl is None or decl.section not in PARAMETERS:
-                raise self.error(stmt.line, name.col, f"`{name.text}` is not a parameter "
+                raise self.error(at.line, name.col, f"`{name.text}` is not a parameter "
                                  f"of {callee.name}")
             if name.text.upper() in given:
-                raise self.error(stmt.line, name.col, f"parameter `{name.text}` given "
+                raise self.error(at.line, name.col, f"parameter `{name.text}` given "
                                  "twice")
             if not actual:
-                raise self.error(stmt.line, name.col, f"missing actual for "
+                raise self.error(at.line, name.col, f"missing actual for "
                                  f"`{name.text}`")
-            given[name.text.upper()] = (name, self.actual(stmt, decl, actual, scope))
+            given[name.text.upper()] = (name, self.actual(at, decl, actual, scope))
         bindings = self.temp_bindings(callee)
         copy_in, copy_out = [], []
         if info.kind == "FC":
@@ -693,15 +708,16 @@ class StlFrontEnd:
                                      f"parameter `{decl.name}` (an FC needs all of them)")
                 name, b = given[decl.name.upper()]
                 if b.boolean is not None:
-                    raise self.unsupported(stmt, f"`{name.text} := {b.boolean}`: a bit "
-                                           "constant for an FC parameter", name.col)
+                    raise self.unsupported(self.param_stmt(stmt, name), f"`{name.text} := "
+                                           f"{b.boolean}`: a bit constant for an FC "
+                                           "parameter", name.col)
                 if b.copy and not b.const:
                     key = " ".join(w.text for w in b.words)
                     if key in seen:
-                        raise self.unsupported(stmt, f"`{name.text}` and "
-                                               f"`{seen[key].text}` get the same "
-                                               "instance variable, which S7 passes as "
-                                               "two copies", name.col)
+                        raise self.unsupported(self.param_stmt(stmt, name),
+                                               f"`{name.text}` and `{seen[key].text}` "
+                                               "get the same instance variable, which "
+                                               "S7 passes as two copies", name.col)
                     seen[key] = name
                 bindings[decl.name.upper()] = Binding(b.words, b.const, None, b.copy,
                                                       decl)
@@ -712,7 +728,8 @@ class StlFrontEnd:
                     bindings[key] = Binding(decl=decl, cell=(instance, key), copy=True)
             for key, (name, b) in given.items():
                 decl = callee.decls[key]
-                field_words = self.cell(stmt, bindings[key], name.col)
+                field_words = self.cell(self.param_stmt(stmt, name), bindings[key],
+                                        name.col)
                 kind = "bit" if decl.type == "BOOL" else "word"
                 if decl.section in ("IN", "IN_OUT"):
                     copy_in.append((b.boolean.lower() if b.boolean else kind, b.words,
@@ -722,7 +739,8 @@ class StlFrontEnd:
         for name, b in given.values():
             decl = callee.decls[name.text.upper()]
             if decl.section != "IN" and (b.const or b.boolean):
-                raise self.error(stmt.line, name.col, f"a constant for the "
+                raise self.error(self.param_stmt(stmt, name).line, name.col,
+                                 "a constant for the "
                                  f"{'output' if decl.section == 'OUT' else 'in/out'} "
                                  f"parameter `{name.text}`")
         inner = {"block": callee, "prefix": prefix, "bindings": bindings, "ret": prefix,
@@ -739,6 +757,14 @@ class StlFrontEnd:
         out.append(Stmt(*where, [], [Word(prefix, stmt.col)] if inner["returns"] else [],
                         "@END", copy_out))
         return out
+
+    def param_stmt(self, stmt: Stmt, name: Word) -> Stmt:
+        """`stmt` (a CALL), or for a parameter on a line of its own a copy at that
+        line, so that messages about the parameter point at it."""
+        if not name.line or name.line == stmt.line:
+            return stmt
+        return Stmt(name.line, stmt.col, self.lines[name.line - 1].rstrip("\r"),
+                    stmt.mnemonic, [], [], stmt.canon, stmt.extra)
 
     def actual(self, stmt: Stmt, decl: Decl, words: list[Word], scope: dict) -> Binding:
         """The actual operand of a parameter: an address, a constant, TRUE/FALSE, a
@@ -997,19 +1023,21 @@ class StlFrontEnd:
         for n, raw in enumerate(self.lines, start=1):
             text = _strip_comment(raw.rstrip("\r"))
             if call is not None:                # a CALL's parameters over lines
-                call[1].append(text)
-                joined = " ".join(call[1])
+                call[1].append((n, 1, text))
+                joined = " ".join(t for _, _, t in call[1])
                 if joined.count("(") <= joined.count(")"):
-                    self.read_statements(call[0], joined)
+                    self.read_statements(call[0], *_joined(call[1], " "))
                     call = None
                 continue
             if listed is not None:              # `name :=actual` lines, no parentheses
                 if _PARAM_LINE.fullmatch(text):
-                    listed[2].append(text.strip().rstrip(";").strip())
+                    param = text.strip().rstrip(";").strip()
+                    listed[2].append((n, text.index(param) + 1, param))
+                    continue
+                if not text.strip():            # a comment or a blank line inside it
                     continue
                 self.stmts = listed[3]
-                self.read_statements(listed[0], listed[1].rstrip().rstrip(";")
-                                     + " (" + ", ".join(listed[2]) + ")")
+                self.read_listed(listed)
                 listed = None
             stripped = text.strip()
             if not stripped:
@@ -1073,18 +1101,21 @@ class StlFrontEnd:
                                      f"found `{words[0]}`")
                 else:
                     self.stmts = block.stmts
+                    if _PARAM_LINE.fullmatch(text):
+                        raise self.error(n, col, f"parameter line outside a CALL's list "
+                                         f"(`{stripped.rstrip(';').strip()}`: such lines "
+                                         "follow a `CALL` without parentheses, with "
+                                         "only comments or blank lines between)")
                     if _CALL_START.match(text) and text.count("(") > text.count(")"):
-                        call = (n, [text])
-                    elif (_CALL_START.match(text) and "(" not in text
-                          and n < len(self.lines) and _PARAM_LINE.fullmatch(
-                              _strip_comment(self.lines[n].rstrip("\r")))):
+                        call = (n, [(n, 1, text)])
+                    elif _CALL_START.match(text) and "(" not in text \
+                            and self.param_line_follows(n):
                         listed = (n, text, [], block.stmts)
                     else:
                         self.read_statements(n, text)
         if listed is not None:
             self.stmts = listed[3]
-            self.read_statements(listed[0], listed[1].rstrip().rstrip(";")
-                                 + " (" + ", ".join(listed[2]) + ")")
+            self.read_listed(listed)
         if call is not None:
             raise self.error(call[0], 1, "unbalanced parentheses: the parameter list of "
                              "this CALL is never closed")
@@ -1101,6 +1132,27 @@ class StlFrontEnd:
                                  "the cyclic program, which this source lacks")
             raise SourceError(self.path, 0, 0, "no ORGANIZATION_BLOCK OB 1 in the source")
         self.stmts = [st for b in self.blocks.values() for st in b.stmts]
+
+    def param_line_follows(self, n: int) -> bool:
+        """Is the first line after line n that holds more than a comment a
+        `name :=actual` line (a CALL's list without parentheses)?"""
+        for raw in self.lines[n:]:
+            text = _strip_comment(raw.rstrip("\r"))
+            if text.strip():
+                return bool(_PARAM_LINE.fullmatch(text))
+        return False
+
+    def read_listed(self, listed: tuple) -> None:
+        """`CALL ...` and its `name :=actual` lines, read as `CALL ... (name :=
+        actual, ...)` with each parameter's own line and column."""
+        n, text, params = listed[0], listed[1].rstrip().rstrip(";"), listed[2]
+        pieces = [(n, 1, text + " (")] + [(ln, c, p + ",") for ln, c, p in params[:-1]]
+        if params:
+            ln, c, p = params[-1]
+            pieces.append((ln, c, p + ")"))
+        else:
+            pieces[0] = (n, 1, text + " ()")
+        self.read_statements(n, *_joined(pieces, " "))
 
     def block_head(self, n: int, col: int, stripped: str, words: list[str]) -> Block:
         head = words[0].upper()
@@ -1167,7 +1219,9 @@ class StlFrontEnd:
                              f"{block.name} (block-local data lives in markers, which "
                              "start at 0)")
 
-    def read_statements(self, n: int, text: str) -> None:
+    def read_statements(self, n: int, text: str, where: list | None = None) -> None:
+        """The statements of line n (`text`; `where`: the (line, column) of each of
+        its characters when it is a CALL joined from several lines)."""
         source = self.lines[n - 1].rstrip("\r")
         for offset, piece in _split_statements(text):
             labels: list[Word] = []
@@ -1180,7 +1234,7 @@ class StlFrontEnd:
                 pos = m.end()
             call = _CALL_STMT.match(piece, pos)
             if call:
-                self.read_call(n, source, offset, piece, labels, call)
+                self.read_call(n, source, offset, piece, labels, call, where)
                 continue
             words = [Word(t.group(0), offset + t.start() + 1)
                      for t in _TOKEN.finditer(piece, pos)]
@@ -1202,25 +1256,31 @@ class StlFrontEnd:
             self.stmts.append(Stmt(n, mnem.col, source, mnem, rest, labels))
 
     def read_call(self, n: int, source: str, offset: int, piece: str,
-                  labels: list[Word], call) -> None:
+                  labels: list[Word], call, where: list | None = None) -> None:
         """`CALL FC n (p := a, ...)`, `CALL FB n, DB m (...)`, `UC FC n`, `CC FC n`
-        (the parameter list may go on over lines; its words then count as at the
-        CALL's column)."""
+        (the parameter list may go on over lines: `where` gives each character's
+        line and column; a parameter's words keep their line)."""
         width = len(source)
 
         def col(i: int) -> int:
+            if where is not None:
+                return where[min(offset + i, len(where) - 1)][1]
             return offset + i + 1 if offset + i < width else offset + call.start(1) + 1
+
+        def line(i: int) -> int:
+            return n if where is None else where[min(offset + i, len(where) - 1)][0]
 
         mnem = Word(call.group(1), col(call.start(1)))
         target = call.group(2)
         m = _CALLEE.fullmatch(target)
         if m is None and re.match(r"F[CB](?![A-Z_])", target, re.I) \
                 and not re.search(r'["#\[]', target):
-            raise self.error(n, col(call.start(2)), f"malformed call `{call.group(1)} "
+            raise self.error(line(call.start(2)), col(call.start(2)), f"malformed call `{call.group(1)} "
                              f"{' '.join(target.split())}`: {call.group(1)} FC n or "
                              f"{call.group(1)} FB n, DB m expected")
         if m is None:
-            raise self.error(n, col(call.start(2)), f"unsupported: `{call.group(1)} "
+            raise self.error(line(call.start(2)), col(call.start(2)),
+                             f"unsupported: `{call.group(1)} "
                              f"{' '.join(target.split())}` (this slice calls FC n and "
                              "FB n, DB m by number)")
         params = []
@@ -1229,18 +1289,22 @@ class StlFrontEnd:
             for p_start, text in _split_statements(m.group(6), ","):
                 if not text.strip():
                     if m.group(6).strip():
-                        raise self.error(n, col(inner_start + p_start),
+                        raise self.error(line(inner_start + p_start),
+                                         col(inner_start + p_start),
                                          "malformed parameter list")
                     continue
                 pm = _PARAM.fullmatch(text)
                 if pm is None:
-                    raise self.error(n, col(inner_start + p_start), f"malformed "
+                    at = inner_start + p_start + len(text) - len(text.lstrip())
+                    raise self.error(line(at), col(at), f"malformed "
                                      f"parameter `{text.strip()}`: name := actual "
                                      "expected")
                 base = inner_start + p_start
-                actual = [Word(t.group(0), col(base + pm.start(2) + t.start()))
+                actual = [Word(t.group(0), col(base + pm.start(2) + t.start()),
+                               line=line(base + pm.start(2) + t.start()))
                           for t in re.finditer(r'"[^"]*"|\S+', pm.group(2))]
-                params.append((Word(pm.group(1), col(base + pm.start(1))), actual))
+                params.append((Word(pm.group(1), col(base + pm.start(1)),
+                                    line=line(base + pm.start(1))), actual))
         info = CallInfo(m.group(1).upper(), int(m.group(2)),
                         int(m.group(4)) if m.group(4) else None, params)
         self.stmts.append(Stmt(n, mnem.col, source, mnem, [], labels, extra=info))
