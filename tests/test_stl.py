@@ -1372,3 +1372,24 @@ def test_two_byte_constant_against_awlsim(tmp_path, lang):
     got = bitbyte_scans(path, [{}], tmp_path, words=words, mnemonics=lang)
     assert first_difference(expected, got) is None
     assert [expected[0][w] for w in words] == [258, -1, -3856]
+
+
+def test_se_alone_does_not_decide_the_language(tmp_path, capsys):
+    """Review finding: a source whose only language-specific word is `SE` compiled
+    as German (the on-delay) silently; English reads it as the extended pulse.  It
+    is an error at the `SE` now, unless --mnemonics decides."""
+    path = write(tmp_path, "se.awl", "O     M 0.0\nL     S5T#1S\nSE    T 1\nO     T 1\n"
+                 "=     M 0.1")
+    code, _, err = run_cli(["asm", str(path), "-o", str(tmp_path)], capsys)
+    assert code == 1 and err.startswith(
+        f"{path}:10:1: ambiguous: `SE` is the German on-delay and the English extended "
+        "pulse; no other word decides the language: give --mnemonics de|en"), err
+    for lang in ("de", "en"):
+        code, _, err = run_cli(["asm", str(path), "--mnemonics", lang, "-o",
+                                str(tmp_path)], capsys)
+        assert code == 0, err
+    # another word decides: no error (German `E`), and no `SE`: today's default
+    for body in ("U     E 0.0\nL     S5T#1S\nSE    T 1", "O     M 0.0\n=     M 0.1"):
+        path = write(tmp_path, "ok.awl", body)
+        code, _, err = run_cli(["asm", str(path), "-o", str(tmp_path)], capsys)
+        assert code == 0, err

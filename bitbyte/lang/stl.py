@@ -1355,6 +1355,12 @@ class StlFrontEnd:
                                  f"{LANGUAGE_NAME[f_lang]} (`{f_word.text}` at "
                                  f"{f_stmt.line}:{f_word.col}); use one language, or "
                                  "--mnemonics de|en")
+        if first is None and not self.forced:
+            se = next((s for s in self.stmts if s.mnemonic.text.upper() == "SE"), None)
+            if se is not None:      # the one word whose meaning depends on the language
+                raise self.error(se.line, se.mnemonic.col, "ambiguous: `SE` is the German "
+                                 "on-delay and the English extended pulse; no other word "
+                                 "decides the language: give --mnemonics de|en")
 
     def canonical(self, stmt: Stmt) -> None:
         if not stmt.mnemonic.text:
