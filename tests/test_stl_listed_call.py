@@ -215,3 +215,20 @@ def test_a_parameter_line_outside_a_list(tmp_path, capsys):
         f"{body_line + 1}:2: parameter line outside a CALL's list (`a :=E 0.0`: such "
         "lines follow a `CALL` without parentheses, with only comments or blank lines "
         "between)")
+
+
+def test_fb_parameter_errors_name_the_parameters_line(tmp_path, capsys):
+    """The same for an FB's parameters, whose copies are checked after the call is
+    read: an input bit as an output's target, a marker in the block-local region."""
+    fb = ("FUNCTION_BLOCK FB 9\nVAR_INPUT\n  a : BOOL ;\nEND_VAR\nVAR_OUTPUT\n"
+          "  q : BOOL ;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n      U #a\n      = #q\n"
+          "END_FUNCTION_BLOCK\nDATA_BLOCK DB 9\n  FB 9\nBEGIN\nEND_DATA_BLOCK\n")
+    for actual, message in (("E 0.1", "unsupported: `= E 0.1` writes the input image"),
+                            ("M 200.0", "unsupported: `M 200.0` is in M 128 .. M 223")):
+        path = tmp_path / "fb.awl"
+        path.write_text(fb + "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n"
+                        f"      CALL FB 9, DB 9\n        a :=E 0.0\n        q :={actual}\n"
+                        "END_ORGANIZATION_BLOCK\n")
+        assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 1
+        line = fb.count("\n") + 7
+        assert capsys.readouterr().err.startswith(f"{path}:{line}:13: {message}")

@@ -824,7 +824,8 @@ class StlFrontEnd:
                     lo, hi = int(rest), int(rest) + 1
                 if lo is not None and lo < LOCAL_BYTES[1] and hi >= LOCAL_BYTES[0]:
                     shown = ops[0].shown or " ".join(w.text for w in ops[:2])
-                    raise self.unsupported(stmt, f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
+                    raise self.unsupported(self.param_stmt(stmt, ops[0]),
+                                           f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
                                            f"M {LOCAL_BYTES[1] - 1}, which this program's "
                                            "block-local data (FB instances, TEMPs) uses",
                                            ops[0].col)
@@ -911,7 +912,8 @@ class StlFrontEnd:
             return
 
         def tmp(mnemonic: str, words: list[Word]) -> Stmt:
-            return Stmt(stmt.line, stmt.col, stmt.source, Word(mnemonic, stmt.col),
+            at = self.param_stmt(stmt, words[0])    # a parameter's own line
+            return Stmt(at.line, stmt.col, stmt.source, Word(mnemonic, stmt.col),
                         words, canon=mnemonic)
 
         nxt = self.next_stmt(stmt)
@@ -967,7 +969,7 @@ class StlFrontEnd:
                 first = ops[0].text
                 written = " ".join(w.text for w in ops[:2]) if \
                     _split_area(first)[1] == "" else first
-                raise self.unsupported(stmt, f"`{written}` uses "
+                raise self.unsupported(self.param_stmt(stmt, ops[0]), f"`{written}` uses "
                                        f"{hit.text}, which the translation of this "
                                        "program's timers keeps for itself (the top "
                                        "marker bits)", ops[0].col)
