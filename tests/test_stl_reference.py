@@ -6,7 +6,9 @@ each row's German and English statement is put into a small OB 1 (with the lines
 around it that the instruction needs, chosen by its English mnemonic) and assembled
 with `--mnemonics de` / `en`.  A supported row must assemble; an unsupported one must
 fail with `FILE:LINE:COL: unsupported: …` at the statement's own line, naming the
-instruction, and never with a traceback.
+instruction (a `quoted` part of the message starts with its mnemonic or holds its
+operand), and never with a traceback.  Each row's German and English mnemonic must
+be one instruction in awlsim's tables.
 """
 from __future__ import annotations
 
