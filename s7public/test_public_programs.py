@@ -7,9 +7,10 @@ The sources themselves are not in this tree (code by others stays out of it):
 examples/s7/public/NAME/NOTICE names the repository, commit, path, author and
 license of each, and PUBLIC below the SHA-256 of the copy these tests were written
 on (of its text with CR LF made LF, so that a checkout with either line-end setting
-passes; the program and, for the conveyor, its symbol table).  `make s7-public S7_PUBLIC=DIR` runs this file on DIR/NAME/FILE; a missing file
-or other bytes is a failure, not a skip (this file is outside `make test`'s
-testpaths for that reason: CI has no copy).
+passes; the program and, for the conveyor, its symbol table).  `make s7-public
+S7_PUBLIC=DIR` runs this file on DIR/NAME/FILE; a missing file or other bytes is a
+failure, not a skip (this file is outside `make test`'s testpaths for that reason:
+CI has no copy).
 
 These programs write a block call as STEP 7's STL editor shows it — `CALL FB 10,
 DB 10` and then one `name :=actual` a line, without parentheses — which awlsim

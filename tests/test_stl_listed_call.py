@@ -203,8 +203,8 @@ def test_parameter_errors_name_the_parameters_line(tmp_path, capsys):
         f"{body_line + 2}:7: operand of the wrong kind: `en` is BOOL, not `MW 2`"
     assert errors_of(tmp_path, "CALL FC 4 (a := E 0.0,\n   xx := E 0.1)", capsys) == \
         f"{body_line + 1}:4: `xx` is not a parameter of FC 4"
-    assert errors_of(tmp_path, "CALL FC 4 (a := E 0.0,\n   en = E 0.1)", capsys).startswith(
-        f"{body_line + 1}:4: malformed parameter `en = E 0.1`")
+    err = errors_of(tmp_path, "CALL FC 4 (a := E 0.0,\n   en = E 0.1)", capsys)
+    assert err.startswith(f"{body_line + 1}:4: malformed parameter `en = E 0.1`")
 
 
 def test_a_parameter_line_outside_a_list(tmp_path, capsys):
@@ -227,8 +227,8 @@ def test_fb_parameter_errors_name_the_parameters_line(tmp_path, capsys):
                             ("M 200.0", "unsupported: `M 200.0` is in M 128 .. M 223")):
         path = tmp_path / "fb.awl"
         path.write_text(fb + "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n"
-                        f"      CALL FB 9, DB 9\n        a :=E 0.0\n        q :={actual}\n"
-                        "END_ORGANIZATION_BLOCK\n")
+                        "      CALL FB 9, DB 9\n        a :=E 0.0\n"
+                        f"        q :={actual}\nEND_ORGANIZATION_BLOCK\n")
         assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 1
         line = fb.count("\n") + 7
         assert capsys.readouterr().err.startswith(f"{path}:{line}:13: {message}")

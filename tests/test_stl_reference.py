@@ -222,7 +222,8 @@ def not_yet_key(statement: str) -> str:
     op = words[1]
     if op.startswith("#") and "." in op:
         return "STRUCT"
-    for start, key in (("2#", "2#"), ("P#", "P#"), ("T#", "T#"), ("'", "'..'"), ("#", "multi-instances"),
+    for start, key in (("2#", "2#"), ("P#", "P#"), ("T#", "T#"), ("'", "'..'"),
+                       ("#", "multi-instances"),
                        ('"', "by symbol")):
         if op.startswith(start):
             return key

@@ -308,7 +308,8 @@ def _joined(pieces: list[tuple[int, int, str]], sep: str) -> tuple[str, list]:
     for k, (line, col, piece) in enumerate(pieces):
         if k:
             text.append(sep)
-            where += [(pieces[k - 1][0], pieces[k - 1][1] + len(pieces[k - 1][2]))] * len(sep)
+            before = pieces[k - 1]
+            where += [(before[0], before[1] + len(before[2]))] * len(sep)
         text.append(piece)
         where += [(line, col + i) for i in range(len(piece))]
     return "".join(text), where
@@ -708,9 +709,9 @@ class StlFrontEnd:
                                      f"parameter `{decl.name}` (an FC needs all of them)")
                 name, b = given[decl.name.upper()]
                 if b.boolean is not None:
-                    raise self.unsupported(self.param_stmt(stmt, name), f"`{name.text} := "
-                                           f"{b.boolean}`: a bit constant for an FC "
-                                           "parameter", name.col)
+                    raise self.unsupported(self.param_stmt(stmt, name),
+                                           f"`{name.text} := {b.boolean}`: a bit "
+                                           "constant for an FC parameter", name.col)
                 if b.copy and not b.const:
                     key = " ".join(w.text for w in b.words)
                     if key in seen:
@@ -1161,8 +1162,8 @@ class StlFrontEnd:
         kind = BLOCK_HEADS.get(head)
         if kind is not None and len(words) > 1 and words[1].startswith('"'):
             raise self.error(n, col + stripped.index(words[1]), "unsupported: block "
-                             f"named by a symbol `{words[1]}` (this slice reads blocks by "
-                             f"number: `{head} {kind} n`)")
+                             f"named by a symbol `{words[1]}` (this slice reads blocks "
+                             f"by number: `{head} {kind} n`)")
         if kind is None:
             if head in ("TYPE", "VAR_GLOBAL"):
                 raise self.error(n, col, f"unsupported: {head} (this slice reads "
@@ -1277,7 +1278,8 @@ class StlFrontEnd:
         m = _CALLEE.fullmatch(target)
         if m is None and re.match(r"F[CB](?![A-Z_])", target, re.I) \
                 and not re.search(r'["#\[]', target):
-            raise self.error(line(call.start(2)), col(call.start(2)), f"malformed call `{call.group(1)} "
+            raise self.error(line(call.start(2)), col(call.start(2)),
+                             f"malformed call `{call.group(1)} "
                              f"{' '.join(target.split())}`: {call.group(1)} FC n or "
                              f"{call.group(1)} FB n, DB m expected")
         if m is None:
@@ -1360,9 +1362,10 @@ class StlFrontEnd:
         if first is None and not self.forced:
             se = next((s for s in self.stmts if s.mnemonic.text.upper() == "SE"), None)
             if se is not None:      # the one word whose meaning depends on the language
-                raise self.error(se.line, se.mnemonic.col, "ambiguous: `SE` is the German "
-                                 "on-delay and the English extended pulse; no other word "
-                                 "decides the language: give --mnemonics de|en")
+                raise self.error(se.line, se.mnemonic.col, "ambiguous: `SE` is the "
+                                 "German on-delay and the English extended pulse; no "
+                                 "other word decides the language: give --mnemonics "
+                                 "de|en")
 
     def canonical(self, stmt: Stmt) -> None:
         if not stmt.mnemonic.text:
