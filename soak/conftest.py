@@ -43,6 +43,7 @@ class _Progress:
 
 
 _PROGRESS = _Progress()
+_STL = {}     # kind -> [compared, rejected, mismatches], from soak/test_stl_soak.py's chunks
 
 
 def pytest_collection_finish(session):
@@ -53,8 +54,23 @@ def pytest_collection_finish(session):
 def pytest_runtest_logreport(report):
     if report.when == "teardown" and not os.environ.get("PYTEST_XDIST_WORKER"):
         _PROGRESS.finished()
+    if report.when == "call":
+        for _, (kind, *counts) in (p for p in report.user_properties
+                                   if p[0] == "stl_soak"):
+            _STL[kind] = [a + b for a, b in zip(_STL.get(kind, [0, 0, 0]), counts)]
 
 
 def pytest_xdist_node_collection_finished(node, ids):
     """With xdist the controller learns the count from the workers (each collects all)."""
     _PROGRESS.collected(len(ids))
+
+
+def pytest_terminal_summary(terminalreporter):
+    """The S7 soak's counts: each compared program equals awlsim's on the reference
+    interpreter (serial) and on the Verilator harness in serial and parallel mode."""
+    for kind, (compared, rejected, mismatches) in sorted(_STL.items()):
+        terminalreporter.write_line(
+            f"stl soak {kind}: {compared} programs compared with awlsim (ref serial, "
+            f"verilator serial, verilator parallel), {rejected} rejected as "
+            f"unsupported, {mismatches} mismatching (BITBYTE_SEED="
+            f"{os.environ.get('BITBYTE_SEED')})")

@@ -170,21 +170,57 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
 LATCH = "@latch_s"
 
 
+# Where bitbyte runs a program: (sim, mode) of bitbyte_scans.  SERIAL_REF is the
+# reference interpreter; EVERY_RUN adds the Verilator harness in serial mode and in
+# parallel mode (the partitioning compiler's bit and byte parts running concurrently).
+SERIAL_REF = (("ref", "serial"),)
+EVERY_RUN = SERIAL_REF + (("verilator", "serial"), ("verilator", "parallel"))
+
+
 def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
-                      words: tuple[str, ...], in_words: tuple[int, ...]) -> bool:
-    """A random program: True when its scans equal awlsim's (asserted), False when
-    the front end rejects it — only ever as `unsupported:` (asserted)."""
+                      words: tuple[str, ...], in_words: tuple[int, ...],
+                      runs=SERIAL_REF) -> bool:
+    """A random program: True when its scans equal awlsim's in every run of `runs`
+    (asserted; the message names the run that differs), False when the front end
+    rejects it — only ever as `unsupported:` (asserted)."""
     from bitbyte.lang.errors import SourceError
     from tracecmp import first_difference
 
-    try:
-        got = bitbyte_scans(path, inputs, tmp, words=words, in_words=in_words)
-    except SourceError as e:
-        assert e.message.startswith("unsupported:"), (seed, str(e))
-        return False
-    expected = awlsim_scans(path, inputs, mnemonics=lang, words=words)
-    diff = first_difference(expected, got)
-    assert diff is None, f"seed {seed} ({path}) differs from awlsim: {diff}"
+    expected = None
+    for sim, mode in runs:
+        try:
+            got = bitbyte_scans(path, inputs, tmp, words=words, in_words=in_words,
+                                sim=sim, mode=mode)
+        except SourceError as e:
+            assert expected is None, (seed, sim, mode, str(e))   # the first run rejects
+            assert e.message.startswith("unsupported:"), (seed, str(e))
+            return False
+        if expected is None:
+            expected = awlsim_scans(path, inputs, mnemonics=lang, words=words)
+        diff = first_difference(expected, got)
+        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on {sim} "
+                              f"{mode}: {diff}")
+    return True
+
+
+def timer_equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
+                            timers: tuple[int, ...], runs=SERIAL_REF) -> bool:
+    """equal_or_rejected for a timer program (timer_scans): every transition within
+    one scan of awlsim's (awlsim at each run's own latch times)."""
+    from bitbyte.lang.errors import SourceError
+    from tracecmp import transition_difference
+
+    for n, (sim, mode) in enumerate(runs):
+        try:
+            expected, got, _ = timer_scans(path, inputs, tmp, mnemonics=lang,
+                                           timers=timers, sim=sim, mode=mode)
+        except SourceError as e:
+            assert n == 0, (seed, sim, mode, str(e))
+            assert e.message.startswith("unsupported:"), (seed, str(e))
+            return False
+        diff = transition_difference(expected, got)
+        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on {sim} "
+                              f"{mode}: {diff}")
     return True
 
 

@@ -15,7 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from awlsim_oracle import awlsim_scans, bitbyte_scans, equal_or_rejected
+from awlsim_oracle import (EVERY_RUN, SERIAL_REF, awlsim_scans, bitbyte_scans,
+                           equal_or_rejected)
 from bitbyte import cli
 from bitbyte.lang import stl
 from stlgen import IN_WORDS, random_inputs, random_program
@@ -557,10 +558,12 @@ BASE_SEED = int(os.environ.get("BITBYTE_SEED", "0"))
 
 
 def random_call_programs(tmp: Path, count: int, offset: int = 0,
-                         base_seed: int | None = None) -> tuple[int, list[int], set[str]]:
+                         base_seed: int | None = None, runs=SERIAL_REF
+                         ) -> tuple[int, list[int], set[str]]:
     """(compared, rejected seeds, the call mnemonics seen in compared programs);
-    asserts 0 mismatches against awlsim.  Program i has the seed
-    BITBYTE_SEED * 10000 + i."""
+    asserts 0 mismatches against awlsim in every run of `runs` (awlsim_oracle:
+    SERIAL_REF, the reference interpreter; EVERY_RUN, the Verilator harness in serial
+    and parallel mode too).  Program i has the seed BITBYTE_SEED * 10000 + i."""
     compared, rejected, seen = 0, [], set()
     for index in range(offset, offset + count):
         seed = (BASE_SEED if base_seed is None else base_seed) * 10_000 + index
@@ -568,7 +571,7 @@ def random_call_programs(tmp: Path, count: int, offset: int = 0,
         path = tmp / f"call{seed}.awl"
         path.write_text(text)
         if not equal_or_rejected(seed, path, lang, random_inputs(seed, 12), tmp,
-                                 words=GEN_WORDS, in_words=IN_WORDS):
+                                 words=GEN_WORDS, in_words=IN_WORDS, runs=runs):
             rejected.append(seed)
             continue
         compared += 1
@@ -597,6 +600,31 @@ def test_random_call_programs_catch_one_instance_for_two_dbs(tmp_path, monkeypat
     one_instance(monkeypatch)
     with pytest.raises(AssertionError, match="differs from awlsim"):
         random_call_programs(tmp_path, 40, base_seed=0)    # (seed 6 shows it)
+
+
+def test_random_call_programs_on_verilator_parallel(tmp_path, monkeypatch):
+    """The S7 soak's comparison (soak/test_stl_soak.py, awlsim_oracle.EVERY_RUN): a few
+    random programs with calls equal awlsim's on the reference interpreter and on the
+    Verilator harness in serial and in parallel mode.  And it can fail: with the
+    partitioning compiler inverting each condition it moves to the bit side (`LDN` /
+    `AN` / `ON FBI k` for `LD` / `A` / `O FBI k`: the RLO fetched back from the byte
+    side, a compare's result), a wrong partition that serial mode never sees, program
+    0 still equals awlsim's on the reference interpreter and the harness in serial
+    mode, and differs on the harness in parallel mode."""
+    compared, _, _ = random_call_programs(tmp_path, 6, base_seed=0, runs=EVERY_RUN)
+    assert compared >= 4
+    from bitbyte.compiler import walk
+
+    original = walk._Builder.to_bit
+
+    def inverted(self, reason, bit_mnemonic="LD", plain=False):
+        if not plain:
+            bit_mnemonic = {"LD": "LDN", "A": "AN", "O": "ON"}[bit_mnemonic]
+        return original(self, reason, bit_mnemonic, plain)
+
+    monkeypatch.setattr(walk._Builder, "to_bit", inverted)
+    with pytest.raises(AssertionError, match="differs from awlsim on verilator parallel"):
+        random_call_programs(tmp_path, 1, 0, base_seed=0, runs=EVERY_RUN)
 
 
 def test_symbols_as_actual_parameters(tmp_path):
