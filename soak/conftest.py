@@ -67,10 +67,12 @@ def pytest_xdist_node_collection_finished(node, ids):
 
 def pytest_terminal_summary(terminalreporter):
     """The S7 soak's counts: each compared program equals awlsim's on the reference
-    interpreter (serial) and on the Verilator harness in serial and parallel mode."""
+    interpreter (serial) and on the Verilator harness in serial and parallel mode
+    (both exchanges)."""
     for kind, (compared, rejected, mismatches) in sorted(_STL.items()):
         terminalreporter.write_line(
             f"stl soak {kind}: {compared} programs compared with awlsim (ref serial, "
-            f"verilator serial, verilator parallel), {rejected} rejected as "
+            f"verilator serial, verilator parallel handshake and queue), {rejected} "
+            f"rejected as "
             f"unsupported, {mismatches} mismatching (BITBYTE_SEED="
             f"{os.environ.get('BITBYTE_SEED')})")

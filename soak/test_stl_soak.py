@@ -2,7 +2,8 @@
 tests/stlgen.py, each compared with awlsim scan for scan in every run of
 awlsim_oracle.EVERY_RUN — the reference interpreter in serial mode, the Verilator
 harness in serial mode and in parallel mode (the partitioning compiler's bit and byte
-parts running concurrently).  Three kinds:
+parts running concurrently) with the handshake flip-flops and with the queues.  Three
+kinds:
 
 * calls: programs with calls of generated FCs and an FB with two instance DBs and
   jump lists (calls=True; tests/test_stl_calls.py's random_call_programs);
@@ -98,4 +99,4 @@ def test_stl_soak_chunk(kind, chunk, tmp_path, record_property):
     assert not mismatches, mismatches
     assert compared == want, f"{kind} chunk {chunk}: {compared} compared, " \
                              f"{len(rejected)} rejected in {SPAN} programs"
-    assert len(rejected) <= (compared + len(rejected)) * 0.25, rejected
+    assert len(rejected) <= max(3, (compared + len(rejected)) * 0.25), rejected

@@ -133,10 +133,11 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   sim: str = "ref", mode: str = "serial", in_bytes: int = 2,
                   out_bytes=2, marker_bytes=2, words: tuple[str, ...] = (),
                   in_words: tuple[int, ...] = (), clock_mhz: str = "100",
-                  mnemonics: str | None = None, symbols: str | Path | None = None
-                  ) -> list[dict[str, int]]:
+                  mnemonics: str | None = None, symbols: str | Path | None = None,
+                  exchange: str | None = None) -> list[dict[str, int]]:
     """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
-    the C++ harness), one row per scan with the same keys as awlsim_scans."""
+    the C++ harness; exchange: parallel mode's, its default when None), one row per
+    scan with the same keys as awlsim_scans."""
     from bitbyte.lang.config import Config
     from bitbyte.lang.stimulus import load_stimulus
     from bitbyte.ref.refsim import refsim_trace
@@ -147,7 +148,7 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
     watch = columns_of(out_bytes, marker_bytes, words)
     program, columns, job, f = prepare_run(
         str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
-        mode=mode, mnemonics=mnemonics, clock_mhz=clock_mhz,
+        mode=mode, exchange=exchange, mnemonics=mnemonics, clock_mhz=clock_mhz,
         symbols=None if symbols is None else str(symbols))
     if sim == "ref":
         assert mode == "serial", "the reference interpreter runs serial mode"
@@ -170,11 +171,18 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
 LATCH = "@latch_s"
 
 
-# Where bitbyte runs a program: (sim, mode) of bitbyte_scans.  SERIAL_REF is the
-# reference interpreter; EVERY_RUN adds the Verilator harness in serial mode and in
-# parallel mode (the partitioning compiler's bit and byte parts running concurrently).
-SERIAL_REF = (("ref", "serial"),)
-EVERY_RUN = SERIAL_REF + (("verilator", "serial"), ("verilator", "parallel"))
+# Where bitbyte runs a program: (sim, mode, exchange) of bitbyte_scans.  SERIAL_REF
+# is the reference interpreter; EVERY_RUN adds the Verilator harness in serial mode
+# and in parallel mode (the partitioning compiler's bit and byte parts running
+# concurrently) with each of its exchanges, the handshake flip-flops and the queues.
+SERIAL_REF = (("ref", "serial", None),)
+EVERY_RUN = SERIAL_REF + (("verilator", "serial", None),
+                          ("verilator", "parallel", "handshake"),
+                          ("verilator", "parallel", "queue"))
+
+
+def run_name(sim: str, mode: str, exchange: str | None) -> str:
+    return f"{sim} {mode}" + (f" ({exchange})" if exchange else "")
 
 
 def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
@@ -187,10 +195,10 @@ def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
     from tracecmp import first_difference
 
     expected = None
-    for sim, mode in runs:
+    for sim, mode, exchange in runs:
         try:
             got = bitbyte_scans(path, inputs, tmp, words=words, in_words=in_words,
-                                sim=sim, mode=mode)
+                                sim=sim, mode=mode, exchange=exchange)
         except SourceError as e:
             assert expected is None, (seed, sim, mode, str(e))   # the first run rejects
             assert e.message.startswith("unsupported:"), (seed, str(e))
@@ -198,8 +206,8 @@ def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
         if expected is None:
             expected = awlsim_scans(path, inputs, mnemonics=lang, words=words)
         diff = first_difference(expected, got)
-        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on {sim} "
-                              f"{mode}: {diff}")
+        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on "
+                              f"{run_name(sim, mode, exchange)}: {diff}")
     return True
 
 
@@ -210,17 +218,18 @@ def timer_equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path,
     from bitbyte.lang.errors import SourceError
     from tracecmp import transition_difference
 
-    for n, (sim, mode) in enumerate(runs):
+    for n, (sim, mode, exchange) in enumerate(runs):
         try:
             expected, got, _ = timer_scans(path, inputs, tmp, mnemonics=lang,
-                                           timers=timers, sim=sim, mode=mode)
+                                           timers=timers, sim=sim, mode=mode,
+                                           exchange=exchange)
         except SourceError as e:
             assert n == 0, (seed, sim, mode, str(e))
             assert e.message.startswith("unsupported:"), (seed, str(e))
             return False
         diff = transition_difference(expected, got)
-        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on {sim} "
-                              f"{mode}: {diff}")
+        assert diff is None, (f"seed {seed} ({path}) differs from awlsim on "
+                              f"{run_name(sim, mode, exchange)}: {diff}")
     return True
 
 

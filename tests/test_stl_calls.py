@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import textwrap
 from pathlib import Path
 
 import pytest
 
 from awlsim_oracle import (EVERY_RUN, SERIAL_REF, awlsim_scans, bitbyte_scans,
-                           equal_or_rejected)
+                           equal_or_rejected, run_name)
 from bitbyte import cli
 from bitbyte.lang import stl
 from stlgen import IN_WORDS, random_inputs, random_program
@@ -563,7 +564,7 @@ def random_call_programs(tmp: Path, count: int, offset: int = 0,
     """(compared, rejected seeds, the call mnemonics seen in compared programs);
     asserts 0 mismatches against awlsim in every run of `runs` (awlsim_oracle:
     SERIAL_REF, the reference interpreter; EVERY_RUN, the Verilator harness in serial
-    and parallel mode too).  Program i has the seed BITBYTE_SEED * 10000 + i."""
+    and parallel mode too, each parallel exchange).  Program i has the seed BITBYTE_SEED * 10000 + i."""
     compared, rejected, seen = 0, [], set()
     for index in range(offset, offset + count):
         seed = (BASE_SEED if base_seed is None else base_seed) * 10_000 + index
@@ -605,12 +606,13 @@ def test_random_call_programs_catch_one_instance_for_two_dbs(tmp_path, monkeypat
 def test_random_call_programs_on_verilator_parallel(tmp_path, monkeypatch):
     """The S7 soak's comparison (soak/test_stl_soak.py, awlsim_oracle.EVERY_RUN): a few
     random programs with calls equal awlsim's on the reference interpreter and on the
-    Verilator harness in serial and in parallel mode.  And it can fail: with the
-    partitioning compiler inverting each condition it moves to the bit side (`LDN` /
-    `AN` / `ON FBI k` for `LD` / `A` / `O FBI k`: the RLO fetched back from the byte
-    side, a compare's result), a wrong partition that serial mode never sees, program
-    0 still equals awlsim's on the reference interpreter and the harness in serial
-    mode, and differs on the harness in parallel mode."""
+    Verilator harness in serial and in parallel mode (handshake and queue exchange).
+    And it can fail: with the partitioning compiler inverting each condition it moves
+    to the bit side (`LDN` / `AN` / `ON FBI k` for `LD` / `A` / `O FBI k`: the RLO
+    fetched back from the byte side, a compare's result), a wrong partition that
+    serial mode never sees, program 0 still equals awlsim's on the reference
+    interpreter and the harness in serial mode, and differs on the harness in
+    parallel mode with either exchange."""
     compared, _, _ = random_call_programs(tmp_path, 6, base_seed=0, runs=EVERY_RUN)
     assert compared >= 4
     from bitbyte.compiler import walk
@@ -623,8 +625,11 @@ def test_random_call_programs_on_verilator_parallel(tmp_path, monkeypatch):
         return original(self, reason, bit_mnemonic, plain)
 
     monkeypatch.setattr(walk._Builder, "to_bit", inverted)
-    with pytest.raises(AssertionError, match="differs from awlsim on verilator parallel"):
-        random_call_programs(tmp_path, 1, 0, base_seed=0, runs=EVERY_RUN)
+    for parallel in EVERY_RUN[2:]:
+        with pytest.raises(AssertionError, match=re.escape(
+                f"differs from awlsim on {run_name(*parallel)}: ")):
+            random_call_programs(tmp_path, 1, 0, base_seed=0,
+                                 runs=EVERY_RUN[:2] + (parallel,))
 
 
 def test_symbols_as_actual_parameters(tmp_path):
