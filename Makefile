@@ -114,8 +114,11 @@ clean:          ## remove build products (keeps .venv)
 # and parallel (handshake, queue) mode against the reference interpreter, and the
 # shared-memory tearing test at 100 000 reader scans per protection, spread over
 # JOBS cores; mismatches saved under build/soak/cases/; docs/soak.md gets the seed, the
-# time, the mismatches and the coverage table. Not part of `make test` (N=10000: about
-# 15 min on 2 cores). BITBYTE_SEED=<n> repeats a run.
+# time, the mismatches and the coverage table.  soak/test_stl_soak.py: 1 000 compared S7
+# programs of each of three kinds (BITBYTE_STL_SOAK_N) against awlsim, on the reference
+# interpreter and the harness in serial and parallel mode (build/soak/stl-cases/).
+# Not part of `make test` (N=10000: about 15 min on 2 cores, the S7 soak about 10 more).
+# BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak
 N ?= 10000
 soak: $(HARNESS)  ## N random programs, every mode, against the reference -> docs/soak.md
