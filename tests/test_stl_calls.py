@@ -448,7 +448,7 @@ CALL_ERRORS = [
     (ob("UC"), "UC", 1, "missing operand: `UC` needs a block"),
     (ob("U E 0.0\nL S5T#1S\nSE T 1\nU T 1\n= A 0.0\nCALL FB 9, DB 9 (a := M 255.7)", FB9),
      "CALL FB", 23, "unsupported: `M 255.7` uses M255.7, which the translation"),
-    (ob("L DB1.DBW 2\nT MW 0"), "DB1", 3, "unsupported: data block operand `DB1.DBW 2`"),
+    (ob("L DB1.DBW 2\nT MW 0"), "DB1", 3, "DB 1 is not in the source"),
     (ob("U M [MD 0]\n= A 0.0"), "[MD", 3, "unsupported: indirect addressing `M [MD 0]`"),
 ]
 

@@ -99,6 +99,12 @@ def context(en: str, lang: str) -> tuple[list[str], list[str], str]:
                   "DATA_BLOCK DB 1\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\n"
                   "FUNCTION FC 2 : INT\nBEGIN\nNETWORK\nTITLE =\nL     7\n"
                   "T     #RET_VAL\nEND_FUNCTION\n")
+    if re.search(r"\bDB[XW] |\bDB\d+\.|^OPN DB", en):     # a global DB 1 to use
+        if not re.search(r"\bDB\d+\.|^OPN", en):         # opened first (`DBW 0`)
+            before = before + [{"de": "AUF", "en": "OPN"}[lang] + "   DB 1"]
+        blocks = ("DATA_BLOCK DB 1\n STRUCT\n  " + ("x : BOOL" if "DBX" in en else
+                                                    "w : INT") +
+                  ";\n END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n")
     ju = {"de": "SPA", "en": "JU"}[lang]
     return before, [a.replace("{JU}", ju) for a in after], blocks
 

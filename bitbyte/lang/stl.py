@@ -136,7 +136,8 @@ _WHY = {
         "TAK PUSH POP ENT LEAVE",
     "address registers: the bit and byte processors address directly":
         "LAR1 LAR2 TAR1 TAR2 CAR +AR1 +AR2",
-    "data block registers: no global data blocks, instance DBs are inlined": "OPN CDB",
+    "data block registers: known statically (`OPN DB n`), not kept; instance DBs "
+    "are inlined": "OPN CDB",
     "BR is not modelled (no ENO, no error state of instructions)": "JCB JNB JBI JNBI",
     "the byte processor keeps no overflow bits OV/OS": "JO JOS",
     "the byte processor keeps no condition codes CC 1/CC 0":
@@ -151,7 +152,7 @@ REGISTER_REASONS = {
     "OV": "the byte processor keeps no overflow bit",
     "OS": "the byte processor keeps no stored overflow bit",
     "STW": "only the RLO and /FC exist here, /FC known statically",
-    "DB register": "no global data blocks, instance DBs are inlined",
+    "DB register": "the DB registers are known statically, not kept",
     "address register": "the bit and byte processors address directly"}
 END_LABEL = "OB1.END"        # the appended END; no S7 label can be spelt so
 # OB 100 (docs/s7.md, "OB 100: the startup"): translated after OB 1's END as the
@@ -408,6 +409,8 @@ class StlFrontEnd:
         self.temps: dict[str, int] = {}
         self.symbol_path = symbols
         self.symbol_table: dict[str, Symbol] = {}
+        self.db_fields: dict[int, list] = {}   # a global DB's fields (Global data blocks)
+        self.db_used: dict[int, dict] = {}     # the DBs operands use: their layouts
 
     # -- errors --------------------------------------------------------------------
 
@@ -427,7 +430,9 @@ class StlFrontEnd:
         for stmt in self.stmts:
             self.canonical(stmt)
         self.expand_calls()
+        self.init_data_blocks()
         self.prepare_timers()
+        self.check_db_region()
         program = self.translate()
         program.symbols = self.symbol_operands()
         program.startup_scans = 1 if self.startup else 0
@@ -609,7 +614,9 @@ class StlFrontEnd:
     def expand(self, stmts: list[Stmt], scope: dict, stack: list[Block]) -> list[Stmt]:
         out: list[Stmt] = []
         prefix = scope["prefix"]
-        for stmt in stmts:
+        registers = self.db_registers(stmts, scope)
+        for stmt, register in zip(stmts, registers):
+            stmt = self.db_operands(stmt, register)
             labels = [Word(f"{prefix}.{w.text}" if prefix else w.text, w.col)
                       for w in stmt.labels]
             if stmt.canon in ("CALL", "UC", "CC"):
@@ -813,6 +820,18 @@ class StlFrontEnd:
         lives in (M bytes 128..223), once there is such data."""
         if not self.cells:
             return
+        for stmt, ops, lo, hi in self.marker_uses():
+            if lo < LOCAL_BYTES[1] and hi >= LOCAL_BYTES[0]:
+                shown = ops[0].shown or " ".join(w.text for w in ops[:2])
+                raise self.unsupported(self.param_stmt(stmt, ops[0]),
+                                       f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
+                                       f"M {LOCAL_BYTES[1] - 1}, which this program's "
+                                       "block-local data (FB instances, TEMPs) uses",
+                                       ops[0].col)
+
+    def marker_uses(self):
+        """(statement, operand words, first byte, last byte) of every marker bit or
+        word the program's own statements use."""
         for stmt in self.stmts:
             for ops in self.used_operands(stmt):
                 text = "".join(w.text for w in ops[:2]).upper()
@@ -823,13 +842,8 @@ class StlFrontEnd:
                     lo = hi = int(rest.split(".")[0])
                 elif canon == "MW" and rest.isdigit():
                     lo, hi = int(rest), int(rest) + 1
-                if lo is not None and lo < LOCAL_BYTES[1] and hi >= LOCAL_BYTES[0]:
-                    shown = ops[0].shown or " ".join(w.text for w in ops[:2])
-                    raise self.unsupported(self.param_stmt(stmt, ops[0]),
-                                           f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
-                                           f"M {LOCAL_BYTES[1] - 1}, which this program's "
-                                           "block-local data (FB instances, TEMPs) uses",
-                                           ops[0].col)
+                if lo is not None:
+                    yield stmt, ops, lo, hi
 
     def local_bit(self, stmt: Stmt, key: tuple) -> Operand:
         """A bit of the block-local region the translation keeps for itself."""
@@ -1018,8 +1032,8 @@ class StlFrontEnd:
 
     def read_blocks(self) -> None:
         """Read every block of the source: OB 1, FC n, FB n (their interfaces and
-        bodies) and DB n (instance DBs; global ones are read and never used, since
-        DB operands are rejected).  Other OBs and TYPE are unsupported."""
+        bodies) and DB n (instance DBs; global ones with their fields and initial
+        values: Global data blocks).  Other OBs and TYPE are unsupported."""
         self.blocks: dict[tuple[str, int], Block] = {}
         state, block, section = "outside", None, ""
         struct_depth, call, listed = 0, None, None
@@ -1084,6 +1098,8 @@ class StlFrontEnd:
                         "; ").endswith(": STRUCT"):
                     struct_depth += 1
             elif state == "struct":
+                if struct_depth == 1 and head not in ("END_STRUCT", "STRUCT"):
+                    self.read_db_field(block, n, col, stripped)
                 if head == "END_STRUCT":
                     struct_depth -= 1
                     state = "header" if not struct_depth else state
@@ -1091,7 +1107,7 @@ class StlFrontEnd:
                     struct_depth += 1
             elif state == "dbinit":
                 if head == "END_DATA_BLOCK":
-                    state = "outside"
+                    state, block.end = "outside", n
                 else:
                     self.read_db_value(block, n, col, stripped)
             elif state == "body":
@@ -1214,6 +1230,8 @@ class StlFrontEnd:
 
     def read_db_value(self, block: Block, n: int, col: int, text: str) -> None:
         """An instance DB's `name := value;` after BEGIN (0 / FALSE only)."""
+        if block.instance_of is None:           # a global DB's (Global data blocks)
+            return self.read_db_assignment(block, n, col, text)
         m = re.fullmatch(r"\s*([A-Za-z_][\w.\[\], ]*?)\s*:=\s*([^;]+?)\s*;?\s*", text)
         if not m:
             raise self.error(n, col, f"malformed initial value `{text}`")
@@ -2326,10 +2344,316 @@ class StlFrontEnd:
         return True
 
 
+    # -- global data blocks (docs/s7.md, "Global data blocks") ------------------------
+
+    def read_db_field(self, block: Block, n: int, col: int, text: str) -> None:
+        """`name : TYPE [:= value];` in a DB's STRUCT (a global DB's field)."""
+        m = _DECL.match(text)
+        if not m:
+            raise self.error(n, col, f"malformed declaration `{text}`: name : type; "
+                             "expected")
+        fields = self.db_fields.setdefault(block.number, [])
+        name = m.group(1)
+        if any(f.name.upper() == name.upper() for f in fields):
+            raise self.error(n, col, f"duplicate declaration `{name}` in {block.name}")
+        value = m.group(3)
+        fields.append(DbField(name, m.group(2).strip().upper(), n, col, value,
+                              col + text.index(value) if value else 0))
+
+    def read_db_assignment(self, block: Block, n: int, col: int, text: str) -> None:
+        """A global DB's `name := value;` after BEGIN: the field's initial value."""
+        m = re.fullmatch(r"\s*([A-Za-z_]\w*)\s*:=\s*([^;]+?)\s*;?\s*", text)
+        if not m:
+            raise self.error(n, col, f"malformed initial value `{text}`")
+        fields = self.db_fields.get(block.number, [])
+        field_ = next((f for f in fields if f.name.upper() == m.group(1).upper()), None)
+        if field_ is None:
+            raise self.error(n, col, f"unknown field `{m.group(1)}` in {block.name}"
+                             + did_you_mean(m.group(1), [f.name for f in fields]))
+        field_.value, field_.value_line = m.group(2), n
+        field_.value_col = col + text.index(m.group(2))
+
+    def data_block(self, stmt: Stmt, number: int, col: int) -> dict:
+        """The layout of global DB `number`, its markers allocated on first use:
+        {"base": marker byte of DB byte 0, "size": bytes, "fields": [DbField]}."""
+        if number in self.db_used:
+            return self.db_used[number]
+        block = self.blocks.get(("DB", number))
+        if block is None:
+            raise self.error(stmt.line, col, f"DB {number} is not in the source")
+        if block.instance_of is not None:
+            raise self.unsupported(stmt, f"DB {number} is the instance DB of FB "
+                                   f"{block.instance_of} (its data is the FB's `#name`s, "
+                                   "not DB operands)", col)
+        bit = 0                                 # S7's layout: bit offset in the DB
+        fields = self.db_fields.get(number, [])
+        for f in fields:
+            size = DB_TYPE_BYTES.get(f.type)
+            if size is None:
+                raise self.error(f.line, f.col, f"unsupported: field `{f.name}` of type "
+                                 f"{f.type} in DB {number} (fields of this slice: BOOL, "
+                                 "BYTE, INT, WORD and other elementary types)")
+            if size == 0:                       # BOOL: the next bit
+                f.byte, f.bit = divmod(bit, 8)
+                bit += 1
+                continue
+            byte = (bit + 7) // 8
+            if size > 1 and byte % 2:
+                byte += 1
+            f.byte, f.bit = byte, None
+            bit = (byte + size) * 8
+        size = (bit + 7) // 8
+        size += size % 2
+        base = DB_BYTES[0] + sum(d["size"] for d in self.db_used.values())
+        if base + size > DB_BYTES[1]:
+            raise self.unsupported(stmt, f"DB {number} ({size} bytes) does not fit into "
+                                   f"the markers kept for global DBs (M {DB_BYTES[0]} .. "
+                                   f"M {DB_BYTES[1] - 1}, {base - DB_BYTES[0]} bytes used "
+                                   "by other DBs)", col)
+        self.db_used[number] = {"base": base, "size": size, "fields": fields,
+                                "block": block}
+        return self.db_used[number]
+
+    def db_registers(self, stmts: list[Stmt], scope: dict) -> list:
+        """S7's DB register before each statement of one block, known statically:
+        ("db", n), or ("?", why) where it is not.  A block starts with none open
+        (awlsim: DB 0 at an OB; an FB sees the caller's DI), an FC with its caller's;
+        `OPN DB n` opens n; a CALL of an FC leaves it as it was (awlsim restores it),
+        of an FB opens its instance DB; where paths meet they must agree."""
+        block = scope["block"]
+        entry = getattr(self, "db_at_call", None) if block.kind == "FC" else None
+        if entry is None:
+            entry = ("?", f"no DB is open at the start of {block.name}")
+        targets: dict[str, tuple] = {}
+        for _ in range(8):
+            before, state, changed = [], entry, False
+            for stmt in stmts:
+                for w in stmt.labels:
+                    got = targets.get(w.text.upper())
+                    state = _db_meet(state, got) if got else state
+                before.append(state)
+                m = stmt.canon
+                if m == "OPN" and len(stmt.operands) in (1, 2) and re.fullmatch(
+                        r"DB\s*\d+", "".join(w.text for w in stmt.operands), re.I):
+                    state = ("db", int("".join(w.text for w in stmt.operands)[2:]))
+                elif m == "CALL" and isinstance(stmt.extra, CallInfo) and \
+                        stmt.extra.kind.upper() == "FB":
+                    state = ("?", f"after `{stmt.mnemonic.text} FB {stmt.extra.number}"
+                                  f", DB {stmt.extra.db}` the open DB is its instance DB")
+                elif self.is_jump(stmt) and stmt.operands:
+                    key = stmt.operands[0].text.upper()
+                    new = _db_meet(targets.get(key), state)
+                    changed |= new != targets.get(key)
+                    targets[key] = new
+                if m in ("JU", "BEU", "BE"):
+                    state = None                # no fall-through (joined at a label)
+            if not changed:
+                return [s or entry for s in before]
+        return [s or entry for s in before]     # pragma: no cover
+
+    def db_operands(self, stmt: Stmt, register) -> Stmt:
+        """`OPN DB n` -> nothing (`NOP 0`: no status bit changes); a DB operand
+        (`DB1.DBX 0.0`, `DB1.DBW 2`, `DB1.field`, `DBX 0.0` / `DBW 2` of the open DB)
+        -> the marker of the field.  A CALL remembers the register for its FC."""
+        if stmt.canon in ("CALL", "UC", "CC"):
+            self.db_at_call = register
+            return stmt
+        ops = stmt.operands
+        if not ops or self.is_jump(stmt):
+            return stmt
+        text = ops[0].text
+        if stmt.canon == "OPN" and re.fullmatch(r"DB\s*\d+", "".join(
+                w.text for w in ops), re.I):
+            self.data_block(stmt, int("".join(w.text for w in ops)[2:]), ops[0].col)
+            return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic,
+                        [Word("0", ops[0].col)], stmt.labels, "NOP")
+        full = re.fullmatch(r"DB(\d+)\.(DB[XBWD])(.*)", text, re.I)
+        open_ = re.fullmatch(r"(DB[XBWD])(.*)", text, re.I)
+        named = None if full else re.fullmatch(r"DB(\d+)\.([A-Za-z_]\w*)", text, re.I)
+        if not (full or open_ or named):
+            return stmt
+        match = full or open_
+        used = 1
+        if match:
+            area, rest = match.group(match.lastindex - 1).upper(), match.group(
+                match.lastindex)
+            if not rest and len(ops) > 1:
+                rest, used = ops[1].text, 2
+        written = " ".join(w.text for w in ops[:used])
+        if full or named:
+            number = int((full or named).group(1))
+        elif register[0] == "db":
+            number = register[1]
+        else:
+            raise self.unsupported(stmt, f"DB register not known statically at "
+                                   f"`{stmt.mnemonic.text} {written}` ({register[1]}; "
+                                   "open it with `OPN DB n` in this block, or write "
+                                   "`DBn.DBX`)" if self.lang == "en" else
+                                   f"DB register not known statically at "
+                                   f"`{stmt.mnemonic.text} {written}` ({register[1]}; "
+                                   "open it with `AUF DB n` in this block, or write "
+                                   "`DBn.DBX`)", ops[0].col)
+        db = self.data_block(stmt, number, ops[0].col)
+        if named:
+            f = next((f for f in db["fields"] if f.name.upper() ==
+                      named.group(2).upper()), None)
+            if f is None:
+                raise self.error(stmt.line, ops[0].col, f"unknown field "
+                                 f"`{named.group(2)}` in DB {number}" + did_you_mean(
+                                     named.group(2), [f.name for f in db["fields"]]))
+            area = "DBX" if f.type == "BOOL" else "DBW" if DB_TYPE_BYTES[
+                f.type] == 2 else "DBB" if DB_TYPE_BYTES[f.type] == 1 else "DBD"
+            byte, bit = f.byte, f.bit
+        else:
+            where = f"`{written}`: {area} <byte>" + (".<bit>" if area == "DBX" else "")
+            m = re.fullmatch(r"(\d+)\.(\d)" if area == "DBX" else r"(\d+)", rest)
+            if m is None:
+                raise self.error(stmt.line, ops[0].col, f"malformed address {where} "
+                                 "expected")
+            byte, bit = int(m.group(1)), int(m.group(2)) if area == "DBX" else None
+            if bit is not None and bit > 7:
+                raise self.error(stmt.line, ops[0].col, f"operand out of range: "
+                                 f"`{written}` (bit 0..7)")
+        width = {"DBX": 1, "DBB": 1, "DBW": 2, "DBD": 4}[area]
+        if byte + width > db["size"]:
+            raise self.error(stmt.line, ops[0].col, f"operand out of range: `{written}` "
+                             f"(DB {number} has {db['size']} bytes, 0..{db['size'] - 1})")
+        kind = {"DBX": "BOOL", "DBW": "INT/WORD"}.get(area)
+        ok = [f for f in db["fields"] if f.byte == byte and (
+            f.type == "BOOL" if area == "DBX" else f.type in ("INT", "WORD"))] \
+            if kind else []
+        if area == "DBX" and not ok and not any(
+                f.byte == byte for f in db["fields"]):
+            ok = [None]                         # a byte no field uses (padding)
+        if not ok:
+            raise self.unsupported(stmt, f"`{written}`: " + (
+                f"{area} (this slice reads a DB's BOOL fields as DBX and its INT/WORD "
+                "fields as DBW)" if kind is None else f"not a {kind} field of DB "
+                f"{number} (here a DB's bits and words are kept apart, as markers' are: "
+                f"DBX reads BOOL fields, DBW INT/WORD fields)"), ops[0].col)
+        k = db["base"] + byte
+        target = f"M{k}.{bit}" if area == "DBX" else f"MW{k}"
+        shown = ops[0].shown or (f"DB{number}.{written}" if open_ else written)
+        new_ops = [Word(target, ops[0].col, shown, True)] + ops[used:]
+        return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic, new_ops,
+                    stmt.labels, stmt.canon, stmt.extra)
+
+    def init_data_blocks(self) -> None:
+        """S7 loads a DB's initial values before the startup: statements at the start
+        of the startup part (OB 100's, or one made for them) set the used DBs' fields
+        whose initial value is not 0 (markers start at 0)."""
+        init: list[Stmt] = []
+        bits, words = [], []
+        for number, db in self.db_used.items():
+            for f in db["fields"]:
+                if f.value is None or f.type not in ("BOOL", "INT", "WORD"):
+                    continue
+                value = _initial(f.value)
+                line = getattr(f, "value_line", f.line)
+                source = self.lines[line - 1].rstrip("\r")
+                k = db["base"] + f.byte
+                if f.type == "BOOL":
+                    if value not in (0, 1):
+                        raise self.error(line, f.value_col, f"malformed initial value "
+                                         f"`{f.value}` of the BOOL `{f.name}`")
+                    if value:
+                        bits.append(Stmt(line, f.value_col, source, Word("=", f.value_col),
+                                         [Word(f"M{k}.{f.bit}", f.value_col,
+                                               f"DB{number}.{f.name}", True)], [], "="))
+                elif value != 0:
+                    words += [Stmt(line, f.value_col, source, Word("L", f.value_col),
+                                   [Word(f.value.strip(), f.value_col)], [], "L"),
+                              Stmt(line, f.value_col, source, Word("T", f.value_col),
+                                   [Word(f"MW{k}", f.value_col, f"DB{number}.{f.name}",
+                                         True)], [], "T")]
+        if bits:
+            s = bits[0]
+            init += [Stmt(s.line, s.col, s.source, Word("SET", s.col), [], [], "SET")]
+            init += bits + [Stmt(s.line, s.col, s.source, Word("CLR", s.col), [], [],
+                                 "CLR")]
+        init += words
+        if not init:
+            return
+        if self.startup:
+            if words:                           # awlsim's accumulators at OB 100: 0
+                s = words[0]
+                init += [Stmt(s.line, s.col, s.source, Word("L", s.col),
+                              [Word("0", s.col)], [], "L")] * 2
+            at = next(i for i, s in enumerate(self.stmts) if s.canon == "@STARTUP")
+            self.stmts[at + 1:at + 1] = init
+            return
+        self.startup = True
+        block = next(iter(self.db_used.values()))["block"]
+
+        def mark(line: int, canon: str, labels: list[Word]) -> Stmt:
+            source = self.lines[line - 1].rstrip("\r")
+            col = len(source) - len(source.lstrip()) + 1
+            return Stmt(line, col, source, Word(source.split()[0], col), [], labels,
+                        canon)
+        self.stmts += [mark(block.line, "@STARTUP", [])] + init + [
+            mark(block.end or block.line, "@STARTED", [Word(STARTUP_END, 1)])]
+
+    def check_db_region(self) -> None:
+        """The global DBs' markers stay below the translation's own (the timers'
+        scratch bits, the started bit), and the program's own operands out of them."""
+        if not self.db_used:
+            return
+        end = DB_BYTES[0] + sum(d["size"] for d in self.db_used.values())
+        low = min((op.byte for op in self.scratch_bits.values()), default=None)
+        if low is not None and low < end:
+            stmt = next(iter(self.db_used.values()))["block"]
+            raise self.error(stmt.line, stmt.col, f"unsupported: the global DBs need M "
+                             f"{DB_BYTES[0]} .. M {end - 1}, but the translation keeps M "
+                             f"{low} and up for the timers and the startup")
+        for stmt, ops, lo, hi in self.marker_uses():
+            if lo < end and hi >= DB_BYTES[0]:
+                shown = ops[0].shown or " ".join(w.text for w in ops[:2])
+                raise self.unsupported(self.param_stmt(stmt, ops[0]),
+                                       f"`{shown}` is in M {DB_BYTES[0]} .. M "
+                                       f"{end - 1}, which this program's global DBs "
+                                       "use", ops[0].col)
+
+
+# Global data blocks (docs/s7.md, "Global data blocks"): the fields of the DBs a
+# program uses live in markers from M 224 up, DB byte b of a DB at its base + b
+# (bits M base+b.n, words MW base+b), below the translation's own bits (M 255.7 down).
+DB_BYTES = (224, 254)
+# bytes of a field type in S7's DB layout (0: BOOL, a bit); other types are unsupported
+DB_TYPE_BYTES = {"BOOL": 0, "BYTE": 1, "CHAR": 1, "INT": 2, "WORD": 2, "S5TIME": 2,
+                 "DATE": 2, "DINT": 4, "DWORD": 4, "REAL": 4, "TIME": 4,
+                 "TIME_OF_DAY": 4, "TOD": 4}
+
+
+@dataclass
+class DbField:
+    """A field of a global DB: `name : TYPE [:= value];` (its value may be set again
+    after BEGIN) and, once laid out, its S7 address."""
+
+    name: str
+    type: str
+    line: int
+    col: int
+    value: str | None = None
+    value_col: int = 0
+    byte: int = 0
+    bit: int | None = None
+
+
+def _db_meet(a, b):
+    """Two DB register states where paths meet (None: no path yet)."""
+    if a is None or a == b:
+        return b
+    if b is None:
+        return a
+    if a[0] == "?":
+        return a
+    if b[0] == "?":
+        return b
+    return ("?", f"DB {a[1]} on one path, DB {b[1]} on another")
+
+
 _S5T_PART = re.compile(r"(\d+)(MS|D|H|M|S)_?")
 _S5T_UNITS = {"D": 86_400_000, "H": 3_600_000, "M": 60_000, "S": 1000, "MS": 1}
-
-
 def _s5t_ms(body: str) -> int | None:
     """`1H2M3S4MS` (or with `_`) -> ms; None if malformed or above 2H46M30S."""
     pos, total, last = 0, 0, -1

@@ -1,0 +1,297 @@
+"""Global data blocks (issue 19; docs/s7.md "Global data blocks"): `DATA_BLOCK DB n`
+with a STRUCT of BOOL/INT/WORD fields and initial values, read and written as
+`DB1.DBX 0.0`, `DB1.DBW 2`, `DB1.field` and, after `AUF`/`OPN DB n`, `DBX`/`DBW`.
+Checked against awlsim scan for scan (the DBs' effects watched through outputs and
+marker words), on the reference interpreter and on the Verilator harness in serial
+and parallel mode; the comparison is shown to catch initial values that are ignored
+and a layout with the wrong bit order."""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from awlsim_oracle import awlsim_scans, bitbyte_scans
+from tracecmp import first_difference
+
+from bitbyte import cli
+from bitbyte.lang import stl
+
+DBS = """DATA_BLOCK DB 1
+TITLE =
+  STRUCT
+    run : BOOL;
+    seen : BOOL := TRUE;
+    edge : BOOL;
+    count : INT := 5;
+    limit : INT := 3;
+    mask : WORD := W#16#00F0;
+  END_STRUCT;
+BEGIN
+  limit := 4;
+END_DATA_BLOCK
+
+DATA_BLOCK DB 2
+  STRUCT
+    a : BOOL;
+    b : BOOL;
+    n : INT;
+    m : INT := -7;
+  END_STRUCT;
+BEGIN
+  a := TRUE;
+END_DATA_BLOCK
+
+FUNCTION FC 1 : VOID
+BEGIN
+NETWORK
+TITLE =
+      L     DBW 2
+      + 1
+      T     DBW 2
+      U     DBX 0.0
+      =     DBX 0.1
+END_FUNCTION
+
+"""
+
+# OB 100 goes on from the DBs' initial values (S7 loads them before the startup)
+STARTUP_DE = """ORGANIZATION_BLOCK OB 100
+BEGIN
+NETWORK
+TITLE =
+      L     DB1.count
+      + 10
+      T     DB1.count
+      U     DB2.a
+      =     A 1.0
+END_ORGANIZATION_BLOCK
+
+"""
+
+OB1_DE = """ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      U     E 0.0
+      FP    DB1.DBX 0.2
+      =     M 0.0
+      U     M 0.0
+      S     DB1.DBX 0.0
+      U     E 0.1
+      R     DB1.run
+      U     DB1.DBX 0.0
+      =     A 0.0
+      U     DB1.seen
+      =     A 0.1
+NETWORK
+TITLE =
+      AUF   DB 1
+      U     M 0.0
+      SPBN  M1
+      L     DBW 2
+      + 1
+      T     DBW 2
+M1:   L     DBW 2
+      T     MW 10
+      L     DB1.limit
+      T     MW 12
+      L     DB1.count
+      L     DB1.limit
+      >I
+      =     A 0.2
+      L     DB1.DBW 6
+      T     MW 14
+      L     EW 2
+      T     DB1.DBW 6
+NETWORK
+TITLE =
+      AUF   DB 2
+      U     DBX 0.0
+      =     A 0.3
+      U     E 0.2
+      SPBN  M2
+      CALL  FC 1
+M2:   L     DB2.DBW 2
+      T     MW 16
+      L     DB2.m
+      T     MW 18
+      U     DB2.b
+      =     A 0.4
+      U     E 0.3
+      =     DB2.DBX 0.0
+END_ORGANIZATION_BLOCK
+"""
+
+EN = {"U": "A", "E": "I", "A": "Q", "AUF": "OPN", "SPBN": "JCN", "EW": "IW"}
+WORDS = ("MW10", "MW12", "MW14", "MW16", "MW18")
+
+
+def english(text: str) -> str:
+    """The program with English mnemonics and areas (statement lines only)."""
+    out = []
+    for line in text.split("\n"):
+        m = re.fullmatch(r"((?:\w+:)?\s+)(\S+)(\s+)(\S+)(.*)", line)
+        if m and m.group(2) in EN | {"L": "", "T": "", "=": "", "S": "", "R": ""}:
+            line = (m.group(1) + EN.get(m.group(2), m.group(2)) + m.group(3)
+                    + EN.get(m.group(4), m.group(4)) + m.group(5))
+        out.append(line)
+    return "\n".join(out)
+
+
+def inputs(scans: int = 16) -> list[dict[int, int]]:
+    rows = []
+    for k in range(scans):
+        image = (1 if k % 3 == 1 else 0) | (2 if k in (7, 8) else 0) \
+            | (4 if k % 4 in (1, 2) else 0) | (8 if k in (3, 4, 5, 11) else 0)
+        rows.append({0: image, 2: (k * 37) & 0xFF, 3: k})
+    return rows
+
+
+def source(tmp: Path, lang: str, startup: bool = True, name: str = "db") -> Path:
+    text = DBS + (STARTUP_DE if startup else "") + OB1_DE
+    path = tmp / f"{name}_{lang}.awl"
+    path.write_text(text if lang == "de" else english(text))
+    return path
+
+
+def compare(path: Path, lang: str, tmp: Path, **kw):
+    stimulus = inputs()
+    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=WORDS)
+    got = bitbyte_scans(path, stimulus, tmp, words=WORDS, in_words=(2,), **kw)
+    return expected, got, first_difference(expected, got)
+
+
+def test_english_translation():
+    text = english(DBS + STARTUP_DE + OB1_DE)
+    for statement in ("OPN   DB 1", "JCN  M1", "A     DB1.seen", "L     IW 2",
+                      "=     Q 0.4", "A     I 0.3"):
+        assert statement in text, statement
+    assert not re.search(r"\b(U|E|AUF|SPBN|EW)\b", text.split("ORGANIZATION")[1])
+
+
+@pytest.mark.parametrize("startup", [True, False])
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_global_dbs_against_awlsim(tmp_path, lang, startup):
+    """Bits and words of two global DBs, fully qualified, by field name and through
+    the open DB (also in an FC, which sees its caller's), written by `=`, `S`, `R`,
+    `FP`, `T`; initial values from the declaration and from BEGIN; with and without
+    an OB 100 that goes on from them."""
+    expected, got, diff = compare(source(tmp_path, lang, startup), lang, tmp_path)
+    assert diff is None, diff
+    first = expected[0]
+    assert first["Q0.1"] == 1 and first["Q0.3"] == 1    # seen := TRUE, a := TRUE
+    assert first["MW12"] == 4 and first["MW18"] == -7   # limit := 4, m : INT := -7
+    assert first["MW14"] == 0xF0
+    assert first["MW10"] == (15 if startup else 5)
+    assert first["Q1.0"] == int(startup)
+    assert len({row["MW10"] for row in expected}) > 3   # the count goes on
+    assert len({row["MW16"] for row in expected}) > 3   # FC 1 counts in DB 2
+
+
+def test_global_dbs_on_verilator_serial_and_parallel(tmp_path):
+    path = source(tmp_path, "de")
+    for mode in ("serial", "parallel"):
+        _, _, diff = compare(path, "de", tmp_path, sim="verilator", mode=mode)
+        assert diff is None, (mode, diff)
+
+
+def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
+    for startup in (True, False):
+        path = source(tmp_path, "de", startup)
+        expected = awlsim_scans(path, inputs(), mnemonics="de", words=WORDS)
+        with monkeypatch.context() as m:
+            m.setattr(stl.StlFrontEnd, "init_data_blocks", lambda self: None)
+            got = bitbyte_scans(path, inputs(), tmp_path, words=WORDS,
+                                in_words=(2,))
+        assert first_difference(expected, got)[0] == 0
+
+
+def test_comparison_catches_a_wrong_bit_order(tmp_path, monkeypatch):
+    """BOOL fields laid out from bit 7 down (a field's name and its DBX address then
+    name different bits)."""
+    path = source(tmp_path, "de")
+    expected = awlsim_scans(path, inputs(), mnemonics="de", words=WORDS)
+    layout = stl.StlFrontEnd.data_block
+
+    def reversed_bits(self, stmt, number, col):
+        fresh = number not in self.db_used
+        db = layout(self, stmt, number, col)
+        if fresh:
+            for f in db["fields"]:
+                if f.bit is not None:
+                    f.bit = 7 - f.bit
+        return db
+    monkeypatch.setattr(stl.StlFrontEnd, "data_block", reversed_bits)
+    got = bitbyte_scans(path, inputs(), tmp_path, words=WORDS, in_words=(2,))
+    assert first_difference(expected, got) is not None
+
+
+def test_listing_names_the_db_operands(tmp_path):
+    path = source(tmp_path, "de")
+    assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 0
+    lst = (tmp_path / "db_de.lst").read_text()
+    assert "DB1.DBX 0.2" in lst and "DB1.limit" in lst and "DB2.DBW 2" in lst
+    assert "OB100:" in lst
+
+
+def test_no_startup_part_when_every_initial_value_is_0(tmp_path):
+    from bitbyte.lang.parser import parse_file
+    path = tmp_path / "zero.awl"
+    path.write_text("DATA_BLOCK DB 1\n STRUCT\n  x : BOOL;\n  n : INT := 0;\n "
+                    "END_STRUCT;\nBEGIN\n  x := FALSE;\nEND_DATA_BLOCK\n\n"
+                    + ob1("U DB1.x\n= A 0.0\nL DB1.n\nT MW 10"))
+    assert parse_file(str(path)).startup_scans == 0
+    path.write_text(path.read_text().replace("x := FALSE", "x := TRUE"))
+    assert parse_file(str(path)).startup_scans == 1
+
+
+# --------------------------------------------------------------------------------------
+# Errors
+
+def ob1(body: str) -> str:
+    return "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n" + body + \
+        "\nEND_ORGANIZATION_BLOCK\n"
+
+
+DB1 = ("DATA_BLOCK DB 1\n STRUCT\n  x : BOOL;\n  n : INT := 3;\n  f : REAL;\n "
+       "END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n")             # 9 lines
+FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n"
+      "SET\nEND_FUNCTION_BLOCK\n\nDATA_BLOCK DB 2\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\n")
+
+
+@pytest.mark.parametrize("text,where", [
+    (DB1 + ob1("L DB3.DBW 0\nT MW 10"), "14:3: DB 3 is not in the source"),
+    (DB1 + ob1("AUF DB 4"), "14:5: DB 4 is not in the source"),
+    (DB1 + ob1("L DB1.DBW 8\nT MW 10"),
+     "14:3: operand out of range: `DB1.DBW 8` (DB 1 has 8 bytes, 0..7)"),
+    (DB1 + ob1("U DB1.DBX 0.8\n= A 0.0"), "14:3: operand out of range: `DB1.DBX 0.8`"),
+    (DB1 + ob1("L DB1.cnt\nT MW 10"), "14:3: unknown field `cnt` in DB 1"),
+    (DB1 + ob1("L DBW 2\nT MW 10"), "14:3: unsupported: DB register not known "
+     "statically at `L DBW 2` (no DB is open at the start of OB 1"),
+    (DB1 + "DATA_BLOCK DB 3\n STRUCT\n  y : INT;\n END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n"
+     + ob1("U E 0.0\nSPB M1\nAUF DB 1\nSPA M2\nM1: AUF DB 3\nM2: L DBW 2\nT MW 10"),
+     "26:7: unsupported: DB register not known statically at `L DBW 2` (DB 3 on one "
+     "path, DB 1 on another"),
+    (FB + DB1 + ob1("AUF DB 1\nCALL FB 1, DB 2\nL DBW 2\nT MW 10"),
+     "31:3: unsupported: DB register not known statically at `L DBW 2` (after `CALL FB "
+     "1, DB 2` the open DB is its instance DB"),
+    (FB + DB1 + ob1("U DB2.DBX 0.0\n= A 0.0"),
+     "29:3: unsupported: DB 2 is the instance DB of FB 1"),
+    (DB1 + ob1("L DB1.DBW 0\nT MW 10"), "14:3: unsupported: `DB1.DBW 0`: not a "
+     "INT/WORD field of DB 1"),
+    (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
+    (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
+     "M 231, which this program's global DBs use"),
+    (DB1.replace("BEGIN\n", "BEGIN\n  k := 1;\n") + ob1("SET"),
+     "8:3: unknown field `k` in DB 1"),
+])
+def test_errors(tmp_path, capsys, text, where):
+    path = tmp_path / "bad.awl"
+    path.write_text(text)
+    code = cli.main(["asm", str(path), "-o", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_SOURCE, err
+    assert err.startswith(f"{path}:{where}"), err
+    assert "Traceback" not in err
