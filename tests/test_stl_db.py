@@ -197,6 +197,84 @@ def test_global_dbs_on_verilator_serial_and_parallel(tmp_path):
         assert diff is None, (mode, diff)
 
 
+# S7's layout around a BYTE and a DINT (fields read by name and by address), an FC
+# that opens another DB (the caller's stays open after the call, as awlsim restores
+# it), a backward jump with the DB register the same on both paths, `FN` on a DBX.
+LAYOUT_DE = """DATA_BLOCK DB 1
+  STRUCT
+    a : BOOL;
+    c : BYTE := B#16#12;
+    n : INT := 7;
+    b : BOOL := TRUE;
+    d : DINT;
+    w : WORD := W#16#1234;
+  END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK DB 2
+  STRUCT
+    x : INT := 100;
+  END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+FUNCTION FC 1 : VOID
+BEGIN
+NETWORK
+TITLE =
+      AUF   DB 2
+      L     DBW 0
+      + 1
+      T     DBW 0
+END_FUNCTION
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      AUF   DB 1
+      CALL  FC 1
+      L     DBW 2
+      T     MW 10
+      L     DB1.DBW 10
+      T     MW 12
+      U     DB1.DBX 4.0
+      =     A 0.0
+      L     DB2.x
+      T     MW 14
+      U     E 0.0
+      FN    DB1.DBX 0.1
+      =     A 0.1
+      L     0
+      T     MW 16
+M1:   L     MW 16
+      + 1
+      T     MW 16
+      L     DB1.n
+      + 1
+      T     DBW 2
+      L     MW 16
+      L     3
+      <I
+      SPB   M1
+END_ORGANIZATION_BLOCK
+"""
+
+
+def test_layout_fc_and_loop_against_awlsim(tmp_path):
+    path = tmp_path / "layout.awl"
+    path.write_text(LAYOUT_DE)
+    stimulus = [{0: k % 2} for k in range(8)]
+    words = ("MW10", "MW12", "MW14", "MW16")
+    expected = awlsim_scans(path, stimulus, mnemonics="de", words=words)
+    got = bitbyte_scans(path, stimulus, tmp_path, words=words)
+    assert first_difference(expected, got) is None
+    assert [expected[0][k] for k in ("Q0.0", "MW10", "MW12", "MW14")] == [1, 7, 0x1234,
+                                                                          101]
+    assert expected[2]["MW10"] == 13 and expected[2]["Q0.1"] == 1
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)
@@ -257,6 +335,8 @@ def ob1(body: str) -> str:
 
 DB1 = ("DATA_BLOCK DB 1\n STRUCT\n  x : BOOL;\n  n : INT := 3;\n  f : REAL;\n "
        "END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n")             # 9 lines
+BIG = ("DATA_BLOCK DB 1\n STRUCT\n" + "".join(f"  i{n} : INT;\n" for n in range(16))
+       + " END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n")                 # 22 lines
 FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n"
       "SET\nEND_FUNCTION_BLOCK\n\nDATA_BLOCK DB 2\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\n")
 
@@ -286,6 +366,13 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
      "M 231, which this program's global DBs use"),
     (DB1.replace("BEGIN\n", "BEGIN\n  k := 1;\n") + ob1("SET"),
      "8:3: unknown field `k` in DB 1"),
+    (BIG + ob1("L DB1.DBW 0\nT MW 10"), "27:3: unsupported: DB 1 (32 bytes) does not "
+     "fit into the markers kept for global DBs (M 224 .. M 253"),
+    (BIG.replace("  i15 : INT;\n", "") + ob1("L DB1.DBW 28\nT MW 10\nU E 0.0\n"
+                                              + "".join(f"L S5T#1S\nSE T {n}\n"
+                                                        for n in range(6))),
+     "1:1: unsupported: the global DBs need M 224 .. M 253, but the translation keeps M "
+     "253 and up"),
 ])
 def test_errors(tmp_path, capsys, text, where):
     path = tmp_path / "bad.awl"
