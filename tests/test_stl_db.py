@@ -13,10 +13,13 @@ from pathlib import Path
 import pytest
 
 from awlsim_oracle import awlsim_scans, bitbyte_scans
+from stlgen import symbol_table
 from tracecmp import first_difference
 
 from bitbyte import cli
 from bitbyte.lang import stl
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.parser import parse_file
 
 DBS = """DATA_BLOCK DB 1
 TITLE =
@@ -275,6 +278,53 @@ def test_layout_fc_and_loop_against_awlsim(tmp_path):
     assert expected[2]["MW10"] == 13 and expected[2]["Q0.1"] == 1
 
 
+SYMBOLIC_DE = """DATA_BLOCK DB 1
+  STRUCT
+    a : BOOL;
+    n : INT := 4;
+  END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      U     "Start"
+      FP    "Data".a
+      SPBN  M1
+      L     "Data".n
+      + 3
+      T     "Data".n
+M1:   L     "Data".n
+      T     MW 10
+END_ORGANIZATION_BLOCK
+"""
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_db_by_symbol_against_awlsim(tmp_path, lang):
+    """`"Data".n` with `Data` a DB in the symbol table (awlsim reads it so too)."""
+    path = tmp_path / f"symbolic_{lang}.awl"
+    path.write_text(SYMBOLIC_DE if lang == "de" else english(SYMBOLIC_DE))
+    asc = tmp_path / "sym.asc"
+    asc.write_text(symbol_table([("Data", "DB 1", "DB 1"), (
+        "Start", "E 0.0" if lang == "de" else "I 0.0", "BOOL")], "asc"))
+    stimulus = [{0: int(k % 3 == 1)} for k in range(10)]
+    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=("MW10",),
+                            symbols=asc)
+    got = bitbyte_scans(path, stimulus, tmp_path, words=("MW10",), symbols=asc)
+    assert first_difference(expected, got) is None
+    assert [row["MW10"] for row in expected][:5] == [4, 7, 7, 7, 10]
+    assert cli.main(["asm", str(path), "--symbols", str(asc), "-o", str(tmp_path)]) == 0
+    assert '"Data".n' in (tmp_path / f"symbolic_{lang}.lst").read_text()
+    asc.write_text(symbol_table([("Data", "MW 2", "INT"), ("Start", "E 0.0", "BOOL")],
+                                "asc"))
+    with pytest.raises(SourceError, match=r':14:13: `"Data".a`: the symbol `"Data"` is '
+                       r'`MW 2` \(.*sym.asc:1\), not a DB'):
+        parse_file(str(path), symbols=str(asc))
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)
@@ -315,7 +365,6 @@ def test_listing_names_the_db_operands(tmp_path):
 
 
 def test_no_startup_part_when_every_initial_value_is_0(tmp_path):
-    from bitbyte.lang.parser import parse_file
     path = tmp_path / "zero.awl"
     path.write_text("DATA_BLOCK DB 1\n STRUCT\n  x : BOOL;\n  n : INT := 0;\n "
                     "END_STRUCT;\nBEGIN\n  x := FALSE;\nEND_DATA_BLOCK\n\n"

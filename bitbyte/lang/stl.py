@@ -449,6 +449,8 @@ class StlFrontEnd:
         for stmt in self.stmts:
             if not stmt.operands or not stmt.operands[0].text.startswith('"'):
                 continue
+            if self.db_symbol(stmt):            # `"Data".count`: a global DB's field
+                continue
             stmt.operands[0] = self.resolve_word(stmt, stmt.operands[0])
 
     def resolve_word(self, stmt: Stmt, word: Word) -> Word:
@@ -2372,6 +2374,25 @@ class StlFrontEnd:
                              + did_you_mean(m.group(1), [f.name for f in fields]))
         field_.value, field_.value_line = m.group(2), n
         field_.value_col = col + text.index(m.group(2))
+
+    def db_symbol(self, stmt: Stmt) -> bool:
+        """`"Data".count` (a DB's symbol and a field) -> `DB1.count`, named as
+        written; False when the operand is no such pair."""
+        word, member = stmt.operands[0], stmt.operands[1:2]
+        if not member or not member[0].text.startswith(".") or \
+                member[0].col != word.col + len(word.text):
+            return False
+        sym = self.symbol_table.get(word.text.strip('"').upper())
+        if sym is None:
+            self.resolve_word(stmt, word)       # raises: undeclared symbol
+        m = re.fullmatch(r"DB\s*(\d+)", sym.address, re.I)
+        if m is None:
+            raise self.error(stmt.line, word.col, f"`{word.text}{member[0].text}`: the "
+                             f"symbol `{word.text}` is `{sym.address}` "
+                             f"({self.symbol_path}:{sym.line}), not a DB")
+        stmt.operands[0:2] = [Word(f"DB{m.group(1)}{member[0].text}", word.col,
+                                   word.text + member[0].text)]
+        return True
 
     def data_block(self, stmt: Stmt, number: int, col: int) -> dict:
         """The layout of global DB `number`, its markers allocated on first use:
