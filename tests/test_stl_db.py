@@ -408,8 +408,10 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
      "1, DB 2` the open DB is its instance DB"),
     (FB + DB1 + ob1("U DB2.DBX 0.0\n= A 0.0"),
      "29:3: unsupported: DB 2 is the instance DB of FB 1"),
-    (DB1 + ob1("L DB1.DBW 0\nT MW 10"), "14:3: unsupported: `DB1.DBW 0`: not a "
+    (DB1 + ob1("L DB1.DBW 0\nT MW 10"), "14:3: unsupported: `DB1.DBW 0`: not an "
      "INT/WORD field of DB 1"),
+    (DB1 + ob1("U DB1.DBX 2.0\n= A 0.0"), "14:3: unsupported: `DB1.DBX 2.0`: not a BOOL "
+     "field of DB 1"),
     (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
     (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
      "M 231, which this program's global DBs use"),

@@ -2539,7 +2539,7 @@ class StlFrontEnd:
         if byte + width > db["size"]:
             raise self.error(stmt.line, ops[0].col, f"operand out of range: `{written}` "
                              f"(DB {number} has {db['size']} bytes, 0..{db['size'] - 1})")
-        kind = {"DBX": "BOOL", "DBW": "INT/WORD"}.get(area)
+        kind = {"DBX": "a BOOL", "DBW": "an INT/WORD"}.get(area)
         ok = [f for f in db["fields"] if f.byte == byte and (
             f.type == "BOOL" if area == "DBX" else f.type in ("INT", "WORD"))] \
             if kind else []
@@ -2549,7 +2549,7 @@ class StlFrontEnd:
         if not ok:
             raise self.unsupported(stmt, f"`{written}`: " + (
                 f"{area} (this slice reads a DB's BOOL fields as DBX and its INT/WORD "
-                "fields as DBW)" if kind is None else f"not a {kind} field of DB "
+                "fields as DBW)" if kind is None else f"not {kind} field of DB "
                 f"{number} (here a DB's bits and words are kept apart, as markers' are: "
                 f"DBX reads BOOL fields, DBW INT/WORD fields)"), ops[0].col)
         k = db["base"] + byte
