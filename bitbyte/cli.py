@@ -33,7 +33,7 @@ from bitbyte.run.prepare import MODES, TC_PATHS, check_tc_path, parse_clock_mhz,
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
 from bitbyte.run.status import block_status_text, parallel_block_status_text
-from bitbyte.run.summary import summary_text
+from bitbyte.run.summary import fault_scan_name, summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
 from bitbyte.sim.gtkw import WaveLayoutError, write_gtkw
 from bitbyte.sim.verilator import run_harness
@@ -420,7 +420,8 @@ def cmd_run(args) -> int:
             print(block_status_text(prep.listing, stats.block_status or {}, args.status,
                                     args.sim, ended_by_watchdog=faulted), end="")
     if fault:
-        print(f"scan watchdog: scan {len(records)} exceeded {args.watchdog} clocks; "
+        print(f"scan watchdog: {fault_scan_name(len(records), stats)} exceeded "
+              f"{args.watchdog} clocks; "
               "outputs forced to 0", file=sys.stderr)
         return EXIT_WATCHDOG
     return 0

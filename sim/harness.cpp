@@ -103,7 +103,7 @@ struct Run {
   std::vector<ColSrc> srcs;
   TraceOut* out;
   uint64_t n = 0, scans = 0;
-  uint64_t want_scans = UINT64_MAX, until = UINT64_MAX;
+  uint64_t want_scans = UINT64_MAX, until = UINT64_MAX, until_min_scans = 0;
   bool fault = false, by_scan = false, by_clock = false;
   size_t next_stim = 0;
   uint64_t next_stim_clock = UINT64_MAX;
@@ -243,7 +243,7 @@ struct Run {
       record();
       ++scans;
       queue_force(int64_t(scans));
-      if (scans >= want_scans || n >= until) std::longjmp(stop, 1);
+      if (scans >= want_scans || (n >= until && scans >= until_min_scans)) std::longjmp(stop, 1);
       if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`
     }
     inputs_for_clock();
@@ -464,6 +464,7 @@ int main(int argc, char** argv) {
   run.next_stim_clock = (run.by_clock && !rf.stim.empty()) ? rf.stim[0].key : UINT64_MAX;
   run.want_scans = rf.scans < 0 ? UINT64_MAX : uint64_t(rf.scans);
   run.until = rf.until_clock < 0 ? UINT64_MAX : uint64_t(rf.until_clock);
+  run.until_min_scans = rf.until_min_scans;
   if (run.by_scan) run.apply_stim(0);
   run.inputs_for_clock();
   const auto wall0 = std::chrono::steady_clock::now();

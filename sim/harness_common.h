@@ -139,6 +139,7 @@ struct RunFile {
   std::string prog, trace, waves, gtkw = "sim/bitbyte.gtkw";
   uint64_t clock_hz = 100000000, watchdog = 100000;
   int64_t scans = -1, until_clock = -1;                          // -1: not given
+  uint64_t until_min_scans = 0;  // until_clock counts from this many scans on (startup)
   std::string stim_kind = "none";
   std::vector<Stim> stim;
   std::vector<Col> cols;
@@ -201,6 +202,7 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   else if (k == "watchdog")    { want(1); rf.watchdog = parse_u64(w[1], "watchdog"); }
   else if (k == "scans")       { want(1); rf.scans = int64_t(parse_u64(w[1], "scans")); }
   else if (k == "until_clock") { want(1); rf.until_clock = int64_t(parse_u64(w[1], "until_clock")); }
+  else if (k == "until_min_scans") { want(1); rf.until_min_scans = parse_u64(w[1], "until_min_scans"); }
   else if (k == "status")      { want(1); rf.status_scan = int64_t(parse_u64(w[1], "status scan")); }
   else if (k == "progress") {
     if (w.size() != 2 && w.size() != 3) die("'progress' takes FD [AFTER_S]");

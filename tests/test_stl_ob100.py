@@ -24,7 +24,7 @@ from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
 from bitbyte.lang.stimulus import load_stimulus
-from bitbyte.ref.refsim import refsim_trace
+from bitbyte.ref.refsim import RefSim, refsim_trace
 from bitbyte.run.prepare import prepare_run
 
 
@@ -379,19 +379,79 @@ def test_startup_with_calls_temps_and_the_started_bit(tmp_path):
 
 def test_watchdog_in_the_startup_scan(tmp_path, capsys):
     """The startup scan is timed as any scan: OB 100 longer than --watchdog is a
-    fault before scan 0, reported as scan 0 with no trace row."""
+    fault before scan 0, reported as the startup scan (OB 100) with no trace row."""
     path = tmp_path / "long.awl"
     path.write_text(block(100, "L 1\nT MW 10\nL 2\nT MW 12") + block(1, "SET\n= A 0.0"))
     trace = tmp_path / "t.csv"
     code = cli.main(["run", str(path), "--scans", "3", "--watchdog", "30",
                      "--trace", str(trace)])
-    err = capsys.readouterr().err
-    assert code == cli.EXIT_WATCHDOG and "scan watchdog: scan 0 exceeded 30" in err
+    out, err = capsys.readouterr()
+    assert code == cli.EXIT_WATCHDOG
+    assert "scan watchdog: the startup scan (OB 100) exceeded 30 clocks" in err
+    assert "limit 30 clocks: exceeded in the startup scan (OB 100)" in out
+    assert "scan 0" not in out + err
     assert trace.read_text() == "scan,t_us,cycles,Q0.0\n"
     _, records, fault = refsim_trace(parse_file(str(path)), Config(), scans=3,
                                      watchdog=30)
     assert fault and records == []
     assert cli.main(["run", str(path), "--scans", "3", "--watchdog", "60"]) == 0
+
+
+# The reviewer's program: the startup scan 70 clocks, OB 1's scans 45
+LONG_STARTUP = (block(100, "SET\n= A 0.1\nL 100\nT MW 10\nL 200\nT MW 12\nL 300\nT MW 14")
+                + block(1, "U E 0.0\n= A 0.0\nL MW 10\nL 1\n+I\nT MW 10"))
+
+
+def test_summary_shows_the_startup_scan_and_its_watchdog_margin(tmp_path, capsys):
+    """The watchdog times the startup scan (70 clocks) as any scan, so the summary's
+    margin is against the longer of it and OB 1's longest scan (45), and says which;
+    the startup scan has a line of its own.  The reference interpreter keeps its
+    startup scan's clocks too."""
+    path = tmp_path / "a.awl"
+    path.write_text(LONG_STARTUP)
+    sim = RefSim(parse_file(str(path)), Config(), watchdog=1000)
+    assert [r.cycles for r in sim.run(3)] == [45] * 3 and sim.startup_cycles == [70]
+    for sim_name in ("verilator",):
+        capsys.readouterr()
+        assert cli.main(["run", str(path), "--scans", "3", "--watchdog", "70",
+                         "--sim", sim_name]) == 0
+        out = capsys.readouterr().out
+        assert re.search(r"^startup scan +\(OB 100\) 70 clocks", out, re.M), out
+        assert ("limit 70 clocks, longest scan 70 (the startup scan, OB 100): margin 0 "
+                "clocks (0 %)") in out
+    assert cli.main(["run", str(path), "--scans", "3", "--watchdog", "69"]) == \
+        cli.EXIT_WATCHDOG
+    capsys.readouterr()
+    # a longer OB 1 scan: the margin is against it
+    longer = tmp_path / "b.awl"
+    longer.write_text(block(100, "SET\n= A 0.1") + block(1, "L 1\nT MW 10\n" * 4))
+    assert cli.main(["run", str(longer), "--scans", "2", "--watchdog", "1000"]) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"longest scan (\d+) \(an OB 1 scan\)", out), out
+    # without OB 100: no startup line, the margin as before
+    plain = tmp_path / "c.awl"
+    plain.write_text(block(1, "U E 0.0\n= A 0.0"))
+    assert cli.main(["run", str(plain), "--scans", "2", "--watchdog", "1000"]) == 0
+    out = capsys.readouterr().out
+    assert "startup" not in out and re.search(r"longest scan \d+: margin", out)
+
+
+def test_until_us_inside_the_startup_scan(tmp_path):
+    """--until-us T before the startup scan ends (0.7 us: clock 70 at 100 MHz, the
+    startup scan's end) stops after scan 0, the first scan of the trace ending at or
+    after T (spec §4), on the reference interpreter and the Verilator harness alike;
+    T in scan 0 or at its end gives the same row, T after it scan 1 too."""
+    path = tmp_path / "a.awl"
+    path.write_text(LONG_STARTUP)
+    program = parse_file(str(path))
+    for t, scans in (("0.01", 1), ("0.7", 1), ("1.15", 1), ("1.16", 2)):
+        _, records, fault = refsim_trace(program, Config(), until_us=t)
+        assert not fault and [r.scan for r in records] == list(range(scans)), t
+        trace = tmp_path / "u.csv"
+        assert cli.main(["run", str(path), "--until-us", t, "--trace", str(trace)]) == 0
+        rows = trace.read_text().splitlines()[1:]
+        assert [row.split(",")[:3] for row in rows] == \
+            [[str(r.scan), f"{r.end_clock / 100:g}", str(r.cycles)] for r in records], t
 
 
 # --------------------------------------------------------------------------------------

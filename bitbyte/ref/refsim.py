@@ -185,6 +185,7 @@ class RefSim:
         # with scan 0's inputs, and are no scans of the trace (run_scan runs them)
         self.startup_left = program.startup_scans
         self.in_startup = False
+        self.startup_cycles: list[int] = []   # the clocks of each completed startup scan
         self.clock = 0               # latch clock of the next scan
         self.watchdog_fault = False
         self.fault_scan: int | None = None
@@ -247,9 +248,11 @@ class RefSim:
             self.startup_left -= 1
             self.in_startup = True
             try:
-                self._one_scan()
+                rec = self._one_scan()
             finally:
                 self.in_startup = False
+            if rec is not None:
+                self.startup_cycles.append(rec.cycles)
         return self._one_scan()
 
     def _one_scan(self) -> ScanRecord | None:

@@ -37,6 +37,7 @@ class RunJob:
     watchdog: int = 100_000
     scans: int | None = None             # stop after this many scans, or
     until_clock: int | None = None       # after the first scan ending at or after it
+    until_min_scans: int = 0             # ... but not before this many scans (startup)
     stim_kind: str = "none"              # none | scan | clock
     # (key, pins, words): words = the 16 input words IW0..15, or None (no IW columns)
     stim: list[tuple[int, int, list[int] | None]] = field(default_factory=list)
@@ -77,6 +78,8 @@ class RunJob:
             lines.append(f"scans {self.scans}")
         if self.until_clock is not None:
             lines.append(f"until_clock {self.until_clock}")
+            if self.until_min_scans:
+                lines.append(f"until_min_scans {self.until_min_scans}")
         if self.status_scan is not None:
             lines.append(f"status {self.status_scan}")
         for key, *vectors in self.force:

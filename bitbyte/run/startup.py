@@ -11,7 +11,9 @@ scans itself: bitbyte.ref.refsim.RefSim.run_scan.)
 
 In the startup scans the inputs are scan 0's (spec §9's oracle awlsim reads its
 inputs before OB 100, as before each cycle); a `t_us` stimulus needs no shift (time
-counts from reset, the startup scans included), nor does `--until-us`.
+counts from reset, the startup scans included), nor does `--until-us`'s clock, but
+it stops no run in a startup scan (spec §4: the first scan ending at or after T is a
+scan of the trace; the hardware job's until_min_scans: the startup scans and scan 0).
 """
 from __future__ import annotations
 
@@ -37,10 +39,18 @@ def hardware_job(job: RunJob) -> RunJob:
     return dataclasses.replace(
         job, startup_scans=0, stim=stim,
         scans=None if job.scans is None else job.scans + n,
+        until_min_scans=n + 1 if job.until_clock is not None else 0,
         status_scan=None if job.status_scan is None else job.status_scan + n,
         # the table written before RUN holds through the startup scans into scan 0
         force=[(key if key == BEFORE_RUN else key + n, *rest)
                for key, *rest in job.force])
+
+
+def startup_cycles(job: RunJob, records: list) -> tuple[int, ...]:
+    """The clocks of each startup scan the hardware completed (its records before
+    traced() drops them): the run summary's `startup scan` line and watchdog margin
+    (the watchdog times the startup scans as any scan)."""
+    return tuple(r.cycles for r in records[:job.startup_scans])
 
 
 def traced(job: RunJob, records: list) -> list:

@@ -23,6 +23,15 @@ class RunStats:
     wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
     block_status: dict | None = None             # --status: address -> Retired
     byte_status: dict | None = None              # ... of the byte part (parallel mode)
+    # the startup scans (an S7 source's OB 100, bitbyte.run.startup): how many the
+    # program has, and the clocks of each the run completed (a watchdog fault in one
+    # leaves fewer); they are no scans of the trace, but the watchdog times them
+    startup_scans: int = 0
+    startup_cycles: tuple[int, ...] = ()
+
+    def fault_in_startup(self) -> bool:
+        """Whether a watchdog fault of this run stopped a startup scan."""
+        return len(self.startup_cycles) < self.startup_scans
 
 
 @dataclass(frozen=True)
@@ -60,6 +69,14 @@ def parse_stats(stdout: str) -> dict[str, float]:
     return stats
 
 
+STARTUP_SCAN = "the startup scan (OB 100)"
+
+
+def fault_scan_name(fault_scan: int, stats: RunStats) -> str:
+    """The scan a watchdog fault stopped, in words: `scan N`, or the startup scan."""
+    return STARTUP_SCAN if stats.fault_in_startup() else f"scan {fault_scan}"
+
+
 def _label(name: str) -> str:
     return f"{name:<17}"
 
@@ -82,12 +99,19 @@ def summary_text(records: list[ScanRecord], clock_mhz: Fraction, stats: RunStats
         lines.append(_label("scan time [us]") + f"min {us[0]}  mean "
                      f"{format_decimal(mean / clock_mhz)}  max {us[1]}  (clock {mhz} MHz)")
         lines.append(_label("scan histogram") + histogram(cycles))
+    if stats.startup_cycles:
+        lines.append(_label("startup scan") + f"(OB 100) {max(stats.startup_cycles)} clocks "
+                     "(before scan 0, not a scan of the trace)")
     if watchdog is not None and fault_scan is not None:
-        lines.append(_label("watchdog") + f"limit {watchdog} clocks: exceeded in scan "
-                     f"{fault_scan} (the run stopped there)")
+        lines.append(_label("watchdog") + f"limit {watchdog} clocks: exceeded in "
+                     f"{fault_scan_name(fault_scan, stats)} (the run stopped there)")
     elif watchdog is not None and records:
-        lines.append(_label("watchdog") + watchdog_margin(max(r.cycles for r in records),
-                                                           watchdog))
+        longest = max(r.cycles for r in records)
+        startup = max(stats.startup_cycles, default=0)
+        lines.append(_label("watchdog") + watchdog_margin(
+            max(longest, startup), watchdog,
+            ("the startup scan, OB 100" if startup > longest else "an OB 1 scan")
+            if stats.startup_cycles else None))
     else:
         lines += [_label("cycles/scan") + "-", _label("scan time [us]") + f"-  (clock {mhz} MHz)"]
     lines.append(_label("stalls") + f"bit side {stats.stalls[0]}, byte side {stats.stalls[1]}")
@@ -139,10 +163,12 @@ def histogram(cycles: list[int]) -> str:
                                  for a, b, n in bins)
 
 
-def watchdog_margin(longest: int, limit: int) -> str:
-    """How far the longest scan stayed below the scan watchdog (spec §4)."""
+def watchdog_margin(longest: int, limit: int, which: str | None = None) -> str:
+    """How far the longest scan stayed below the scan watchdog (spec §4); which: the
+    scan that was longest, where a program has a startup scan (timed as any scan)."""
     margin = limit - longest
-    return (f"limit {limit} clocks, longest scan {longest}: margin {margin} clocks "
+    which = f" ({which})" if which else ""
+    return (f"limit {limit} clocks, longest scan {longest}{which}: margin {margin} clocks "
             f"({format_decimal(Fraction(100 * margin, limit), 1)} %)")
 
 

@@ -444,7 +444,8 @@ async def _scans(dut, job: RunJob, firmware: Firmware) -> dict:
             firmware.queue_force(scan)
             if job.scans is not None and scan >= job.scans:
                 break
-            if job.until_clock is not None and clock >= job.until_clock:
+            if job.until_clock is not None and clock >= job.until_clock \
+                    and scan >= job.until_min_scans:
                 break
             if job.stim_kind == "scan":
                 apply_due(scan)                # this clock latches scan `scan`

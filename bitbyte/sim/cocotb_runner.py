@@ -18,7 +18,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import ScanRecord, write_trace
-from bitbyte.run.startup import hardware_job, traced
+from bitbyte.run.startup import hardware_job, startup_cycles, traced
 from bitbyte.run.summary import Retired, RunStats
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -158,11 +158,14 @@ def run_cocotb(job, columns, sim: str, f, trace: str | None = None):
         (result,) = run_jobs([hardware_job(job)], sim)
     except (SystemExit, RuntimeError, OSError) as e:
         raise SimError(f"cocotb on {sim} failed: {e}") from None
-    records = traced(job, records_from_rows(columns, result.rows))
+    hw_records = records_from_rows(columns, result.rows)
+    records = traced(job, hw_records)
     if trace:
         write_trace(trace, columns, records, f)
     stats = RunStats(clocks=result.clocks, stalls=result.stalls, byte_scans=result.byte_scans,
                      queue_losses=result.queue_losses, byte_flags=result.byte_flags,
+                     startup_scans=job.startup_scans,
+                     startup_cycles=startup_cycles(job, hw_records),
                      block_status={pc: Retired(*v) for pc, v in result.block_status.items()}
                      if result.block_status is not None else None,
                      byte_status={pc: Retired(*v) for pc, v in result.byte_status.items()}

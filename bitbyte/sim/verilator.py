@@ -14,7 +14,7 @@ from pathlib import Path
 
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows, write_trace
-from bitbyte.run.startup import hardware_job, traced
+from bitbyte.run.startup import hardware_job, startup_cycles, traced
 from bitbyte.run.summary import RunStats, parse_block_status, parse_stats
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -88,6 +88,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
     if st.get("scans") != len(records):
         raise SimError(f"Verilator harness: {st.get('scans')} scans reported, "
                        f"{len(records)} in its trace")
+    startup = startup_cycles(user_job, records)
     records = traced(user_job, records)
     if trace and user_job.startup_scans:
         write_trace(trace, columns, records, Fraction(job.clock_hz, 1_000_000))
@@ -97,6 +98,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      if "queue_overflows" in st else None,
                      byte_flags=st["byte_flags"], wall_s=st["wall_s"],
                      wave_t0_ps=st.get("wave_t0_ps"),
+                     startup_scans=user_job.startup_scans, startup_cycles=startup,
                      block_status=parse_block_status(proc.stdout)
                      if job.status_scan is not None else None,
                      byte_status=parse_block_status(proc.stdout, "bstatus")
