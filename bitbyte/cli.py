@@ -36,7 +36,7 @@ from bitbyte.run.status import block_status_text, parallel_block_status_text
 from bitbyte.run.summary import fault_scan_name, summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
 from bitbyte.sim.gtkw import WaveLayoutError, write_gtkw
-from bitbyte.sim.verilator import run_harness
+from bitbyte.sim.verilator import harness_period_ps, run_harness
 
 EXIT_SOURCE, EXIT_USAGE, EXIT_WATCHDOG, EXIT_SIM = 1, 2, 3, 4
 EXIT_NO_FIT = 5
@@ -430,10 +430,14 @@ def cmd_run(args) -> int:
 def _wave_layout(args, prep, records, stats) -> str:
     """W.gtkw beside the waves W.fst: the layout in the program's names (spec §4)."""
     gtkw = str(Path(args.waves).with_suffix(".gtkw"))
+    t0_ps = stats.wave_t0_ps     # clock 0; with OB 100 scan 0 latches after the startup
+    if t0_ps is not None and stats.startup_cycles:
+        t0_ps += sum(stats.startup_cycles) * harness_period_ps(prep.job.clock_hz)
     try:
         write_gtkw(gtkw, args.waves, prep.program, prep.listing,
                    serial=args.mode == "serial", clock_mhz=prep.f,
-                   t0_ps=stats.wave_t0_ps, scan_clocks=records[0].cycles if records else None)
+                   t0_ps=t0_ps, scan_clocks=records[0].cycles if records else None,
+                   hardware_scans=len(stats.startup_cycles) + len(records))
     except WaveLayoutError as e:
         raise SimError(f"waveform layout {gtkw}: {e}") from None
     return gtkw

@@ -454,6 +454,54 @@ def test_until_us_inside_the_startup_scan(tmp_path):
             [[str(r.scan), f"{r.end_clock / 100:g}", str(r.cycles)] for r in records], t
 
 
+def vcd_changes(path: Path, scope: str, names: set[str]) -> list[tuple[int, str, int]]:
+    """(time, name, value) of every change of the named variables of `scope`."""
+    head, body = path.read_text().split("$enddefinitions", 1)
+    ids, scopes = {}, []
+    for words in (line.split() for line in head.splitlines()):
+        if words[:1] == ["$scope"]:
+            scopes.append(words[2])
+        elif words[:1] == ["$upscope"]:
+            scopes.pop()
+        elif words[:1] == ["$var"] and scopes[-1:] == [scope] and words[4] in names:
+            ids[words[3]] = words[4]
+    out, t = [], 0
+    for line in body.splitlines():
+        if line.startswith("#"):
+            t = int(line[1:])
+        elif line[:1] in ("0", "1") and line[1:] in ids:
+            out.append((t, ids[line[1:]], int(line[0])))
+        elif line.startswith("b") and line.split()[-1] in ids:
+            out.append((t, ids[line.split()[-1]], int(line.split()[0][1:], 2)))
+    return sorted(out)
+
+
+def test_waves_layout_opens_at_scan_0_and_names_the_startup_scan(tmp_path):
+    """`--waves`: the layout opens at scan 0's latch, the startup scan's 70 clocks
+    (10 ns each) after clock 0, the first latch; its scan row shows hardware scan 0
+    as `startup`, hardware scan n as the trace's scan n - 1 (a translate filter
+    W.scan.txt)."""
+    started, plain = tmp_path / "a.awl", tmp_path / "p.awl"
+    started.write_text(LONG_STARTUP)
+    plain.write_text(block(1, "U E 0.0\n= A 0.0"))
+    for path in (started, plain):
+        waves = tmp_path / f"{path.stem}.vcd"
+        assert cli.main(["run", str(path), "--scans", "3", "--waves", str(waves)]) == 0
+        text = (tmp_path / f"{path.stem}.gtkw").read_text()
+        t0 = int(re.search(r"^\[timestart\] (\d+)$", text, re.M).group(1))
+        changes = vcd_changes(waves, "bitbyte_cpu", {"latch", "scan_count_o"})
+        latches = [t for t, name, v in changes if name == "latch" and v]
+        counts = {t: v for t, name, v in changes if name == "scan_count_o"}
+        if path is started:
+            assert t0 == latches[1] == latches[0] + 70 * 10_000 and counts[t0] == 1
+        else:
+            assert t0 == latches[0]
+    assert (tmp_path / "a.scan.txt").read_text().splitlines()[:3] == \
+        ["0 startup", "1 0", "2 1"]
+    assert f"^1 {tmp_path / 'a.scan.txt'}\n+{{scan}} " in (tmp_path / "a.gtkw").read_text()
+    assert not (tmp_path / "p.scan.txt").exists()
+
+
 # --------------------------------------------------------------------------------------
 # Random programs: a random OB 100 in front of a random OB 1
 

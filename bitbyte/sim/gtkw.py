@@ -10,7 +10,9 @@ What a PLC engineer sees when GTKWave opens it:
   address the program uses without a symbol, as its own named signal — GTKWave aliases
   onto bits of the image vectors (`+{name} (k)vector`), words combined from 16 bits
   (`#{name} ...`), markers from the marker RAM's words (traced: sim/trace.vlt);
-* a first view from the latch of scan 0 over a few whole scans.
+* a first view from the latch of scan 0 over a few whole scans (with an S7 OB 100:
+  after the startup scan, which the scan row shows as `startup`, and hardware scan
+  n + 1 as the trace's scan n: a translate filter, W.scan.txt).
 
 GTKWave silently drops a signal its file does not have, so every name is checked
 against the wave file's own signal list (read_signal_names) before it is written;
@@ -200,16 +202,29 @@ BIT_VECTORS = {"I": "pii", "PI": "in_pins", "IR": "rise", "IF": "fall",
 OUTPUT_AREAS = ("Q", "PQ", "QR", "QF")
 
 
+def scan_names(startup_scans: int, hardware_scans: int) -> dict[int, str]:
+    """The scan count's translate filter where a program has startup scans (OB 100,
+    bitbyte.run.startup): hardware scans 0 .. startup_scans - 1 are `startup`, hardware
+    scan n the trace's scan n - startup_scans."""
+    return {n: "startup" if n < startup_scans else str(n - startup_scans)
+            for n in range(hardware_scans + 1)}
+
+
 def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *,
                 serial: bool, stem: str, filter_dir: Path, title: str = "",
-                mw_ram: str | None = None) -> None:
+                mw_ram: str | None = None, hardware_scans: int = 0) -> None:
     """One CPU's groups (its scope `cpu`): Scan, Program, then its operands by kind;
     titles prefixed with `title` (a plant's core name). mw_ram: the scope of the word
-    RAM holding MW n (a plant core's), else MW is the byte processor's memory."""
+    RAM holding MW n (a plant core's), else MW is the byte processor's memory;
+    hardware_scans: how many scans the run's waves hold (the scan row's names with a
+    startup scan)."""
     bp = f"{cpu}.u_bit_proc"
     pre = f"{title}: " if title else ""
+    scan_signal = f"{cpu}.scan_count_o[31:0]"
     lay.group(f"{pre}Scan", [
-        *lay.trace(DEC, f"{cpu}.scan_count_o[31:0]", f"{pre}scan"),
+        *(lay.filtered(scan_signal, f"{pre}scan", f"{stem}.scan.txt",
+                       scan_names(program.startup_scans, hardware_scans), filter_dir)
+          if program.startup_scans else lay.trace(DEC, scan_signal, f"{pre}scan")),
         *lay.filtered(f"{cpu}.u_scan_ctrl.state_q[1:0]", f"{pre}scan state",
                       f"{stem}.state.txt", scan_states(), filter_dir),
         *lay.trace(BIN, f"{cpu}.latch", f"{pre}latch (PII)"),
@@ -275,17 +290,21 @@ def _write(lay: Layout, gtkw_path: Path, wave_file, what: str, filter_dir: Path,
 
 def write_gtkw(gtkw_path: str | Path, wave_file: str | Path, program: Program,
                listing: list[Instr], *, serial: bool, clock_mhz: Fraction,
-               t0_ps: int | None, scan_clocks: int | None) -> list[str]:
+               t0_ps: int | None, scan_clocks: int | None,
+               hardware_scans: int = 0) -> list[str]:
     """Write the layout (and its filter files) for a run; returns the signals it names.
 
     listing: the bit processor's program memory, word by word (serial mode: the whole
-    program; parallel mode: the bit part); t0_ps: the waveform time of clock 0;
-    scan_clocks: a typical scan's length (the first view shows a few)."""
+    program; parallel mode: the bit part); t0_ps: the waveform time of scan 0's latch
+    (clock 0, or after the startup scan of an OB 100); scan_clocks: a typical scan's
+    length (the first view shows a few); hardware_scans: the scans the waves hold,
+    the startup scans included (the scan row's names)."""
     gtkw_path = Path(gtkw_path)
     stem = gtkw_path.name.removesuffix(".gtkw")
     filter_dir = gtkw_path.resolve().parent
     lay = Layout(read_signal_names(wave_file))
-    _cpu_groups(lay, CPU, program, listing, serial=serial, stem=stem, filter_dir=filter_dir)
+    _cpu_groups(lay, CPU, program, listing, serial=serial, stem=stem, filter_dir=filter_dir,
+                hardware_scans=hardware_scans)
     _write(lay, gtkw_path, wave_file, Path(program.path).name, filter_dir, clock_mhz, t0_ps,
            (scan_clocks or 100) * SCANS_IN_FIRST_VIEW)
     return lay.named

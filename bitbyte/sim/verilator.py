@@ -23,6 +23,11 @@ HARNESS_WATCHDOG = 3      # the harness's exit status when the scan watchdog sto
 GTKW = ROOT / "sim" / "bitbyte.gtkw"   # the waveform layout beside its waves
 
 
+def harness_period_ps(clock_hz: int) -> int:
+    """The harness's clock period in its waveform's ps (sim/harness.cpp: rounded)."""
+    return max(2, (10 ** 12 + clock_hz // 2) // clock_hz)
+
+
 def ensure_harness() -> Path:
     """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale;
     BITBYTE_HARNESS names another, built already (mutation/run_mutate.py's mutants)."""
