@@ -268,11 +268,19 @@ def program_clocks(path: str, mode: str = "serial", costs: str = "paper") -> int
     """Clocks of one scan of an IL program along its straight line (no jump taken):
     serial: sum(bit) + sum(word costs) + 1 (docs/isa.md "Serial mode timing");
     parallel: the partitioning compiler's estimate, max(byte part + bit tail, bit
-    part) (bitbyte.compiler.estimate).  Raises the program's SourceError."""
+    part) (bitbyte.compiler.estimate).  Raises the program's SourceError; an S7 OB 100
+    is one too (a task is a plant's core, and a plant runs every core's scans from
+    t = 0: bitbyte.plant.link refuses it the same way)."""
     from bitbyte.lang.config import Config
     from bitbyte.lang.parser import parse_file
     from bitbyte.lang.costs import serial_cost
     program = parse_file(path, Config())
+    if program.startup_scans:
+        first = program.instrs[program.labels["OB100"]]
+        raise SourceError(path, first.line, first.col,
+                          "unsupported: OB 100 in a task's program: a task is a plant's "
+                          "core, and the plant runs every core's scans from t = 0 (OB 100 "
+                          "runs with `bitbyte run` of one program)", first.source)
     if mode == "serial":
         return serial_cost(program, costs) + 1
     from bitbyte.compiler.estimate import estimate

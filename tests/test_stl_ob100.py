@@ -7,6 +7,7 @@ comparison is shown to catch an OB 100 run every scan, never run, or traced as
 scan 0."""
 from __future__ import annotations
 
+import json
 import re
 import textwrap
 from pathlib import Path
@@ -500,6 +501,36 @@ def test_waves_layout_opens_at_scan_0_and_names_the_startup_scan(tmp_path):
         ["0 startup", "1 0", "2 1"]
     assert f"^1 {tmp_path / 'a.scan.txt'}\n+{{scan}} " in (tmp_path / "a.gtkw").read_text()
     assert not (tmp_path / "p.scan.txt").exists()
+
+
+def test_parallel_estimate_is_ob1s_and_alloc_refuses_ob100(tmp_path, capsys):
+    """`bitbyte asm --mode parallel`'s estimate is of a scan of OB 1: the part before
+    the first END / END_B (OB 100 after it runs once), so the program with OB 100
+    estimates the guard's 2 clocks more than without it (measured: 46 and 42), not
+    OB 100's words too (103).  `bitbyte alloc` refuses a task program with OB 100 at
+    its head, as `bitbyte link` refuses a plant's core (both are cores of a plant)."""
+    started, plain = tmp_path / "a.awl", tmp_path / "p.awl"
+    started.write_text(LONG_STARTUP)
+    plain.write_text(block(1, "U E 0.0\n= A 0.0\nL MW 10\nL 1\n+I\nT MW 10"))
+    est = {}
+    for path in (started, plain):
+        out = tmp_path / path.stem
+        assert cli.main(["asm", str(path), "--mode", "parallel", "-o", str(out)]) == 0
+        est[path.stem] = json.loads((out / f"{path.stem}.json").read_text())["estimate"]
+        lst = (out / f"{path.stem}.lst").read_text()
+        assert f"estimated clocks per scan: {est[path.stem]['clocks']} " in lst
+    assert est["a"]["clocks"] == est["p"]["clocks"] + 2 == 43
+    assert est["a"]["byte_clocks"] == est["p"]["byte_clocks"] + 2    # JC_B
+    assert est["a"]["serial"] == est["p"]["serial"] + 2
+    tasks = tmp_path / "tasks.csv"
+    tasks.write_text("name,period_ms,wcet_ms,read_bytes,write_bytes,mem_bytes,program\n"
+                     "t1,1,,1,1,8,a.awl\n")
+    for mode in ("serial", "parallel"):
+        capsys.readouterr()
+        assert cli.main(["alloc", str(tasks), "--cores", "1", "--mode", mode]) == \
+            cli.EXIT_SOURCE
+        assert (f"{started}:1:1: unsupported: OB 100 in a task's program"
+                in capsys.readouterr().err), mode
 
 
 # --------------------------------------------------------------------------------------
