@@ -678,3 +678,40 @@ def test_response_times_with_a_startup(tmp_path, capsys):
         assert m and len(set(m.groups())) == 1, path
         clocks[path.stem] = int(m.group(1))
     assert clocks["started"] == clocks["plain"] + 2
+
+
+def test_response_times_of_a_time_stimulus_with_a_startup(tmp_path, capsys):
+    """A `t_us` stimulus on the reviewer's program (startup scan 70 clocks, OB 1's
+    scans 45, OB 1 `U E 0.0  = A 0.0`), by hand at 100 MHz:
+      I0.0 rises at 0.3 us = clock 30, inside the startup scan (latched at 0, it saw
+      0); scan 0 latches at clock 70 and sets Q0.0 at its END, end clock 70 + 45 =
+      115: 115 - 30 = 85;
+      it falls at 2.3 us = clock 230: scans latch at 70 + 45k, so scan 4 at 250 takes
+      it in and ends at 295: 65;
+      it rises at 3.1 us = clock 310: scan 6 latches at 340, ends at 385: 75.
+    The replay must latch scan 0 after the startup (not at 0: 130) and run the
+    startup scan from clock 0 (bitbyte/run/response.py's `latches[0]` and its
+    `in_startup` guard; reverting either fails here)."""
+    path = tmp_path / "a.awl"
+    path.write_text(LONG_STARTUP)
+    stim = tmp_path / "ts2.csv"
+    stim.write_text("t_us,I0.0\n0.3,1\n2.3,0\n3.1,1\n")
+    assert cli.main(["run", str(path), "--stimulus", str(stim), "--scans", "8"]) == 0
+    out = capsys.readouterr().out
+    assert ("response [clk]   min 65  median 75  max 85  (3 of 3 input changes changed "
+            "an output)") in out, out
+    # the startup scan latches at clock 0 in the replay too: OB 100 reads I0.0 before
+    # its rise at 0.1 us = clock 10 (inside the 30-clock startup scan), so M1.0 stays
+    # 0 and Q0.0 = M1.0 AND I0.0 never changes (a replayed startup latching at scan
+    # 0's latch, clock 30, would see the rise and report 36 - 10 = 26 clocks)
+    guarded = tmp_path / "g.awl"
+    guarded.write_text(block(100, "U E 0.0\n= M 1.0\nL 100\nT MW 10")
+                       + block(1, "U M 1.0\nU E 0.0\n= A 0.0"))
+    stim.write_text("t_us,I0.0\n0.1,1\n")
+    trace = tmp_path / "g.csv"
+    assert cli.main(["run", str(guarded), "--stimulus", str(stim), "--scans", "4",
+                     "--trace", str(trace)]) == 0
+    out = capsys.readouterr().out
+    assert trace.read_text().splitlines()[1] == "0,0.36,6,0"   # scan 0 latches at 30
+    assert "response [clk]   -  (0 of 1 input changes changed an output)" in out, out
+
