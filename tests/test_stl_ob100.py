@@ -322,6 +322,12 @@ def test_listing_labels_the_startup_part(tmp_path, capsys):
      "5:1: unsupported: the label `OB100`"),
     (block(100, "U(\nU E 0.0") + block(1, "SET"), "5:1: unbalanced parentheses"),
     (block(100, "SPA M1") + block(1, "M1: SET"), "5:5: unknown label `M1`"),
+    # the translation's own labels are none of the source's (awlsim: no such label)
+    (block(100, "SET") + block(1, "SPA OB100.END"), "12:5: unknown label `OB100.END`"),
+    (block(100, "M1: SET") + block(1, "SPB OB100.M1"), "12:5: unknown label `OB100.M1`"),
+    # a label of OB 100 as written, not as the translation prefixes it (OB100.M1)
+    (block(100, "M1: SET\nM1: CLR") + block(1, "SET"),
+     "6:1: duplicate label `M1` (first defined at 5:"),
     (block(100, "L MW 10\n+I\nT MW 12") + block(1, "SET"), "6:1: unsupported: `+I` reads"),
 ])
 def test_errors(tmp_path, capsys, text, where):
@@ -375,7 +381,14 @@ def test_startup_with_calls_temps_and_the_started_bit(tmp_path):
         path.write_text(block(100, "SET") + block(1, use + "\n= A 0.0"))
         with pytest.raises(SourceError) as e:
             parse_file(str(path))
-        assert "M255.7" in str(e.value) and "keeps for itself" in str(e.value), use
+        assert "M255.7" in str(e.value), use
+        assert "which the translation keeps for OB 100's started bit" in str(e.value), use
+    # a timer's scratch bit says so (M 255.7 without OB 100 is the first timer's)
+    path.write_text(block(1, "U E 0.0\nL S5T#1S\nSE T 1\nU M 255.7\n= A 0.0"))
+    with pytest.raises(SourceError) as e:
+        parse_file(str(path))
+    assert "which the translation of this program's timers keeps for itself" \
+        in str(e.value)
 
 
 def test_watchdog_in_the_startup_scan(tmp_path, capsys):

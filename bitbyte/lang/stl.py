@@ -621,6 +621,10 @@ class StlFrontEnd:
             stmt = self.db_operands(stmt, register)
             labels = [Word(f"{prefix}.{w.text}" if prefix else w.text, w.col)
                       for w in stmt.labels]
+            if self.is_jump(stmt):
+                for w in stmt.operands:     # the labels the translation makes have a
+                    if "." in w.text:       # `.` (OB100.END, FC1.0.M1): none of them
+                        raise self.error(stmt.line, w.col, f"unknown label `{w.text}`")
             if stmt.canon in ("CALL", "UC", "CC"):
                 out += self.inline(stmt, labels, scope, stack)
                 continue
@@ -971,6 +975,8 @@ class StlFrontEnd:
         if not self.scratch_bits:
             return
         taken = {(op.byte, op.bit): op for op in self.scratch_bits.values()}
+        purpose = {(op.byte, op.bit): "OB 100's started bit" if key == ("started",)
+                   else "this program's timers" for key, op in self.scratch_bits.items()}
         for stmt, ops in ((s, o) for s in self.stmts for o in self.used_operands(s)):
             text = "".join(w.text for w in ops[:2]).upper()
             area, rest = _split_area(text)
@@ -980,16 +986,18 @@ class StlFrontEnd:
                 b, n = map(int, rest.split("."))
                 hit = taken.get((b, n))
             elif canon == "MW" and rest.isdigit():
-                hit = next((op for (b, _), op in taken.items()
+                hit = next((op for (b, _), op in sorted(taken.items(), reverse=True)
                             if b in (int(rest), int(rest) + 1)), None)
             if hit is not None:
                 first = ops[0].text
                 written = " ".join(w.text for w in ops[:2]) if \
                     _split_area(first)[1] == "" else first
+                what = purpose[hit.byte, hit.bit]
+                keeps = (f"keeps for {what}" if what.startswith("OB") else
+                         f"of {what} keeps for itself")
                 raise self.unsupported(self.param_stmt(stmt, ops[0]), f"`{written}` uses "
-                                       f"{hit.text}, which the translation of this "
-                                       "program's timers keeps for itself (the top "
-                                       "marker bits)", ops[0].col)
+                                       f"{hit.text}, which the translation {keeps} (the "
+                                       "top marker bits)", ops[0].col)
 
     def prepare_timers(self) -> None:
         """One S7 kind per timer, and its scratch bits: the status S7 shows (V, the
@@ -1532,7 +1540,10 @@ class StlFrontEnd:
             for w in stmt.labels:
                 if w.text.upper() in self.label_defs:
                     first = self.label_defs[w.text.upper()]
-                    raise self.error(stmt.line, w.col, f"duplicate label `{w.text}` "
+                    # as written: without the prefix of OB 100's or an inlined
+                    # block's labels (OB100.M1; a source label has no `.`)
+                    raise self.error(stmt.line, w.col, f"duplicate label "
+                                     f"`{w.text.rsplit('.', 1)[-1]}` "
                                      f"(first defined at {first.line}:{first.col})")
                 self.label_defs[w.text.upper()] = stmt
         if self.startup and STARTUP_LABEL in self.label_defs:
@@ -2032,9 +2043,10 @@ class StlFrontEnd:
         value = st.acc[which - 1]
         if value is None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
-                                   "which here holds what an earlier scan left (S7 keeps "
-                                   "the accumulators from scan to scan, this CPU clears "
-                                   "them at the scan start): load it first")
+                                   "which this OB has not loaded here (what an OB finds "
+                                   "in the accumulators at its start is no program's to "
+                                   "rely on: awlsim clears them at each OB's start, this "
+                                   "CPU at each scan's): load it first")
         if isinstance(value, ChangedBy):
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    f"which the translation of {value.what} changed (S7 "
