@@ -2,7 +2,7 @@
 
 Writes, beside the source or into outdir, `<stem>.hex` (one 8-digit hex word per
 line, address 0 first: the `$readmemh` format), `<stem>.lst` (the listing) and
-`<stem>.json` ({"source", "words", "config", "symbols", "labels"}).  With
+`<stem>.json` ({"source", "words", "config", "symbols", "labels", "startup_scans"}).  With
 mode="parallel" the program is partitioned first (bitbyte.compiler) and the files are
 those of assemble_parallel (`<stem>.bit.hex`, `<stem>.byte.hex`, ...).
 Nothing is written when the program has an error: the SourceError propagates to the caller
@@ -45,7 +45,7 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     os.makedirs(outdir, exist_ok=True)
     paths = {ext: os.path.join(outdir, f"{stem}.{ext}") for ext in ("hex", "lst", "json")}
     _write(paths["hex"], hex_image(words))
-    _write(paths["lst"], listing_text)
+    _write(paths["lst"], _with_startup_line(listing_text, program))
     _write(paths["json"], json.dumps(summary(program, words, config), indent=2) + "\n")
     if pool:
         paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
@@ -66,7 +66,23 @@ def summary(program: Program, words: list[int], config: Config) -> dict:
         "config": asdict(config),
         "symbols": {name: op.address() for name, op in program.symbols.items()},
         "labels": dict(program.labels),
+        "startup_scans": program.startup_scans,
     }
+
+
+def startup_line(program: Program) -> str:
+    """The listing's line on the startup scans (an S7 OB 100), or nothing."""
+    if not program.startup_scans:
+        return ""
+    return (f"; startup scans: {program.startup_scans} (OB 100, from OB100: to OB100.END: "
+            "below: the hardware's first scan, before scan 0; no scan of the trace)\n")
+
+
+def _with_startup_line(text: str, program: Program) -> str:
+    """`text` with startup_line after its header comment lines."""
+    lines = text.splitlines(keepends=True)
+    n = next((i for i, line in enumerate(lines) if not line.startswith(";")), len(lines))
+    return "".join(lines[:n]) + startup_line(program) + "".join(lines[n:])
 
 
 def _write(path: str, text: str) -> None:
@@ -87,7 +103,8 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
       <stem>.partition.txt  report and side-by-side view
       <stem>.json           {"source", "mode", "channels", "config", "symbols",
                              "bit_words", "byte_words", "bit_labels", "byte_labels",
-                             "transfers", "mirrored_jumps", "estimate"}
+                             "transfers", "mirrored_jumps", "estimate",
+                             "startup_scans"}
 
     Returns {"bit_hex", "byte_hex", ["pool"], "lst", "report", "json": paths,
     "words": bit words, "byte_words": byte words, "program": the parsed Program}.  Nothing is written on an error."""
@@ -107,7 +124,8 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
         paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
         _write(paths["pool"], hex_image(part.pool))
     _write(paths["report"], report + "\n" + view)
-    _write(paths["lst"], report + "\n" + view + part_listing(part))
+    _write(paths["lst"], _with_startup_line(report + "\n" + view + part_listing(part),
+                                            program))
     est = estimate(part)
     summary = {
         "source": program.path, "mode": "parallel", "channels": part.channels,
@@ -118,6 +136,7 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
         "transfers": [asdict(t) for t in part.transfers],
         "mirrored_jumps": [program.instrs[i].line for i in part.mirrored],
         "estimate": asdict(est),
+        "startup_scans": program.startup_scans,
     }
     _write(paths["json"], json.dumps(summary, indent=2) + "\n")
     return {**paths, "words": len(part.bit_words), "byte_words": len(part.byte_words),

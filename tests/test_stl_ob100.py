@@ -307,6 +307,17 @@ def test_listing_labels_the_startup_part(tmp_path, capsys):
     assert words[:2] == ["ORGANIZATION_BLOCK OB 100"] * 2     # the guard
     program, _, job, _ = prepare_run(str(path), mode="parallel")
     assert program.startup_scans == 1 and job.startup_scans == 1
+    # the .json and .lst say how many startup scans (serial and parallel mode)
+    plain = tmp_path / "p.awl"
+    plain.write_text(block(1, "U E 0.0\n= A 0.0"))
+    for mode in ("serial", "parallel"):
+        for source, n in ((path, 1), (plain, 0)):
+            out = tmp_path / f"{mode}{n}"
+            assert cli.main(["asm", str(source), "--mode", mode, "-o", str(out)]) == 0
+            assert json.loads((out / f"{source.stem}.json").read_text())[
+                "startup_scans"] == n
+            lst = (out / f"{source.stem}.lst").read_text()
+            assert ("\n; startup scans: 1 (OB 100" in lst) == bool(n), (mode, n)
 
 
 # --------------------------------------------------------------------------------------

@@ -51,7 +51,9 @@ def report_text(part: Partition, costs="paper") -> str:
             f"  byte part: {est.word_instrs} word instructions + {est.binary_instrs} "
             f"binary (READ/WRITE/jumps) at the {costs if isinstance(costs, str) else 'given'}"
             f" costs, END_B 0 = {est.byte_clocks} clocks",
-            f"  bit part: {len(part.bit)} instructions at 1 clock, END included",
+            f"  bit part: {est.bit_clocks} instructions at 1 clock, END included"
+            + (" (up to the first END: OB 100's part after it runs once)"
+               if est.bit_clocks < len(part.bit) else ""),
             f"  bit tail: the instructions from the last FBI read through END "
             f"({est.tail}); they wait for the byte side's last WRITE",
             "  (straight-line path: jumps not taken, loops once; other waits are assumed "
