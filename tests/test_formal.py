@@ -31,14 +31,6 @@ def test_proof_passes(sby_file, tmp_path):
     assert "successful proof by k-induction" in proc.stdout
 
 
-def test_bit_proc_wide_proof_passes(tmp_path):
-    """The bit_proc proof again at wider parameters (16 words, 16 markers, 3 channels:
-    not a power of two, 3 parenthesis levels)."""
-    proc = sby(FORMAL / "bit_proc.sby", tmp_path, "wide")
-    assert proc.returncode == 0, proc.stdout[-3000:]
-    assert "successful proof by k-induction" in proc.stdout
-
-
 def test_marker_region_writer_first_proof_passes(tmp_path):
     """The block-RAM marker region's proof with the read port the writer's first (the
     bit side writing FBY cells; the default task proves the reader-first one)."""
