@@ -1,0 +1,1 @@
+"""The wide bit engine (issue 18): stretches, LUT mapping."""

@@ -1,0 +1,154 @@
+"""The wide bit engine's compiler front half (issue 18, direction (a)): stretches of pure
+bit instructions and their units (bitbyte/wide/stretch.py), the units' networks against
+the reference interpreter, their LUT programs (bitbyte/wide/lutmap.py, Yosys `abc -lut
+K`) checked exhaustively, and that check catching a broken mapping."""
+from __future__ import annotations
+
+import random
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench"))
+sys.path.insert(0, str(ROOT / "tests"))
+
+from bitbyte.lang.parser import parse                 # noqa: E402
+from bitbyte.wide import lutmap as L                   # noqa: E402
+from bitbyte.wide.stretch import RLO, split_program   # noqa: E402
+
+CUTS = """LD I0.0
+A M0.0
+= Q0.0
+LD PI0.1
+= M0.1
+L MW0
+T MW1
+lab: LD I0.2
+O M0.3
+JC lab
+A(
+LD I0.3
+A PI0.4
+A M0.2
+)
+= Q0.1
+REFRESH
+LD I0.5
+S M0.7
+END
+"""
+
+# one bit of the issue's adder (bench/bit_engine_bench.py): a = I0.0, b = I1.0,
+# carry in and out M0.0, c1 = M0.1, sum Q0.0
+FULL_ADDER = """LD I0.0
+X I1.0
+A M0.0
+O(
+LD I0.0
+A I1.0
+)
+= M0.1
+LD M0.0
+X I0.0
+X I1.0
+= Q0.0
+LD M0.1
+= M0.0
+"""
+
+
+def test_cuts_fall_at_labels_jumps_direct_byte_refresh_end():
+    s = split_program(parse("cuts.il", CUTS))
+    assert [(u.start, u.stop) for u in s.units] == [
+        (0, 3), (4, 5), (7, 9), (11, 12), (13, 14), (15, 16), (17, 19)]
+    assert s.scalar == {"direct": [3, 12], "byte": [5, 6], "jump": [9],
+                        "paren": [10, 14], "refresh": [16], "end": [19]}
+    u = {x.start: x for x in s.units}
+    assert u[0].inputs == ["I0.0", "M0.0"] and list(u[0].outputs) == ["Q0.0"]
+    assert not u[0].rlo_live                        # LD PI0.1 sets the RLO unread
+    assert u[4].inputs == [RLO] and u[4].rlo_live   # = M0.1 after the cut; L keeps the RLO
+    assert u[7].inputs == ["I0.2", "M0.3"] and u[7].rlo_live   # JC reads it
+    # inside the group a cut interrupted: a unit with the RLO in and out, A( and ) scalar
+    assert u[13].inputs == [RLO, "M0.2"] and list(u[13].outputs) == [RLO]
+    # S: the old value is an input (not taken, the bit keeps it); END: the RLO is dead
+    assert u[17].inputs == ["I0.5", "M0.7"] and list(u[17].outputs) == ["M0.7"]
+
+
+def test_units_stay_within_the_input_limit_and_wide_groups_split():
+    body = ["LD I0.0"] + [f"A I{b}.{n}" for b in range(1, 4) for n in range(8)] + ["= Q0.0"]
+    group = ["LD I0.0", "A("] + body[:-1] + [")", "= Q0.1"]
+    s = split_program(parse("w.il", "\n".join(body + group) + "\n"), max_inputs=8)
+    assert all(len(u.inputs) <= 8 for u in s.units)
+    assert s.scalar.get("paren") == [len(body) + 1, len(body) + len(group) - 2]
+    assert sum(u.size for u in s.units) + 2 == len(body) + len(group)   # but A( and )
+
+
+def test_networks_match_the_reference_interpreter_on_random_programs():
+    import wide_map_bench as W
+    for text in W.random_programs(6, True) + [FULL_ADDER, CUTS]:
+        p = parse("r.il", text)
+        for u in split_program(p).units:
+            assert L.check_against_refsim(u, p, samples=16), (text, u.start)
+
+
+def test_full_adder_maps_to_two_3_luts():
+    u, = split_program(parse("fa.il", FULL_ADDER)).units
+    assert u.inputs == ["I0.0", "I1.0", "M0.0"]
+    assert set(u.outputs) == {"M0.1", "Q0.0", "M0.0"}      # the RLO: END, dead
+    m, = L.map_units([u], 3)
+    assert len(m.nodes) == 2 and all(len(f) == 3 for f, _ in m.nodes.values())
+    single, dual = L.program_single(m), L.program_dual(m, 3)
+    assert len(single) == 3                     # sum, carry, carry copied to M0.1
+    assert len(dual) == 2 and L.check(u, single) and L.check(u, dual)
+
+
+@pytest.fixture(scope="module")
+def mapped():
+    texts = [(ROOT / "examples" / "interlock.il").read_text(),
+             (ROOT / "examples" / "star_delta.il").read_text(), FULL_ADDER * 3]
+    units = [u for t in texts for u in split_program(parse("p.il", t)).units]
+    return units, L.map_units(units, 4), L.map_units(units, 5)
+
+
+@pytest.mark.parametrize("variant", ["single", "dual", "rlo"])
+def test_every_variant_passes_the_exhaustive_check(mapped, variant):
+    units, m4, m5 = mapped
+    for u, a, b in zip(units, m4, m5):
+        prog = L.PROGRAMS[variant](b if variant == "rlo" else a, 4)
+        assert L.check(u, prog), (variant, u.start)
+        assert all(len([x for x in p.inputs if not (variant == "rlo" and x == RLO)]) <= 4
+                   for p in prog)
+
+
+def test_the_check_fails_on_a_flipped_truth_table_bit(mapped):
+    units, m4, _ = mapped
+    rng = random.Random(7)
+    caught = 0
+    for u, m in zip(units, m4):
+        prog = L.program_single(m)
+        luts = [i for i, p in enumerate(prog) if p.inputs]
+        if not luts:
+            continue
+        i = rng.choice(luts)
+        p = prog[i]
+        bit = rng.randrange(1 << len(p.inputs))
+        broken = list(prog)
+        broken[i] = L.MInstr(p.inputs, [(p.outs[0][0], p.outs[0][1] ^ (1 << bit))])
+        assert not L.check(u, broken), (u.start, i, bit)
+        caught += 1
+    assert caught >= 5
+
+
+def test_the_check_catches_a_write_before_its_old_value_is_read():
+    # Q0.0 := I0.0 after M0.0 := old Q0.0: writing Q0.0 first breaks it
+    u, = split_program(parse("war.il", "LD Q0.0\n= M0.0\nLD I0.0\n= Q0.0\n")).units
+    m, = L.map_units([u], 4)
+    prog = L.program_single(m)
+    assert L.check(u, prog)
+    assert not L.check(u, prog[::-1])
+    swap, = split_program(parse("swap.il", "LD M0.0\n= M0.2\nLD M0.1\n= M0.0\n"
+                                "LD M0.2\n= M0.1\n")).units
+    m, = L.map_units([swap], 4)
+    assert L.check(swap, L.program_single(m))          # a cycle: through a scratch bit
