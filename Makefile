@@ -154,7 +154,7 @@ synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no swee
 BENCH_MODES ?= serial,parallel,parallel:queue,free:queue-free
 BENCH_EDGES ?= 1000
 
-bench: $(HARNESS) bench-alloc bench-multicore  ## scan time, response time, simulator speed -> docs/performance.md
+bench: $(HARNESS) bench-alloc bench-multicore bench-wide  ## scan time, response time, simulator speed -> docs/performance.md
 	$(VENV)/bin/python bench/run_bench.py --modes $(BENCH_MODES) --edges $(BENCH_EDGES)
 
 # Task allocation (issue 10, seed 002): the seed's Table I workload, the 10/20 ms
@@ -164,6 +164,14 @@ bench: $(HARNESS) bench-alloc bench-multicore  ## scan time, response time, simu
 .PHONY: bench-multicore
 bench-multicore: $(VENV_STAMP)  ## seed 000 Table 4 in clocks, protections compared -> docs/multicore.md
 	$(VENV)/bin/python bench/multicore_bench.py
+
+# The wide bit engine's instruction format (issue 18, direction (a)): LUT instructions
+# per IL bit instruction on the issue's benchmarks, per LUT size and format, each
+# compiled unit checked exhaustively (Yosys abc; under a minute). Writes the table of
+# docs/wide-engine.md.
+.PHONY: bench-wide
+bench-wide: $(VENV_STAMP)  ## wide bit engine: LUT instructions per IL (static) -> docs/wide-engine.md
+	$(VENV)/bin/python bench/wide_map_bench.py
 
 .PHONY: bench-alloc
 bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocation.md

@@ -194,6 +194,7 @@ class Unit:
     outputs: dict[str, int] = field(default_factory=dict)  # location -> net node
     rlo_live: bool = True
     net: Net | None = None
+    expected: tuple | None = None     # lutmap.check's exhaustive patterns, once computed
 
     @property
     def size(self) -> int:
