@@ -104,7 +104,9 @@ def measure(quick: bool = False) -> list[dict]:
             scalar_il += cut
             ref_bad += sum(not L.check_against_refsim(u, p) for u in s.units)
             units += s.units
+        writes = sum(len(u.outputs) for u in units)
         rows.append({"title": title, "programs": len(sources), "bit_il": bit_il,
+                     "writes": writes, "unit_il": sum(u.size for u in units),
                      "scalar_il": scalar_il, "stretches": stretches, "units": len(units),
                      "max_inputs": max((len(u.inputs) for u in units), default=0),
                      "ref_bad": ref_bad, "first": len(every), "res": {}})
@@ -146,13 +148,18 @@ def markdown(rows: list[dict]) -> list[str]:
           "instructions and END not); *scalar*: those outside every unit (cuts, "
           "parentheses a cut interrupts), one clock each; *units*: compiled units, "
           "their largest input count; *fallback*: units that failed the exhaustive "
-          "check (they would run scalar).", "",
+          "check (they would run scalar); *written bits*: the units' outputs (bits whose "
+          "final value differs from the old one, and the live final RLO), each one write "
+          "at least, so *IL per written bit* bounds a one-write format's IL per LUT "
+          "instruction; *network ≠ refsim*: units whose network disagreed with the "
+          "reference interpreter on random states.", "",
           "| benchmark | programs | bit IL | scalar | stretches | units (max inputs) "
-          "| network ≠ refsim |",
-          "|---|---:|---:|---:|---:|---:|---:|"]
+          "| written bits | IL per written bit | network ≠ refsim |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         L_.append(f"| {r['title']} | {r['programs']} | {r['bit_il']} | {r['scalar_il']} | "
-                  f"{r['stretches']} | {r['units']} ({r['max_inputs']}) | {r['ref_bad']} |")
+                  f"{r['stretches']} | {r['units']} ({r['max_inputs']}) | {r['writes']} | "
+                  f"{r['unit_il'] / max(r['writes'], 1):.2f} | {r['ref_bad']} |")
     for v in VARIANTS:
         L_ += ["", f"**{v}**: LUT instructions, then *IL per LUT instruction* (units "
                "only) / *IL per clock* (the whole bit part, scalar instructions at one "

@@ -320,16 +320,16 @@ def program_rlo(m: Mapped, K: int) -> list[MInstr]:
     readers = [o for o in order if rin in o["reads"]]
     prog: list[MInstr] = []
     saved = False
-    if readers:
-        r0 = readers[0]
-        if len(readers) == 1 and all(r.startswith("i:") for r in r0["reads"]) and not any(
+    final = m.pos.get(RLO)
+    if readers or (final == rin and order):    # every instruction overwrites the RLO
+        r0 = readers[0] if readers else None
+        if final != rin and len(readers) == 1 and all(r.startswith("i:") for r in r0["reads"]) and not any(
                 ("i:" + r0["dest"]) in o["reads"] for o in order if o is not r0):
             order.remove(r0)
             order.insert(0, r0)
         else:
             prog.append(MInstr((RLO,), [("S:rlo_in", 0b10), (RLO, 0b10)]))
             saved = True
-    final = m.pos.get(RLO)
     uses: dict[str, list] = {}
     for o in order:
         for r in o["reads"]:
