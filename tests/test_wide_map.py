@@ -87,10 +87,20 @@ def test_units_stay_within_the_input_limit_and_wide_groups_split():
 
 def test_networks_match_the_reference_interpreter_on_random_programs():
     import wide_map_bench as W
-    for text in W.random_programs(6, True) + [FULL_ADDER, CUTS]:
+    interlock = (ROOT / "examples" / "interlock.il").read_text()
+    for text in W.random_programs(6, True) + [FULL_ADDER, CUTS, interlock]:
         p = parse("r.il", text)
-        for u in split_program(p).units:
-            assert L.check_against_refsim(u, p, samples=16), (text, u.start)
+        for absorb in (False, True):            # PI read, PQ written inside a unit
+            for u in split_program(p, absorb_direct=absorb).units:
+                assert L.check_against_refsim(u, p, samples=16), (text, u.start, absorb)
+
+
+def test_direct_accesses_absorbed_on_request():
+    s = split_program(parse("cuts.il", CUTS), absorb_direct=True)
+    assert "direct" not in s.scalar and "paren" not in s.scalar
+    u = {x.start: x for x in s.units}
+    assert u[0].stop == 5 and u[0].inputs[-1] == "PI0.1"      # LD PI0.1, = M0.1
+    assert u[10].stop == 16 and "PI0.4" in u[10].inputs      # A( ... A PI0.4 ... ) = Q0.1
 
 
 def test_full_adder_maps_to_two_3_luts():

@@ -456,11 +456,16 @@ def check_against_refsim(unit: Unit, program, samples: int = 32, seed: int = 0) 
     for a in combos:
         values = {x: (a >> j) & 1 for j, x in enumerate(unit.inputs)}
         sim = RefSim(program)
+        pins = 0
+        sim.pins = lambda clock: pins
         for x, v in values.items():
             if x == RLO:
                 sim.rlo = v
                 continue
             area = re.match(r"[A-Z]+", x).group(0)
+            if area == "PI":                       # the pins, as a scan stimulus has them
+                pins |= v << _bit_number(x, area)
+                continue
             if area in ("T", "C"):
                 idx = int(x[len(area):])
                 if area == "T":
@@ -468,8 +473,7 @@ def check_against_refsim(unit: Unit, program, samples: int = 32, seed: int = 0) 
                 else:
                     sim.counters[idx].value = v
                 continue
-            byte, bit = x[len(area):].split(".")
-            b = int(byte) * 8 + int(bit)
+            b = _bit_number(x, area)
             attr = {"I": "pii", "IR": "ir", "IF": "if_", "Q": "pio", "QR": "qr",
                     "QF": "qf", "M": "markers"}[area]
             setattr(sim, attr, getattr(sim, attr) | (v << b))
@@ -482,12 +486,16 @@ def check_against_refsim(unit: Unit, program, samples: int = 32, seed: int = 0) 
                 got = sim.rlo
             else:
                 area = re.match(r"[A-Z]+", x).group(0)
-                byte, bit = x[len(area):].split(".")
                 vec = sim.pio if area == "Q" else sim.markers
-                got = (vec >> (int(byte) * 8 + int(bit))) & 1
+                got = (vec >> _bit_number(x, area)) & 1
             if got != v:
                 return False
     return True
+
+
+def _bit_number(x: str, area: str) -> int:
+    byte, bit = x[len(area):].split(".")
+    return int(byte) * 8 + int(bit)
 
 
 # --- one benchmark -------------------------------------------------------------------

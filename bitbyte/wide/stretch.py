@@ -51,23 +51,29 @@ RLO_SETTERS = ("LD", "LDN", "SET", "CLR")
 
 
 def loc(op) -> str:
-    """The bit location an operand names: `M0.1`, `T3`; a PQ/Q read share the PIO."""
+    """The bit location an operand names: `M0.1`, `T3`, `PI0.4`; PQ is the PIO bit
+    (a PQ read sees the PIO, a PQ write writes it and the pin)."""
+    if op.area == "PQ":
+        return f"Q{op.byte}.{op.bit}"
     return op.address()
 
 
-def cut_reason(ins: Instr) -> str | None:
-    """None for a pure bit instruction, else why it cuts a stretch."""
+def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
+    """None for a pure bit instruction, else why it cuts a stretch.  absorb_direct:
+    PI reads and PQ accesses count as pure (the measured option of docs/wide-engine.md:
+    the pin read once per unit, the pin written with the PIO bit's final value)."""
     m, op = ins.mnemonic, ins.operand
+    direct = ("PI", "PQ") if absorb_direct else ()
     if ins.section == "BYTE":
         return "byte"
     if m in COMBINES:
-        if op.area in READ_AREAS:
+        if op.area in READ_AREAS or op.area in direct:
             return None
         return "direct" if op.area in ("PI", "PQ") else "channel"
     if m in OPENS or m in (")", "NOT", "SET", "CLR", "NOP"):
         return None
     if m in ("=", "S", "R", "FP", "FN"):
-        if op.area in WRITE_AREAS:
+        if op.area in WRITE_AREAS or op.area in direct[1:]:
             return None
         if op.area in ("T", "C"):
             return "timer/counter"
@@ -331,8 +337,10 @@ def _rlo_read_next(instrs: list[Instr], i: int) -> bool:
     return not (m in RLO_SETTERS or m == "END" or m in DEF.compares or m == "READ")
 
 
-def split_program(program: Program, max_inputs: int = 16) -> Split:
-    """The stretches of `program` and their units (module text)."""
+def split_program(program: Program, max_inputs: int = 16,
+                  absorb_direct: bool = False) -> Split:
+    """The stretches of `program` and their units (module text); absorb_direct: see
+    cut_reason."""
     instrs = program.instrs
     depth = _text_depths(program)
     scalar: dict[str, list[int]] = {}
@@ -340,13 +348,13 @@ def split_program(program: Program, max_inputs: int = 16) -> Split:
     n = len(instrs)
     i = 0
     while i < n:
-        reason = cut_reason(instrs[i])
+        reason = cut_reason(instrs[i], absorb_direct)
         if reason is not None:
             scalar.setdefault(reason, []).append(i)
             i += 1
             continue
         j = i + 1                               # the run of pure instructions [i, j)
-        while j < n and cut_reason(instrs[j]) is None and not instrs[j].labels:
+        while j < n and cut_reason(instrs[j], absorb_direct) is None and not instrs[j].labels:
             j += 1
         # stretches: maximal sub-runs that never go below the depth they start at
         # and end at it (balanced); a `)` that closes a group a cut interrupted
