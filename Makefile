@@ -167,7 +167,7 @@ bench-multicore: $(VENV_STAMP)  ## seed 000 Table 4 in clocks, protections compa
 
 # The wide bit engine's instruction format (issue 18, direction (a)): LUT instructions
 # per IL bit instruction on the issue's benchmarks, per LUT size and format, each
-# compiled unit checked exhaustively (Yosys abc; under a minute). Writes the table of
+# compiled unit checked exhaustively (Yosys abc, 12 runs; 1.5 to 2.5 min). Writes the table of
 # docs/wide-engine.md.
 .PHONY: bench-wide
 bench-wide: $(VENV_STAMP)  ## wide bit engine: LUT instructions per IL (static) -> docs/wide-engine.md

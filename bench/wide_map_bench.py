@@ -38,7 +38,7 @@ from bitbyte.wide.stretch import split_program    # noqa: E402
 BEGIN = "<!-- wide-map: bench/wide_map_bench.py -->"
 END = "<!-- /wide-map -->"
 KS = (3, 4, 5, 6)
-VARIANTS = ("single", "dual", "rlo")
+VARIANTS = ("single", "dual", "dual_s", "rlo")
 FLOWS = tuple(L.FLOWS)
 SEED = 1818
 BYTE_SIDE = ("byte", "timer/counter", "end")   # not bit instructions of the count

@@ -112,6 +112,8 @@ def test_full_adder_maps_to_two_3_luts():
     single, dual = L.program_single(m), L.program_dual(m, 3)
     assert len(single) == 3                     # sum, carry, carry copied to M0.1
     assert len(dual) == 2 and L.check(u, single) and L.check(u, dual)
+    # sum -> Q0.0, carry -> M0.0 (no scratch): dual_s cannot pair them
+    assert len(L.PROGRAMS["dual_s"](m, 3)) == 3
 
 
 @pytest.fixture(scope="module")
@@ -123,7 +125,7 @@ def mapped():
     return units, L.map_units(units, 4), L.map_units(units, 5)
 
 
-@pytest.mark.parametrize("variant", ["single", "dual", "rlo"])
+@pytest.mark.parametrize("variant", ["single", "dual", "dual_s", "rlo"])
 def test_every_variant_passes_the_exhaustive_check(mapped, variant):
     units, m4, m5 = mapped
     for u, a, b in zip(units, m4, m5):

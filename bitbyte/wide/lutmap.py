@@ -10,6 +10,8 @@ Formats (docs/wide-engine.md):
   one more addressable bit.  K read ports, one write port per clock.
 * "dual": as single, with two truth tables and two destinations over the same <= K
   operands (the full adder's sum and carry in one instruction).  K reads, 2 writes.
+* "dual_s": dual with one of the two destinations a scratch bit (a small register
+  file beside the bit memory): K reads, one write to the bit memory.
 * "rlo": K explicit operands plus the RLO as an implicit (K+1)-th input; the result
   always goes to the RLO and optionally to one destination bit (IL's `LD`/`A`/`=` in one,
   widened).  Mapped with `abc -lut K+1`; a (K+1)-input LUT none of whose inputs is in
@@ -273,10 +275,12 @@ def _retable(ins: tuple[str, ...], table: int, new: tuple[str, ...]) -> int:
     return t
 
 
-def program_dual(m: Mapped, K: int, window: int = 8) -> list[MInstr]:
+def program_dual(m: Mapped, K: int, window: int = 8, scratch: bool = False) -> list[MInstr]:
     """The single program with instructions paired: j joins an earlier instruction i
     when their operands together are <= K, j reads nothing written in i..j-1, and
-    nothing in i+1..j-1 reads or writes j's destination (j moves up to i)."""
+    nothing in i+1..j-1 reads or writes j's destination (j moves up to i).  scratch:
+    one of the two destinations must be a scratch bit (the "dual_s" format: the second
+    write goes to a small scratch register file, not to the bit memory)."""
     prog = [MInstr(p.inputs, list(p.outs)) for p in program_single(m)]
     out: list[MInstr] = []
     for p in prog:
@@ -285,7 +289,8 @@ def program_dual(m: Mapped, K: int, window: int = 8) -> list[MInstr]:
         for i in range(len(out) - 1, max(-1, len(out) - 1 - window), -1):
             q = out[i]
             later = out[i + 1:]
-            if len(q.outs) == 1 and len(set(q.inputs) | set(p.inputs)) <= K:
+            if len(q.outs) == 1 and len(set(q.inputs) | set(p.inputs)) <= K and (
+                    not scratch or dest.startswith("S:") or q.outs[0][0].startswith("S:")):
                 wr = {d for o in [q] + later for d, _ in o.outs}
                 if not (set(p.inputs) & wr) and not any(
                         dest in o.inputs or dest in [d for d, _ in o.outs] for o in later) \
@@ -501,7 +506,7 @@ def _bit_number(x: str, area: str) -> int:
 # --- one benchmark -------------------------------------------------------------------
 
 PROGRAMS = {"single": lambda m, K: program_single(m), "dual": program_dual,
-            "rlo": program_rlo}
+            "dual_s": lambda m, K: program_dual(m, K, scratch=True), "rlo": program_rlo}
 
 
 def compile_units(units: list[Unit], K: int, variant: str, flow: str = "abc",
