@@ -114,6 +114,8 @@ def test_full_adder_maps_to_two_3_luts():
     assert len(dual) == 2 and L.check(u, single) and L.check(u, dual)
     # sum -> Q0.0, carry -> M0.0 (no scratch): dual_s cannot pair them
     assert len(L.PROGRAMS["dual_s"](m, 3)) == 3
+    m_if, = L.map_units([u], 3, "if")           # the bench's second ABC flow
+    assert len(m_if.nodes) == 2 and L.check(u, L.program_single(m_if))
 
 
 @pytest.fixture(scope="module")

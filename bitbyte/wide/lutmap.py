@@ -193,7 +193,7 @@ def map_units(units: list[Unit], K: int, flow: str = "abc") -> list[Mapped]:
 
 # --- programs ------------------------------------------------------------------------
 
-def _topo(ops: list[dict], war: bool = True) -> list[dict]:
+def _topo(ops: list[dict]) -> list[dict]:
     """Order ops (dicts: reads = nets, dest, net) so that a producer comes before its
     readers and every read of an input X before the op that writes X; a cycle of the
     latter is broken by sending a write to a scratch bit and copying it at the end."""
@@ -209,7 +209,7 @@ def _topo(ops: list[dict], war: bool = True) -> list[dict]:
                 continue
             w = writers.get(op["dest"])
             readers = [o for o in pending if o is not op and ("i:" + op["dest"]) in o["reads"]]
-            if war and w is op and readers:
+            if w is op and readers:
                 continue
             order.append(op)
             done.add(id(op))
@@ -418,8 +418,9 @@ def patterns(names: list[str]) -> tuple[dict[str, int], int]:
     mask = (1 << size) - 1
     pats = {}
     for j, x in enumerate(names):
-        block = (1 << (1 << j)) - 1                 # 2^j ones
-        unit = block << (1 << j)                    # then 2^j zeros... ones in the high half
+        # state a has bit j = (a >> j) & 1: in every period of 2^(j+1) states the
+        # upper 2^j have it set
+        unit = ((1 << (1 << j)) - 1) << (1 << j)
         period = 1 << (j + 1)
         p = 0
         for s in range(0, size, period):
