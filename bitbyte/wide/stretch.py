@@ -41,6 +41,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.program import COMBINES, OPENS, Instr, Program
 
 READ_AREAS = ("I", "IR", "IF", "Q", "QR", "QF", "M", "T", "C")
@@ -333,7 +334,6 @@ def _rlo_read_next(instrs: list[Instr], i: int) -> bool:
     if i >= len(instrs):
         return False
     m = instrs[i].mnemonic
-    from bitbyte.lang.definition import DEF
     return not (m in RLO_SETTERS or m == "END" or m in DEF.compares or m == "READ")
 
 
