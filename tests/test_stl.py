@@ -981,7 +981,7 @@ ERRORS = [
      "the translation of an earlier timer or counter"),
     ("U     E 0.0\nZV    Z 64", 9, 7, "operand out of range: `Z 64`"),
     ("U     E 0.0\nZV    M 0.0", 9, 7, "operand of the wrong kind: `ZV` needs a counter"),
-    ("LC    Z 1", 8, 1, "unsupported: `LC`"),
+    ("LC    T 1", 8, 1, "unsupported: `LC` (a timer's remaining time"),
     ("U     E 0.0\nFR    Z 1", 9, 1, "unsupported: `FR`"),
     ("L     T 1", 8, 7, "unsupported: the remaining time of a timer `T 1`"),
     ("U(\nU     E 0.0\nL     S5T#1S\nSE    T 1\n)", 11, 1,

@@ -103,7 +103,7 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 # ACCU1-L changed in place, ACCU2 left alone in S7 (here: IL steps that change
 # ACCU2 too, a constant or an IL arithmetic instruction each; `+ n` reads its n)
 IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I")}
-FC_PASS = ("L", "T", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
+FC_PASS = ("L", "T", "LC", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
@@ -144,7 +144,8 @@ _WHY = {
         "JZ JN JP JM JPZ JMZ JUO",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
     "enabling a timer or counter: the IL's have no enable edge memory": "FR",
-    "a timer's or counter's value as BCD: no BCD conversion": "LC",
+    "a timer's remaining time as BCD: the IL's timers keep the elapsed ms, not S7's "
+    "time value and time base": "LC",
 }
 UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
 REGISTER_REASONS = {
@@ -1837,6 +1838,9 @@ class StlFrontEnd:
                 self.pending.append(stmt.extra)
                 self.emit("LD", self.local_bit(stmt, ("@", "RLO")))
             return self.jump(stmt, st, m, edges)
+        elif m == "LC" and not (stmt.operands and _split_area(
+                stmt.operands[0].text)[0].upper() == "T"):     # LC T n: below
+            self.load_count_bcd(stmt, st)
         elif m in ("L", "T") + ARITHMETIC + COMPARES:
             self.word_statement(stmt, st, m)
         elif m in IN_PLACE:
@@ -2080,6 +2084,44 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit(m)
             st.ner = 1
+
+    def scratch_word(self, stmt: Stmt, name: str) -> Operand:
+        """A word of the block-local region the translation keeps for itself
+        (MW 128 .. MW 190, as the jump lists' index word)."""
+        word = self.cell(stmt, Binding(decl=Decl(name, "TEMP", "INT", 0, 0),
+                                       cell=("@", name)), stmt.col)[0]
+        return Operand("index", area="MW", index=int(word.text[2:]), text=word.text)
+
+    def load_count_bcd(self, stmt: Stmt, st: _State) -> None:
+        """`LC Z n` (English `LC C n`): S7 pushes ACCU1 into ACCU2 and loads the
+        count c (0..999) as 3 BCD digits, changing no status bit (awlsim's
+        insn_lc.py, counters.py getValueBCD).  The IL has the binary count
+        (`L C n`) and no BCD conversion; with q = c / 10 and h = q / 10 the BCD
+        pattern 256 h + 16 (q MOD 10) + c MOD 10 is c + 6 (q + 16 h), made of the
+        IL's L, T, /I, *I, +I, which leave the RLO alone.  ACCU1 is saved in a
+        scratch word first and loaded back before the result, so that ACCU2 is
+        S7's too (both left out when ACCU1 was not loaded here)."""
+        op = self.counter_operand(stmt)
+        keep = st.acc[0] is not None
+        old, count, tens = (self.scratch_word(stmt, name)
+                            for name in ("LC.ACCU1", "LC.COUNT", "LC.TENS"))
+
+        def const(value: int) -> Operand:
+            return Operand("const", area="INT", value=value, text=str(value))
+
+        if keep:
+            self.emit("T", old)
+        for mnem, operand in (("L", op), ("T", count), ("L", const(10)), ("/I", None),
+                              ("T", tens), ("L", const(10)), ("/I", None),
+                              ("L", const(16)), ("*I", None), ("L", tens), ("+I", None),
+                              ("L", const(6)), ("*I", None), ("L", count),
+                              ("+I", None)):
+            self.emit(mnem, operand)
+        if keep:
+            self.emit("T", count)
+            self.emit("L", old)
+            self.emit("L", count)
+        st.acc = (ANY, st.acc[0])
 
     def in_place(self, stmt: Stmt, st: _State, m: str) -> None:
         """`+ n` (an INT constant), `NEGI`, `INVI`: S7 changes ACCU1-L and leaves

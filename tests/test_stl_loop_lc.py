@@ -1,0 +1,213 @@
+"""S7's `LC Z n` (the count as BCD) and `LOOP l` (spec §9, issue 19), translated
+into the IL's byte instructions (docs/s7.md, "Counters" and "LOOP") and compared
+with awlsim scan for scan, German and English: counts 0, 9, 10, 99, 100, 999 (set
+by `S Z`, counted across the decades by `ZV`/`ZR`, saturating at 999) loaded as
+BCD, transferred, compared with `==I` and used as arithmetic operands; LC in the
+middle of a logic string (the RLO kept) and with ACCU2 kept; LOOP with counts
+1, 2, 3 (and 0: 65536 passes), in the middle of a logic string (the RLO and /FC
+kept across the loop), a target reached with /FC = 0 and 1.  Wrong translations
+(the binary count, a LOOP that does not restore the RLO) are caught.
+"""
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+import pytest
+
+from awlsim_oracle import awlsim_scans, bitbyte_scans
+from bitbyte import cli
+from bitbyte.lang import stl
+from tracecmp import first_difference
+
+LC_PROGRAM = {"de": """ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE = counters set by E 0.2 near the decades, counted by E 0.0 / E 0.1
+      U     E 0.0
+      ZV    Z 1
+      ZV    Z 2
+      ZV    Z 3
+      U     E 0.1
+      ZR    Z 1
+      ZR    Z 2
+      ZR    Z 3
+      U     E 0.2
+      L     C#98
+      S     Z 1
+      L     C#8
+      S     Z 2
+      L     C#998
+      S     Z 3
+      U     E 0.3
+      R     Z 1
+      R     Z 2
+NETWORK
+TITLE = the counts as BCD
+      LC    Z 1
+      T     MW 10
+      LC    Z 2
+      T     MW 12
+      LC    Z 3
+      T     MW 14
+      LC    Z 4                // never counted: 0
+      T     MW 16
+      LC    Z 1
+      L     W#16#0100
+      ==I
+      =     A 0.0
+      LC    Z 1
+      L     W#16#0099
+      ==I
+      =     A 0.1
+      LC    Z 3
+      L     W#16#0999
+      ==I
+      =     A 0.2
+NETWORK
+TITLE = in a logic string: the RLO kept; ACCU2 kept
+      U     E 0.4
+      LC    Z 2
+      T     MW 18
+      U     E 0.5
+      =     A 0.3
+      L     1000
+      LC    Z 2
+      -I                       // 1000 - BCD: ACCU2 is S7's
+      T     MW 20
+      LC    Z 1
+      LC    Z 2
+      +I
+      T     MW 22
+END_ORGANIZATION_BLOCK
+"""}
+LC_PROGRAM["en"] = (LC_PROGRAM["de"].replace("ZV    Z", "CU    C")
+                    .replace("ZR    Z", "CD    C").replace(" Z ", " C ")
+                    .replace("U     E", "A     I").replace("A 0.", "Q 0."))
+LC_WORDS = ("MW10", "MW12", "MW14", "MW16", "MW18", "MW20", "MW22")
+
+LOOP_PROGRAM = {"de": """ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE = LOOP over EW 2 passes: 3 added per pass, the RLO of U E 0.5 kept
+      L     0
+      T     MW 22
+      U     E 0.5
+      L     EW 2
+NEXT: T     MW 20
+      L     MW 22
+      L     3
+      +I
+      T     MW 22
+      L     MW 20
+      LOOP  NEXT
+      =     A 1.0
+      T     MW 24              // ACCU1 after the LOOP: 0
+NETWORK
+TITLE = /FC = 1 at the target: the string goes on there in every pass
+      U     E 0.5
+      L     EW 2
+N2:   U     E 0.6
+      LOOP  N2
+      =     A 1.1
+NETWORK
+TITLE = the target reached with /FC = 0 (falling through) and /FC = 1 (LOOP)
+      =     A 1.2
+      L     EW 2
+N3:   U     E 0.7
+      X     E 0.6
+      LOOP  N3
+      =     A 1.3
+      SET
+      L     2
+N4:   LOOP  N4                 // a loop on itself: 2 passes
+      =     A 1.4
+END_ORGANIZATION_BLOCK
+"""}
+LOOP_PROGRAM["en"] = (LOOP_PROGRAM["de"].replace("EW ", "IW ").replace("U     E", "A     I")
+                      .replace("X     E", "X     I").replace("A 1.", "Q 1."))
+LOOP_WORDS = ("MW20", "MW22", "MW24")
+
+
+def lc_inputs(seed: int, scans: int = 80) -> list[dict[int, int]]:
+    """E 0.0 rises every other scan (counts up), E 0.1 now and then (down); E 0.2
+    sets the counters in scans 0 and 40 (98, 8, 998), E 0.3 resets in scan 70."""
+    r = random.Random(seed)
+    rows = []
+    for k in range(scans):
+        b = k % 2 | (2 if r.random() < 0.2 else 0)
+        b |= 4 if k in (0, 40) else 0
+        b |= 8 if k == 70 else 0
+        b |= r.randrange(4) << 4                     # E 0.4, E 0.5
+        rows.append({0: b})
+    return rows
+
+
+def loop_inputs(seed: int, counts=(1, 2, 3), scans: int = 30) -> list[dict[int, int]]:
+    r = random.Random(seed)
+    rows = []
+    for _ in range(scans):
+        w = r.choice(counts) & 0xFFFF
+        rows.append({0: r.randrange(256), 1: 0, 2: w >> 8, 3: w & 0xFF})
+    return rows
+
+
+def compare(path: Path, lang: str, tmp: Path, stim, words, **kw):
+    expected = awlsim_scans(path, stim, mnemonics=lang, words=words)
+    in_words = (2,) if len(stim[0]) > 1 else ()
+    got = bitbyte_scans(path, stim, tmp, words=words, in_words=in_words, **kw)
+    return expected, first_difference(expected, got)
+
+
+def ob(body: str) -> str:
+    return "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n" + body + \
+        "\nEND_ORGANIZATION_BLOCK\n"
+
+
+def assert_rejected(tmp: Path, capsys, body: str, line: int, col: int, message: str):
+    path = tmp / "bad.awl"
+    path.write_text(ob(body))
+    code = cli.main(["asm", str(path), "-o", str(tmp)])
+    err = capsys.readouterr().err
+    assert code == 1 and err.startswith(f"{path}:{line}:{col}: {message}"), err
+
+
+# -- LC ----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_lc_against_awlsim(tmp_path, lang):
+    path = tmp_path / "lc.awl"
+    path.write_text(LC_PROGRAM[lang])
+    expected, diff = compare(path, lang, tmp_path, lc_inputs(3), LC_WORDS)
+    assert diff is None, diff
+    # the counts crossed the decades: 0, 9, 10, 99, 100 and 999 as BCD were loaded
+    seen = {row[w] for row in expected for w in LC_WORDS[:4]}
+    assert {0, 0x9, 0x10, 0x99, 0x100, 0x999} <= seen, sorted(seen)
+    for q in ("Q0.0", "Q0.1", "Q0.2", "Q0.3"):
+        assert {row[q] for row in expected} == {0, 1}, q
+
+
+def test_oracle_catches_lc_as_the_binary_count(tmp_path, monkeypatch):
+    """`LC` translated as `L C n` (the binary count) differs from awlsim."""
+    def binary(self, stmt, st):
+        self.emit("L", self.counter_operand(stmt))
+        st.acc = (stl.ANY, st.acc[0])
+
+    monkeypatch.setattr(stl.StlFrontEnd, "load_count_bcd", binary)
+    path = tmp_path / "lc.awl"
+    path.write_text(LC_PROGRAM["de"])
+    assert compare(path, "de", tmp_path, lc_inputs(3), LC_WORDS)[1] is not None
+
+
+@pytest.mark.parametrize("body,line,col,message", [
+    ("LC    Z 1\n+I", 6, 1, "unsupported: `+I` reads ACCU2, which this OB has not "
+     "loaded here"),
+    ("LC    T 1", 5, 1, "unsupported: `LC` (a timer's remaining time as BCD"),
+    ("LC    Z 64", 5, 7, "operand out of range: `Z 64`"),
+    ("LC    M 0.0", 5, 7, "operand of the wrong kind: `LC` needs a counter"),
+    ("LC", 5, 1, "missing operand: `LC` needs a counter"),
+    ("LC    Z 1\nT     MW 128", 6, 7, "unsupported: `MW 128` is in M 128 .. M 223, "
+     "which this program's block-local data"),
+])
+def test_lc_errors(tmp_path, capsys, body, line, col, message):
+    assert_rejected(tmp_path, capsys, body, line, col, message)
