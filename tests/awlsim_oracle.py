@@ -134,10 +134,12 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
                   out_bytes=2, marker_bytes=2, words: tuple[str, ...] = (),
                   in_words: tuple[int, ...] = (), clock_mhz: str = "100",
                   mnemonics: str | None = None, symbols: str | Path | None = None,
-                  exchange: str | None = None) -> list[dict[str, int]]:
+                  exchange: str | None = None,
+                  watchdog: int = 100_000) -> list[dict[str, int]]:
     """`bitbyte run` on `path` (sim "ref": the reference interpreter; "verilator":
-    the C++ harness; exchange: parallel mode's, its default when None), one row per
-    scan with the same keys as awlsim_scans."""
+    the C++ harness; exchange: parallel mode's, its default when None; watchdog:
+    `--watchdog`, in clocks), one row per scan with the same keys as
+    awlsim_scans."""
     from bitbyte.lang.config import Config
     from bitbyte.lang.stimulus import load_stimulus
     from bitbyte.ref.refsim import refsim_trace
@@ -149,12 +151,12 @@ def bitbyte_scans(path: str | Path, inputs: list[dict[int, int]], tmp: Path, *,
     program, columns, job, f = prepare_run(
         str(path), stimulus=str(stim), watch=",".join(watch), scans=len(inputs),
         mode=mode, exchange=exchange, mnemonics=mnemonics, clock_mhz=clock_mhz,
-        symbols=None if symbols is None else str(symbols))
+        symbols=None if symbols is None else str(symbols), watchdog=watchdog)
     if sim == "ref":
         assert mode == "serial", "the reference interpreter runs serial mode"
         stimulus = load_stimulus(str(stim), program.symbols)
         _, records, fault = refsim_trace(program, Config(clock_mhz=float(f)), stimulus,
-                                         watch, scans=len(inputs))
+                                         watch, scans=len(inputs), watchdog=watchdog)
     else:
         from bitbyte.sim.verilator import run_harness
         records, fault, _ = run_harness(job, columns)

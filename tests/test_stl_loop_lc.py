@@ -152,11 +152,19 @@ def loop_inputs(seed: int, counts=(1, 2, 3), scans: int = 30) -> list[dict[int, 
     return rows
 
 
-def compare(path: Path, lang: str, tmp: Path, stim, words, **kw):
+def compare(tmp: Path, program: dict, lang: str, stim, words, **kw):
+    """(awlsim's scans, the first difference of bitbyte's or None) of program[lang]."""
+    path = tmp / f"prog_{lang}.awl"
+    path.write_text(program[lang])
     expected = awlsim_scans(path, stim, mnemonics=lang, words=words)
     in_words = (2,) if len(stim[0]) > 1 else ()
     got = bitbyte_scans(path, stim, tmp, words=words, in_words=in_words, **kw)
     return expected, first_difference(expected, got)
+
+
+def differs(tmp: Path, program: dict, stim, words) -> bool:
+    """The German program's scans differ from awlsim's (a wrong translation)."""
+    return compare(tmp, program, "de", stim, words)[1] is not None
 
 
 def ob(body: str) -> str:
@@ -176,9 +184,7 @@ def assert_rejected(tmp: Path, capsys, body: str, line: int, col: int, message: 
 
 @pytest.mark.parametrize("lang", ["de", "en"])
 def test_lc_against_awlsim(tmp_path, lang):
-    path = tmp_path / "lc.awl"
-    path.write_text(LC_PROGRAM[lang])
-    expected, diff = compare(path, lang, tmp_path, lc_inputs(3), LC_WORDS)
+    expected, diff = compare(tmp_path, LC_PROGRAM, lang, lc_inputs(3), LC_WORDS)
     assert diff is None, diff
     # the counts crossed the decades: 0, 9, 10, 99, 100 and 999 as BCD were loaded
     seen = {row[w] for row in expected for w in LC_WORDS[:4]}
@@ -194,9 +200,7 @@ def test_oracle_catches_lc_as_the_binary_count(tmp_path, monkeypatch):
         st.acc = (stl.ANY, st.acc[0])
 
     monkeypatch.setattr(stl.StlFrontEnd, "load_count_bcd", binary)
-    path = tmp_path / "lc.awl"
-    path.write_text(LC_PROGRAM["de"])
-    assert compare(path, "de", tmp_path, lc_inputs(3), LC_WORDS)[1] is not None
+    assert differs(tmp_path, LC_PROGRAM, lc_inputs(3), LC_WORDS)
 
 
 @pytest.mark.parametrize("body,line,col,message", [
@@ -210,4 +214,90 @@ def test_oracle_catches_lc_as_the_binary_count(tmp_path, monkeypatch):
      "which this program's block-local data"),
 ])
 def test_lc_errors(tmp_path, capsys, body, line, col, message):
+    assert_rejected(tmp_path, capsys, body, line, col, message)
+
+
+# -- LOOP --------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_loop_against_awlsim(tmp_path, lang):
+    expected, diff = compare(tmp_path, LOOP_PROGRAM, lang, loop_inputs(3), LOOP_WORDS)
+    assert diff is None, diff
+    assert {row["MW22"] for row in expected} == {3, 6, 9}      # 1, 2, 3 passes
+    for q in ("Q1.0", "Q1.1", "Q1.2", "Q1.3"):
+        assert {row[q] for row in expected} == {0, 1}, q
+
+
+def test_lc_and_loop_on_verilator_serial_and_parallel(tmp_path):
+    for program, stim, words in ((LC_PROGRAM, lc_inputs(3, scans=50), LC_WORDS),
+                                 (LOOP_PROGRAM, loop_inputs(3, scans=12), LOOP_WORDS)):
+        for mode in ("serial", "parallel"):
+            diff = compare(tmp_path, program, "de", stim, words, sim="verilator",
+                           mode=mode)[1]
+            assert diff is None, (words, mode, diff)
+
+
+ZERO = """ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE = LOOP from 0: 65536 passes (S7 decrements 0 to 65535)
+      U     E 0.0
+      L     EW 2
+N:    LOOP  N
+      =     A 0.0
+      T     MW 10
+      L     MW 12
+      L     1
+      +I
+      T     MW 12
+END_ORGANIZATION_BLOCK
+"""
+
+
+def test_loop_from_zero_runs_65536_passes(tmp_path):
+    """S7 decrements ACCU1-L = 0 to 65535 and goes on: 65536 passes, here 36
+    clocks each (2.36 million clocks, beyond the default watchdog of 100 000);
+    with `--watchdog 3000000` the same scans as awlsim."""
+    path = tmp_path / "zero.awl"
+    path.write_text(ZERO)
+    stim = [{0: 1, 2: 0, 3: 0}, {0: 0, 2: 0, 3: 2}]
+    expected = awlsim_scans(path, stim, mnemonics="de", words=("MW10", "MW12"))
+    got = bitbyte_scans(path, stim, tmp_path, words=("MW10", "MW12"), in_words=(2,),
+                        watchdog=3_000_000)
+    assert first_difference(expected, got) is None
+    assert [row["Q0.0"] for row in got] == [1, 0]
+    with pytest.raises(AssertionError, match="watchdog"):
+        bitbyte_scans(path, stim[:1], tmp_path, words=("MW10",), in_words=(2,))
+
+
+def test_oracle_catches_a_loop_that_does_not_restore_the_rlo(tmp_path, monkeypatch):
+    """Without the `LD` of the saved RLO the compare's result stays in the RLO:
+    awlsim sees the difference."""
+    emit = stl.StlFrontEnd.emit
+
+    def forgetful(self, mnemonic, operand=None, **kw):
+        if self.stmt.canon == "LOOP" and mnemonic == "LD":
+            return
+        emit(self, mnemonic, operand, **kw)
+
+    monkeypatch.setattr(stl.StlFrontEnd, "emit", forgetful)
+    assert differs(tmp_path, LOOP_PROGRAM, loop_inputs(3), LOOP_WORDS)
+
+
+@pytest.mark.parametrize("body,line,col,message", [
+    ("L     1\nL     3\nN:    LOOP  N\n+I", 8, 1, "unsupported: `+I` reads ACCU2, which "
+     "the translation of `LOOP N` (line 7) changed"),
+    ("L     1\nL     3\nN:    +I\nT     MW 10\nL     MW 10\nLOOP  N", 7, 7,
+     "unsupported: `+I` reads ACCU2, which the translation of an earlier timer or "
+     "counter instruction, block call, jump list, `LOOP`"),
+    ("N:    LOOP  N", 5, 7, "unsupported: `LOOP` reads ACCU1, which this OB has not "
+     "loaded"),
+    ("L     2\nU(\nU     E 0.0\nN:    LOOP  N\n)", 8, 1,
+     "unsupported: a label inside parentheses"),
+    ("L     2\nU(\nU     E 0.0\nLOOP  N\n)\nN:    NOP 0", 8, 1,
+     "unsupported: `LOOP` inside parentheses or after `O`"),
+    ("L     2\nLOOP  X\nN:    NOP 0", 6, 7, "unknown label `X`"),
+    ("L     2\nLOOP", 6, 1, "missing operand: `LOOP` needs a label"),
+])
+def test_loop_errors(tmp_path, capsys, body, line, col, message):
     assert_rejected(tmp_path, capsys, body, line, col, message)

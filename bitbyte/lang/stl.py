@@ -130,8 +130,6 @@ _WHY = {
     "byte access to the accumulator: the byte processor has none": "CAW CAD",
     "it changes the low byte of ACCU1 alone: the IL's words have no byte arithmetic":
         "INC DEC",
-    "a counted jump on ACCU1-L: the IL's compare would change the RLO and ACCU2":
-        "LOOP",
     "accumulator moves: the byte processor has no exchange, two accumulators":
         "TAK PUSH POP ENT LEAVE",
     "address registers: the bit and byte processors address directly":
@@ -859,13 +857,9 @@ class StlFrontEnd:
         byte, bit = word.text[1:].split(".")
         return Operand("bit", area="M", byte=int(byte), bit=int(bit), text=word.text)
 
-    def jump_list(self, stmt: Stmt, st: _State, edges) -> bool:
-        """SPL (JL) l with its list of SPA (JU) up to the label l: S7 jumps to the
-        k-th SPA for k = ACCU1's low byte below the list's length, else to l, and
-        changes no status bit.  The IL has no computed jump, so this is a compare
-        chain: the RLO saved, the low byte ((ACCU1 MOD 256 + 256) MOD 256, unless the
-        compiler knows it is 0..255) in a local word, `L` it, `L k`, `==I`, `JC` to
-        the k-th SPA, which restores the RLO; both accumulators count as changed."""
+    def outside_label(self, stmt: Stmt, st: _State) -> str:
+        """The label of `SPL` / `LOOP`, which may not stand inside a parenthesis or
+        after `O` (their translation saves and restores the IL's RLO)."""
         label = self.label_operand(stmt)
         if label not in self.label_defs:
             raise self.error(stmt.line, stmt.operands[0].col,
@@ -873,6 +867,16 @@ class StlFrontEnd:
         if st.parens or st.orm != "none":
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses or "
                                    "after `O`")
+        return label
+
+    def jump_list(self, stmt: Stmt, st: _State, edges) -> bool:
+        """SPL (JL) l with its list of SPA (JU) up to the label l: S7 jumps to the
+        k-th SPA for k = ACCU1's low byte below the list's length, else to l, and
+        changes no status bit.  The IL has no computed jump, so this is a compare
+        chain: the RLO saved, the low byte ((ACCU1 MOD 256 + 256) MOD 256, unless the
+        compiler knows it is 0..255) in a local word, `L` it, `L k`, `==I`, `JC` to
+        the k-th SPA, which restores the RLO; both accumulators count as changed."""
+        label = self.outside_label(stmt, st)
         i = self.stmts.index(stmt)
         entries = []
         for entry in self.stmts[i + 1:]:
@@ -924,6 +928,36 @@ class StlFrontEnd:
             self.emit(fix)
         self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
         return False
+
+    def loop(self, stmt: Stmt, st: _State, edges) -> bool:
+        """`LOOP l`: S7 decrements ACCU1-L (wrapping) and jumps to l while it is not
+        0, changing no status bit and not ACCU2 (awlsim's insn_loop.py).  Here: the
+        RLO saved in a local bit, `L 1`, `<>I` (x <> 1 is x - 1 <> 0), `-I`
+        (ACCU1 = x - 1), `JCN` past the jump, the RLO restored on both paths.  /FC
+        and the OR bit's role pass unchanged to both; ACCU2 then holds x where S7's
+        is unchanged, so an instruction that reads it before the next load is
+        rejected."""
+        label = self.outside_label(stmt, st)
+        self.read_acc(stmt, st, 1)
+        rlo = self.local_bit(stmt, ("@", "RLO"))
+        skip = f"LOOP.{self.stmts.index(stmt)}"
+        self.emit("=", rlo)
+        self.emit("L", Operand("const", area="INT", value=1, text="1"))
+        self.emit("<>I")
+        self.emit("-I")
+        self.emit("JCN", Operand("label", label=skip, text=skip))
+        self.emit("LD", rlo)
+        written = f"`{stmt.mnemonic.text} {stmt.operands[0].text}` (line {stmt.line})"
+        st.acc = (ANY, None if st.acc[1] is None else ChangedBy(written))
+        edges[label].append((st.ner, stmt, "JU"))
+        self.acc_edges[label].append(st.acc)
+        fix = self.assumed.get(label, (0, ""))[1]
+        if fix and st.ner == 0:
+            self.emit(fix)                  # this path arrives with /FC = 0
+        self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
+        self.pending.append(skip)
+        self.emit("LD", rlo)
+        return True
 
     def copy(self, stmt: Stmt, st: _State, pairs: list) -> None:
         """An FB call's parameters copied in or out: (kind, source words, target
@@ -1841,6 +1875,8 @@ class StlFrontEnd:
         elif m == "LC" and not (stmt.operands and _split_area(
                 stmt.operands[0].text)[0].upper() == "T"):     # LC T n: below
             self.load_count_bcd(stmt, st)
+        elif m == "LOOP":
+            return self.loop(stmt, st, edges)
         elif m in ("L", "T") + ARITHMETIC + COMPARES:
             self.word_statement(stmt, st, m)
         elif m in IN_PLACE:
@@ -2058,8 +2094,8 @@ class StlFrontEnd:
         if value == CLOBBERED or isinstance(value, Known) and value.il_value is not None:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which}, "
                                    "which the translation of an earlier timer or "
-                                   "counter instruction, block call, jump list or "
-                                   "`+ n` changed (S7 leaves it alone)")
+                                   "counter instruction, block call, jump list, "
+                                   "`LOOP` or `+ n` changed (S7 leaves it alone)")
 
     def word_statement(self, stmt: Stmt, st: _State, m: str) -> None:
         if m == "L":
