@@ -301,3 +301,35 @@ def test_oracle_catches_a_loop_that_does_not_restore_the_rlo(tmp_path, monkeypat
 ])
 def test_loop_errors(tmp_path, capsys, body, line, col, message):
     assert_rejected(tmp_path, capsys, body, line, col, message)
+
+
+def scan_clocks(tmp: Path, body: str, counts: list[int]) -> list[int]:
+    """The clocks of one serial scan of `body` per value of IW2 (the reference
+    interpreter, the default cost table)."""
+    from bitbyte.lang.config import Config
+    from bitbyte.lang.stimulus import load_stimulus
+    from bitbyte.ref.refsim import refsim_trace
+    from bitbyte.run.prepare import prepare_run
+
+    path, stim = tmp / "clocks.awl", tmp / "clocks.csv"
+    path.write_text(ob(body))
+    stim.write_text("scan,IW2\n" + "".join(f"{k},{n}\n" for k, n in enumerate(counts)))
+    program, _, _, f = prepare_run(str(path), stimulus=str(stim), watch="Q0.0",
+                                   scans=len(counts), mode="serial")
+    _, records, _ = refsim_trace(program, Config(clock_mhz=float(f)),
+                                 load_stimulus(str(stim), program.symbols), ["Q0.0"],
+                                 scans=len(counts))
+    return [r.cycles for r in records]
+
+
+def test_the_clocks_docs_s7_states(tmp_path):
+    """docs/s7.md: 36 clocks per LOOP pass that jumps back; LC 190 clocks (180 more
+    than `L Z n`), 150 when ACCU1 was not loaded (140 more)."""
+    one, two, three = scan_clocks(tmp_path, "L     EW 2\nN:    LOOP  N", [1, 2, 3])
+    assert two - one == three - two == 36
+    lc, l_z = (scan_clocks(tmp_path, f"L     1\n{m}    Z 1\nT     MW 10", [0])[0]
+               for m in ("LC", "L "))
+    assert lc - l_z == 180
+    lc, l_z = (scan_clocks(tmp_path, f"{m}    Z 1\nT     MW 10", [0])[0]
+               for m in ("LC", "L "))
+    assert lc - l_z == 140
