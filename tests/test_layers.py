@@ -10,6 +10,8 @@ has no cycle.  tests/test_layers.py reads the sources with `ast`; nothing is imp
     1     bitbyte.ref        lang only: the reference interpreters never see the
                               encoder, the compiler or a simulator
     2     bitbyte.compiler   lang, encoding
+    2     bitbyte.wide       lang, ref (the wide engine's LUT compiler checks each unit
+                              against the reference interpreter's step)
     3     bitbyte.asm, bitbyte.alloc, bitbyte.run
     4     bitbyte.sim        (simulator drivers)
     5     bitbyte.plant      (plants: link, copy plans, run)
@@ -20,7 +22,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 PKG = ROOT / "bitbyte"
-RANK = {"lang": 0, "encoding": 1, "ref": 1, "compiler": 2, "asm": 3, "alloc": 3,
+RANK = {"lang": 0, "encoding": 1, "ref": 1, "compiler": 2, "wide": 2, "asm": 3, "alloc": 3,
         "run": 3, "sim": 4, "plant": 5, "cli": 6}
 ONLY = {"ref": {"lang"}, "encoding": {"lang"}}
 
