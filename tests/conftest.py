@@ -16,15 +16,20 @@ def pytest_report_header(config):
     return f"random test seed: BITBYTE_SEED={os.environ.get('BITBYTE_SEED')}"
 
 
-# The modules that take longest (pytest --durations on 2 cores, 2026-12-03) run
+# The modules that take longest (pytest --durations on 2 cores, 2026-12-03, after the
+# Verilator builds went through ccache) run
 # first, so that pytest-xdist does not hand one of them out last while the other
 # worker idles; each module's own order is kept (module fixtures are set up once).
 SLOW_FIRST = (
     "tests/test_formal.py",
-    "tests/test_plant_tearing.py",
-    "tests/test_random_programs.py",
-    "tb/test_core_seq.py",
     "tests/test_plant_cocotb.py",
+    "tests/test_random_programs.py",
+    "tests/test_alloc.py",
+    "tests/test_cpu_directed.py",
+    "tests/test_examples.py",
+    "tests/test_link.py",
+    "tb/test_core_seq.py",
+    "tests/test_plant_tearing.py",
     "tests/test_plant_run.py",
     "tests/test_random_parallel.py",
     "tests/test_partition_adversarial.py",
