@@ -325,6 +325,113 @@ def test_db_by_symbol_against_awlsim(tmp_path, lang):
         parse_file(str(path), symbols=str(asc))
 
 
+TWO_DBS = """DATA_BLOCK DB 1
+  STRUCT
+    a : BOOL;
+    n : INT := 11;
+  END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK DB 2
+  STRUCT
+    a : BOOL := TRUE;
+    n : INT := 22;
+  END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+"""
+
+# a read of `DB1.n` / `DB1.a` opens DB 1 (awlsim's __fetchDB, S7), in OB 1 and for an
+# FC called after it
+READ_OPENS_DE = TWO_DBS + """FUNCTION FC 1 : VOID
+BEGIN
+NETWORK
+TITLE =
+      L     DBW 2
+      T     MW 14
+END_FUNCTION
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      AUF   DB 2
+      L     DB1.n
+      T     MW 10
+      L     DBW 2
+      T     MW 12
+      U     DBX 0.0
+      =     A 0.0
+      AUF   DB 2
+      U     DB1.a
+      =     A 0.1
+      CALL  FC 1
+      AUF   DB 2
+      U     "Data".a
+      =     A 0.2
+      L     DBW 2
+      T     MW 16
+END_ORGANIZATION_BLOCK
+"""
+
+# a chain of 8 backward jumps to the label that reads DB 2 (more passes than the
+# register's iteration once had)
+BACKWARD_DE = TWO_DBS + """FUNCTION FC 1 : VOID
+BEGIN
+NETWORK
+TITLE =
+      SPA   L9
+L1:   L     DBW 2
+      T     MW 10
+      BEA
+L2:   SPA   L1
+L3:   SPA   L2
+L4:   SPA   L3
+L5:   SPA   L4
+L6:   SPA   L5
+L7:   SPA   L6
+L8:   SPA   L7
+L9:   AUF   DB 2
+      SPA   L8
+END_FUNCTION
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      AUF   DB 1
+      CALL  FC 1
+END_ORGANIZATION_BLOCK
+"""
+
+
+@pytest.mark.parametrize("lang", ["de", "en"])
+def test_a_read_of_a_db_field_opens_its_db(tmp_path, lang):
+    path = tmp_path / f"opens_{lang}.awl"
+    path.write_text(READ_OPENS_DE if lang == "de" else english(READ_OPENS_DE))
+    asc = tmp_path / "sym.asc"
+    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
+    stimulus = [{0: 0}] * 3
+    words = ("MW10", "MW12", "MW14", "MW16")
+    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=words, symbols=asc)
+    got = bitbyte_scans(path, stimulus, tmp_path, words=words, symbols=asc)
+    assert first_difference(expected, got) is None
+    assert [expected[0][k] for k in words] == [11, 11, 11, 11]
+    assert expected[0]["Q0.0"] == expected[0]["Q0.1"] == expected[0]["Q0.2"] == 0
+
+
+def test_the_register_settles_after_many_backward_jumps(tmp_path):
+    path = tmp_path / "backward.awl"
+    path.write_text(BACKWARD_DE)
+    stimulus = [{0: 0}] * 3
+    expected = awlsim_scans(path, stimulus, mnemonics="de", words=("MW10",))
+    got = bitbyte_scans(path, stimulus, tmp_path, words=("MW10",))
+    assert first_difference(expected, got) is None
+    assert expected[0]["MW10"] == 22
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)
@@ -406,6 +513,10 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
     (FB + DB1 + ob1("AUF DB 1\nCALL FB 1, DB 2\nL DBW 2\nT MW 10"),
      "31:3: unsupported: DB register not known statically at `L DBW 2` (after `CALL FB "
      "1, DB 2` the open DB is its instance DB"),
+    (DB1 + DB1.replace("DB 1", "DB 3") + ob1("AUF DB 1\nL 5\nT DB3.n\nL DBW 2\n"
+                                              "T MW 10"),
+     "26:3: unsupported: DB register not known statically at `L DBW 2` (S7 opens DB 3 "
+     "at `T DB3.n`, awlsim does not"),
     (FB + DB1 + ob1("U DB2.DBX 0.0\n= A 0.0"),
      "29:3: unsupported: DB 2 is the instance DB of FB 1"),
     (DB1 + ob1("L DB1.DBW 0\nT MW 10"), "14:3: unsupported: `DB1.DBW 0`: not an "

@@ -2530,13 +2530,17 @@ class StlFrontEnd:
         ("db", n), or ("?", why) where it is not.  A block starts with none open
         (awlsim: DB 0 at an OB; an FB sees the caller's DI), an FC with its caller's;
         `OPN DB n` opens n; a CALL of an FC leaves it as it was (awlsim restores it),
-        of an FB opens its instance DB; where paths meet they must agree."""
+        of an FB opens its instance DB; a read of a field `DBn.…` opens n (awlsim's
+        and S7's CPU fetch it so), a write of one in another DB than the open one
+        makes the register unknown (S7 opens n, awlsim does not); where paths meet
+        they must agree.  The states at the labels are iterated to their fixed point
+        (each changes at most twice: none, DB n, unknown)."""
         block = scope["block"]
         entry = getattr(self, "db_at_call", None) if block.kind == "FC" else None
         if entry is None:
             entry = ("?", f"no DB is open at the start of {block.name}")
         targets: dict[str, tuple] = {}
-        for _ in range(8):
+        while True:
             before, state, changed = [], entry, False
             for stmt in stmts:
                 for w in stmt.labels:
@@ -2551,6 +2555,18 @@ class StlFrontEnd:
                         stmt.extra.kind.upper() == "FB":
                     state = ("?", f"after `{stmt.mnemonic.text} FB {stmt.extra.number}"
                                   f", DB {stmt.extra.db}` the open DB is its instance DB")
+                elif m not in ("CALL", "UC", "CC") and stmt.operands and \
+                        not self.is_jump(stmt) and (field_ := re.match(
+                            r"DB(\d+)\.", stmt.operands[0].text, re.I)):
+                    n = int(field_.group(1))
+                    if m not in ("=", "S", "R", "T"):
+                        state = ("db", n)       # awlsim's __fetchDB, S7: opens DB n
+                    elif state != ("db", n):
+                        ops = stmt.operands
+                        written = ops[0].shown or " ".join([ops[0].text] + [
+                            w.text for w in ops[1:2] if w.text[0].isdigit()])
+                        state = ("?", f"S7 opens DB {n} at `{stmt.mnemonic.text} "
+                                      f"{written}`, awlsim does not")
                 elif self.is_jump(stmt) and stmt.operands:
                     key = stmt.operands[0].text.upper()
                     new = _db_meet(targets.get(key), state)
@@ -2560,7 +2576,6 @@ class StlFrontEnd:
                     state = None                # no fall-through (joined at a label)
             if not changed:
                 return [s or entry for s in before]
-        return [s or entry for s in before]     # pragma: no cover
 
     def db_operands(self, stmt: Stmt, register) -> Stmt:
         """`OPN DB n` -> nothing (`NOP 0`: no status bit changes); a DB operand
