@@ -523,6 +523,11 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
      "INT/WORD field of DB 1"),
     (DB1 + ob1("U DB1.DBX 2.0\n= A 0.0"), "14:3: unsupported: `DB1.DBX 2.0`: not a BOOL "
      "field of DB 1"),
+    (DB1 + ob1("U DB1.DBX 5.0\n= A 0.0"), "14:3: unsupported: `DB1.DBX 5.0`: not a "
+     "BOOL field of DB 1"),                 # an inner byte of the REAL, no padding
+    (DB1.replace("f : REAL", "t : S5TIME") + ob1("U DB1.DBX 1.0\n= A 0.0\nU DB1.DBX "
+                                                 "5.0\n= A 0.1"),
+     "16:3: unsupported: `DB1.DBX 5.0`: not a BOOL field of DB 1"),
     (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
     (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
      "M 231, which this program's global DBs use"),

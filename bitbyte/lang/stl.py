@@ -2649,8 +2649,9 @@ class StlFrontEnd:
             f.type == "BOOL" if area == "DBX" else f.type in ("INT", "WORD"))] \
             if kind else []
         if area == "DBX" and not ok and not any(
-                f.byte == byte for f in db["fields"]):
-            ok = [None]                         # a byte no field uses (padding)
+                f.byte <= byte < f.byte + max(DB_TYPE_BYTES[f.type], 1)
+                for f in db["fields"]):
+            ok = [None]                         # a byte no field covers (padding)
         if not ok:
             raise self.unsupported(stmt, f"`{written}`: " + (
                 f"{area} (this slice reads a DB's BOOL fields as DBX and its INT/WORD "
