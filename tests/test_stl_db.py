@@ -432,6 +432,16 @@ def test_the_register_settles_after_many_backward_jumps(tmp_path):
     assert expected[0]["MW10"] == 22
 
 
+def test_a_db_field_by_symbol_as_a_call_actual(tmp_path):
+    path = tmp_path / "actual.awl"
+    path.write_text(DB1 + FC_XW + ob1('CALL FC 1 (x := "Data".x, w := MW 2)'))
+    asc = tmp_path / "sym.asc"
+    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
+    with pytest.raises(SourceError, match=r':28:17: unsupported: DB field `"Data".x` as '
+                       r'a CALL actual'):
+        parse_file(str(path), symbols=str(asc))
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)
@@ -497,6 +507,10 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
       "SET\nEND_FUNCTION_BLOCK\n\nDATA_BLOCK DB 2\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\n")
 
 
+FC_XW = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : BOOL;\n  w : INT;\nEND_VAR\nBEGIN\n"
+         "NETWORK\nTITLE =\nU #x\n= A 0.0\nL #w\nT MW 10\nEND_FUNCTION\n\n")  # 14 lines
+
+
 @pytest.mark.parametrize("text,where", [
     (DB1 + ob1("L DB3.DBW 0\nT MW 10"), "14:3: DB 3 is not in the source"),
     (DB1 + ob1("AUF DB 4"), "14:5: DB 4 is not in the source"),
@@ -528,6 +542,14 @@ FB = ("FUNCTION_BLOCK FB 1\nVAR\n  s : BOOL;\nEND_VAR\nBEGIN\nNETWORK\nTITLE =\n
     (DB1.replace("f : REAL", "t : S5TIME") + ob1("U DB1.DBX 1.0\n= A 0.0\nU DB1.DBX "
                                                  "5.0\n= A 0.1"),
      "16:3: unsupported: `DB1.DBX 5.0`: not a BOOL field of DB 1"),
+    (DB1 + FC_XW + ob1("CALL FC 1 (x := E 0.0,\n w := DB1.n)"),
+     "29:7: unsupported: DB field `DB1.n` as a CALL actual"),
+    (DB1 + FC_XW + ob1("AUF DB 1\nCALL FC 1 (x := DBX 0.0, w := MW 2)"),
+     "29:17: unsupported: DB field `DBX 0.0` as a CALL actual"),
+    (DB1 + FC_XW.replace("FUNCTION FC 1 : VOID", "FUNCTION_BLOCK FB 1").replace(
+        "END_FUNCTION", "END_FUNCTION_BLOCK") + "DATA_BLOCK DB 2\nFB 1\nBEGIN\n"
+     "END_DATA_BLOCK\n\n" + ob1("CALL FB 1, DB 2 (w := DB1.DBW 2)"),
+     "33:23: unsupported: DB field `DB1.DBW 2` as a CALL actual"),
     (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
     (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
      "M 231, which this program's global DBs use"),

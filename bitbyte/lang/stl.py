@@ -788,6 +788,12 @@ class StlFrontEnd:
             raise self.error(stmt.line, first.col, f"unsupported: parameter "
                              f"`{decl.name}` of type {decl.type} (parameters of this "
                              "slice: BOOL, INT, WORD)")
+        joined = "".join(w.text for w in words)
+        if re.match(r"DB\d+\.|DB[XBWD]\d", joined, re.I) or first.text.startswith(
+                '"') and len(words) > 1 and words[1].text.startswith("."):
+            shown = " ".join(w.text for w in words).replace('" .', '".')
+            raise self.unsupported(stmt, f"DB field `{shown}` as a CALL actual",
+                                   first.col)
         if first.text.startswith("#"):
             binding, out = self.bound_words(stmt, first, scope)
             if len(words) > 1:
