@@ -442,6 +442,51 @@ def test_a_db_field_by_symbol_as_a_call_actual(tmp_path):
         parse_file(str(path), symbols=str(asc))
 
 
+MEMBERS_DE = """DATA_BLOCK DB 1
+  STRUCT
+    a : BOOL;
+    s : STRUCT
+      x : BOOL;
+    END_STRUCT;
+    arr : ARRAY [1..4] OF INT;
+  END_STRUCT;
+BEGIN
+  s.x := TRUE;
+  arr[1] := 5;
+  s . x := FALSE;
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+TITLE =
+      U     E 0.0
+      =     A 0.0
+END_ORGANIZATION_BLOCK
+"""
+
+
+def test_members_set_after_begin_of_an_unused_db(tmp_path):
+    """awlsim takes `s.x := TRUE;` and `arr[1] := 5;`; a DB the program does not use
+    takes nothing, and its STRUCT/ARRAY fields are `unsupported:` once it is used."""
+    path = tmp_path / "members.awl"
+    path.write_text(MEMBERS_DE)
+    stimulus = [{0: k % 2} for k in range(3)]
+    expected = awlsim_scans(path, stimulus, mnemonics="de", words=())
+    got = bitbyte_scans(path, stimulus, tmp_path, words=())
+    assert first_difference(expected, got) is None
+    path.write_text(MEMBERS_DE.replace("U     E 0.0", "U     DB1.a"))
+    with pytest.raises(SourceError, match=r":4:5: unsupported: field `s` of type "
+                       "STRUCT in DB 1"):
+        parse_file(str(path))
+    path.write_text(MEMBERS_DE.replace("U     E 0.0", "U     DB1.a").replace(
+        "    s : STRUCT\n      x : BOOL;\n    END_STRUCT;\n    arr : ARRAY [1..4] OF "
+        "INT;\n", "    s : INT;\n    arr : INT;\n"))
+    with pytest.raises(SourceError, match=r":8:3: `s.x`: `s` is INT, not a STRUCT or "
+                       "ARRAY"):
+        parse_file(str(path))
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)

@@ -2460,7 +2460,8 @@ class StlFrontEnd:
 
     def read_db_assignment(self, block: Block, n: int, col: int, text: str) -> None:
         """A global DB's `name := value;` after BEGIN: the field's initial value."""
-        m = re.fullmatch(r"\s*([A-Za-z_]\w*)\s*:=\s*([^;]+?)\s*;?\s*", text)
+        m = re.fullmatch(r"\s*([A-Za-z_]\w*)((?:\s*\[[^]]*\]|\s*\.\s*[A-Za-z_]\w*)*)"
+                         r"\s*:=\s*([^;]+?)\s*;?\s*", text)
         if not m:
             raise self.error(n, col, f"malformed initial value `{text}`")
         fields = self.db_fields.get(block.number, [])
@@ -2468,8 +2469,11 @@ class StlFrontEnd:
         if field_ is None:
             raise self.error(n, col, f"unknown field `{m.group(1)}` in {block.name}"
                              + did_you_mean(m.group(1), [f.name for f in fields]))
-        field_.value, field_.value_line = m.group(2), n
-        field_.value_col = col + text.index(m.group(2))
+        if m.group(2):                          # `s.x := …`, `arr[1] := …`: a member
+            field_.members.append((n, col, m.group(1) + m.group(2)))   # (checked once
+            return                              # the DB is laid out: data_block)
+        field_.value, field_.value_line = m.group(3), n
+        field_.value_col = col + text.index(m.group(3))
 
     def db_symbol(self, stmt: Stmt) -> bool:
         """`"Data".count` (a DB's symbol and a field) -> `DB1.count`, named as
@@ -2519,6 +2523,10 @@ class StlFrontEnd:
                 byte += 1
             f.byte, f.bit = byte, None
             bit = (byte + size) * 8
+        for f in fields:                        # elementary: no member to set
+            for line, col_, path in f.members:
+                raise self.error(line, col_, f"`{path}`: `{f.name}` is {f.type}, not a "
+                                 "STRUCT or ARRAY")
         size = (bit + 7) // 8
         size += size % 2
         base = DB_BYTES[0] + sum(d["size"] for d in self.db_used.values())
@@ -2770,6 +2778,8 @@ class DbField:
     value_col: int = 0
     byte: int = 0
     bit: int | None = None
+    members: list = field(default_factory=list)  # `s.x := …` after BEGIN: (line, col,
+                                                 # path)
 
 
 def _db_meet(a, b):
