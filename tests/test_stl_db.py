@@ -595,6 +595,18 @@ FC_XW = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : BOOL;\n  w : INT;\nEND_VAR\nBEG
         "END_FUNCTION", "END_FUNCTION_BLOCK") + "DATA_BLOCK DB 2\nFB 1\nBEGIN\n"
      "END_DATA_BLOCK\n\n" + ob1("CALL FB 1, DB 2 (w := DB1.DBW 2)"),
      "33:23: unsupported: DB field `DB1.DBW 2` as a CALL actual"),
+    (DB1 + ob1("AUF DB 1 2\nL DBW 2\nT MW 10"), "14:10: extra operand `2`"),
+    (DB1 + ob1("AUF DB1 2\nL DBW 2\nT MW 10"), "14:9: extra operand `2`"),
+    (DB1 + ob1("AUF DB\nL DBW 2\nT MW 10"), "14:5: missing operand: `AUF DB` needs "
+     "the block's number (`AUF DB n`)"),
+    (DB1 + ob1("AUF\nL DBW 2\nT MW 10"), "14:1: missing operand: `AUF` needs a DB "
+     "(`AUF DB n`)"),
+    (DB1 + ob1("AUF DB1.DBX 0.0\nU E 0.0\n= A 0.0"), "14:5: operand of the wrong "
+     "kind: `AUF` opens a data block (`AUF DB n`), not `DB1.DBX 0.0`"),
+    (DB1 + ob1("OPN MW 2\nA I 0.0\n= Q 0.0"), "14:5: operand of the wrong kind: `OPN` "
+     "opens a data block (`OPN DB n`), not `MW 2`"),
+    (DB1 + ob1("AUF DI 1\nU E 0.0\n= A 0.0"), "14:1: unsupported: `AUF DI 1` (the "
+     "instance DB register"),
     (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
     (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
      "M 231, which this program's global DBs use"),

@@ -2599,14 +2599,11 @@ class StlFrontEnd:
             self.db_at_call = register
             return stmt
         ops = stmt.operands
+        if stmt.canon == "OPN":
+            return self.open_db(stmt)
         if not ops or self.is_jump(stmt):
             return stmt
         text = ops[0].text
-        if stmt.canon == "OPN" and re.fullmatch(r"DB\s*\d+", "".join(
-                w.text for w in ops), re.I):
-            self.data_block(stmt, int("".join(w.text for w in ops)[2:]), ops[0].col)
-            return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic,
-                        [Word("0", ops[0].col)], stmt.labels, "NOP")
         full = re.fullmatch(r"DB(\d+)\.(DB[XBWD])(.*)", text, re.I)
         open_ = re.fullmatch(r"(DB[XBWD])(.*)", text, re.I)
         named = None if full else re.fullmatch(r"DB(\d+)\.([A-Za-z_]\w*)", text, re.I)
@@ -2678,6 +2675,37 @@ class StlFrontEnd:
         new_ops = [Word(target, ops[0].col, shown, True)] + ops[used:]
         return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic, new_ops,
                     stmt.labels, stmt.canon, stmt.extra)
+
+    def open_db(self, stmt: Stmt) -> Stmt:
+        """`OPN DB n` (`AUF DB n`) -> `NOP 0` (no status bit changes), the DB laid out;
+        its operand checked as S7's (`DB n`, or a DB's symbol): other forms are
+        errors, `OPN DI n` is unsupported (instance DBs are inlined)."""
+        mn, ops = stmt.mnemonic.text, stmt.operands
+        if not ops:
+            raise self.error(stmt.line, stmt.mnemonic.col, f"missing operand: `{mn}` "
+                             f"needs a DB (`{mn} DB n`)")
+        m = re.fullmatch(r"D([BI])\s*(\d*)", ops[0].text, re.I)
+        used = 1
+        if m and not m.group(2) and len(ops) > 1 and ops[1].text.isdigit():
+            used = 2
+        if m and not m.group(2) and used == 1:
+            raise self.error(stmt.line, ops[0].col, f"missing operand: `{mn} "
+                             f"{ops[0].text}` needs the block's number (`{mn} "
+                             f"{ops[0].text.upper()} n`)")
+        if m is None:
+            raise self.error(stmt.line, ops[0].col, f"operand of the wrong kind: `{mn}` "
+                             f"opens a data block (`{mn} DB n`), not `"
+                             f"{' '.join(w.text for w in ops)}`")
+        if len(ops) > used:
+            raise self.error(stmt.line, ops[used].col, f"extra operand "
+                             f"`{ops[used].text}`")
+        number = int(m.group(2) or ops[1].text)
+        if m.group(1).upper() == "I":
+            raise self.unsupported(stmt, f"`{mn} DI {number}` (the instance DB "
+                                   "register: instance DBs are inlined)")
+        self.data_block(stmt, number, ops[0].col)
+        return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic,
+                    [Word("0", ops[0].col)], stmt.labels, "NOP")
 
     def init_data_blocks(self) -> None:
         """S7 loads a DB's initial values before the startup: statements at the start
