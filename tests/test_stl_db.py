@@ -487,6 +487,30 @@ def test_members_set_after_begin_of_an_unused_db(tmp_path):
         parse_file(str(path))
 
 
+@pytest.mark.parametrize("decl,message", [
+    ("a : BOOL := 1", "malformed initial value `1` of the BOOL `a` (TRUE or FALSE)"),
+    ("a : BOOL := W#16#1", "malformed initial value `W#16#1` of the BOOL `a`"),
+    ("a : INT := W#16#FFFF", "malformed initial value `W#16#FFFF` of the INT `a` (a "
+     "decimal INT constant"),
+    ("a : INT := 40000", "initial value `40000` of the INT `a` out of range (INT is "
+     "-32768..32767)"),
+    ("a : INT := 1.5", "malformed initial value `1.5` of the INT `a`"),
+    ("a : INT := TRUE", "malformed initial value `TRUE` of the INT `a`"),
+    ("a : WORD := TRUE", "malformed initial value `TRUE` of the WORD `a`"),
+])
+def test_initial_values_awlsim_rejects(tmp_path, decl, message):
+    """Initial values awlsim does not load are plain errors (at the value)."""
+    path = tmp_path / "init.awl"
+    path.write_text(f"DATA_BLOCK DB 1\n STRUCT\n  {decl};\n END_STRUCT;\nBEGIN\n"
+                    "END_DATA_BLOCK\n\n" + ob1("U E 0.0\nSPB M1\nL DB1.a\nT MW 10\n"
+                                               "M1: U E 0.0\n= A 0.0"))
+    with pytest.raises(Exception, match="(?i)awlsim"):
+        awlsim_scans(path, [{0: 0}], mnemonics="de", words=("MW10",))
+    col = decl.index(":=") + 6
+    with pytest.raises(SourceError, match=re.escape(f":3:{col}: {message}")):
+        parse_file(str(path))
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)

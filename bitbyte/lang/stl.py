@@ -2707,6 +2707,25 @@ class StlFrontEnd:
         return Stmt(stmt.line, stmt.col, stmt.source, stmt.mnemonic,
                     [Word("0", ops[0].col)], stmt.labels, "NOP")
 
+    def check_initial(self, f: DbField, line: int) -> None:
+        """The initial value of a BOOL is TRUE or FALSE, of an INT a decimal INT
+        constant (awlsim takes no other), of a WORD not TRUE/FALSE (its constant is
+        checked as `L`'s)."""
+        v = f.value.strip().upper()
+        what = f"initial value `{f.value.strip()}` of the {f.type} `{f.name}`"
+        if f.type == "BOOL" and v not in ("TRUE", "FALSE"):
+            raise self.error(line, f.value_col, f"malformed {what} (TRUE or FALSE)")
+        if f.type == "INT":
+            if not re.fullmatch(r"[+-]?\d+", v):
+                raise self.error(line, f.value_col, f"malformed {what} (a decimal INT "
+                                 "constant, -32768..32767)")
+            if not -32768 <= int(v) <= 32767:
+                raise self.error(line, f.value_col, f"{what} out of range (INT is "
+                                 "-32768..32767)")
+        if f.type == "WORD" and v in ("TRUE", "FALSE"):
+            raise self.error(line, f.value_col, f"malformed {what} (a WORD constant: "
+                             "W#16#…, B#16#…, 2#…)")
+
     def init_data_blocks(self) -> None:
         """S7 loads a DB's initial values before the startup: statements at the start
         of the startup part (OB 100's, or one made for them) set the used DBs' fields
@@ -2721,10 +2740,8 @@ class StlFrontEnd:
                 line = getattr(f, "value_line", f.line)
                 source = self.lines[line - 1].rstrip("\r")
                 k = db["base"] + f.byte
+                self.check_initial(f, line)
                 if f.type == "BOOL":
-                    if value not in (0, 1):
-                        raise self.error(line, f.value_col, f"malformed initial value "
-                                         f"`{f.value}` of the BOOL `{f.name}`")
                     if value:
                         bits.append(Stmt(line, f.value_col, source, Word("=", f.value_col),
                                          [Word(f"M{k}.{f.bit}", f.value_col,
