@@ -511,6 +511,19 @@ def test_initial_values_awlsim_rejects(tmp_path, decl, message):
         parse_file(str(path))
 
 
+def test_a_db_symbol_with_an_address(tmp_path):
+    """`"Data".DBW 0`: awlsim's parser rejects it, so does the front end."""
+    path = tmp_path / "symaddr.awl"
+    path.write_text(DB1 + ob1('L "Data".DBW 2\nT MW 10'))
+    asc = tmp_path / "sym.asc"
+    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
+    with pytest.raises(Exception, match="(?i)awlsim|parser"):
+        awlsim_scans(path, [{0: 0}], mnemonics="de", words=("MW10",), symbols=asc)
+    with pytest.raises(SourceError, match=r':14:3: malformed operand `"Data".DBW`: a '
+                       r'DB\'s symbol takes a field\'s name'):
+        parse_file(str(path), symbols=str(asc))
+
+
 def test_comparison_catches_ignored_initial_values(tmp_path, monkeypatch):
     for startup in (True, False):
         path = source(tmp_path, "de", startup)
@@ -631,6 +644,12 @@ FC_XW = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : BOOL;\n  w : INT;\nEND_VAR\nBEG
      "opens a data block (`OPN DB n`), not `MW 2`"),
     (DB1 + ob1("AUF DI 1\nU E 0.0\n= A 0.0"), "14:1: unsupported: `AUF DI 1` (the "
      "instance DB register"),
+    ("DATA_BLOCK DB 1\n STRUCT\n END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n"
+     + ob1("L DB1.DBW 0\nT MW 10"), "11:3: operand out of range: `DB1.DBW 0` (DB 1 has "
+     "no fields, no bytes)"),
+    (DB1 + ob1("L DB1.n\nT MW 10\nU E 0.0\n= M 255.7"), "17:3: unsupported: `M 255.7` "
+     "uses M255.7, which the translation keeps for the started bit of the startup part "
+     "that sets the global DBs' initial values"),
     (DB1 + ob1("L DB1.f\nT MW 10"), "14:3: unsupported: `DB1.f`: DBD"),
     (DB1 + ob1("U DB1.x\n= M 224.3"), "15:3: unsupported: `M 224.3` is in M 224 .. "
      "M 231, which this program's global DBs use"),

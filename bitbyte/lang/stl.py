@@ -1016,7 +1016,9 @@ class StlFrontEnd:
         if not self.scratch_bits:
             return
         taken = {(op.byte, op.bit): op for op in self.scratch_bits.values()}
-        purpose = {(op.byte, op.bit): "OB 100's started bit" if key == ("started",)
+        started = "OB 100's started bit" if ("OB", 100) in self.blocks else \
+            "the started bit of the startup part that sets the global DBs' initial values"
+        purpose = {(op.byte, op.bit): started if key == ("started",)
                    else "this program's timers" for key, op in self.scratch_bits.items()}
         for stmt, ops in ((s, o) for s in self.stmts for o in self.used_operands(s)):
             text = "".join(w.text for w in ops[:2]).upper()
@@ -1034,8 +1036,8 @@ class StlFrontEnd:
                 written = " ".join(w.text for w in ops[:2]) if \
                     _split_area(first)[1] == "" else first
                 what = purpose[hit.byte, hit.bit]
-                keeps = (f"keeps for {what}" if what.startswith("OB") else
-                         f"of {what} keeps for itself")
+                keeps = (f"of {what} keeps for itself" if what.endswith("timers")
+                         else f"keeps for {what}")
                 raise self.unsupported(self.param_stmt(stmt, ops[0]), f"`{written}` uses "
                                        f"{hit.text}, which the translation {keeps} (the "
                                        "top marker bits)", ops[0].col)
@@ -2485,6 +2487,11 @@ class StlFrontEnd:
         sym = self.symbol_table.get(word.text.strip('"').upper())
         if sym is None:
             self.resolve_word(stmt, word)       # raises: undeclared symbol
+        if re.fullmatch(r"\.DB[XBWD]", member[0].text, re.I):
+            raise self.error(stmt.line, word.col, f"malformed operand `{word.text}"
+                             f"{member[0].text}`: a DB's symbol takes a field's name "
+                             f"(`{word.text}.name`; awlsim's parser takes no "
+                             f"`{word.text}{member[0].text}` either)")
         m = re.fullmatch(r"DB\s*(\d+)", sym.address, re.I)
         if m is None:
             raise self.error(stmt.line, word.col, f"`{word.text}{member[0].text}`: the "
@@ -2654,7 +2661,9 @@ class StlFrontEnd:
         width = {"DBX": 1, "DBB": 1, "DBW": 2, "DBD": 4}[area]
         if byte + width > db["size"]:
             raise self.error(stmt.line, ops[0].col, f"operand out of range: `{written}` "
-                             f"(DB {number} has {db['size']} bytes, 0..{db['size'] - 1})")
+                             f"(DB {number} has {db['size']} bytes, 0..{db['size'] - 1})"
+                             if db["size"] else f"operand out of range: `{written}` (DB "
+                             f"{number} has no fields, no bytes)")
         kind = {"DBX": "a BOOL", "DBW": "an INT/WORD"}.get(area)
         ok = [f for f in db["fields"] if f.byte == byte and (
             f.type == "BOOL" if area == "DBX" else f.type in ("INT", "WORD"))] \
