@@ -166,6 +166,32 @@ def compare(path: Path, lang: str, tmp: Path, **kw):
     return expected, got, first_difference(expected, got)
 
 
+def ob1(body: str) -> str:
+    return "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n" + body + \
+        "\nEND_ORGANIZATION_BLOCK\n"
+
+
+def written(tmp: Path, name: str, text: str, lang: str = "de",
+            symbols: list | None = None) -> tuple[Path, Path | None]:
+    """The program (German `text`, in `lang`) and its symbol table, if any."""
+    path = tmp / f"{name}_{lang}.awl"
+    path.write_text(text if lang == "de" else english(text))
+    asc = None
+    if symbols:
+        asc = tmp / "sym.asc"
+        asc.write_text(symbol_table(symbols, "asc"))
+    return path, asc
+
+
+def as_awlsim(path: Path, tmp: Path, stimulus: list, words: tuple, lang: str = "de",
+              symbols: Path | None = None) -> list[dict]:
+    """awlsim's rows, after checking that bitbyte's equal them."""
+    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=words, symbols=symbols)
+    got = bitbyte_scans(path, stimulus, tmp, words=words, symbols=symbols)
+    assert first_difference(expected, got) is None
+    return expected
+
+
 def test_english_translation():
     text = english(DBS + STARTUP_DE + OB1_DE)
     for statement in ("OPN   DB 1", "JCN  M1", "A     DB1.seen", "L     IW 2",
@@ -305,16 +331,11 @@ END_ORGANIZATION_BLOCK
 @pytest.mark.parametrize("lang", ["de", "en"])
 def test_db_by_symbol_against_awlsim(tmp_path, lang):
     """`"Data".n` with `Data` a DB in the symbol table (awlsim reads it so too)."""
-    path = tmp_path / f"symbolic_{lang}.awl"
-    path.write_text(SYMBOLIC_DE if lang == "de" else english(SYMBOLIC_DE))
-    asc = tmp_path / "sym.asc"
-    asc.write_text(symbol_table([("Data", "DB 1", "DB 1"), (
-        "Start", "E 0.0" if lang == "de" else "I 0.0", "BOOL")], "asc"))
-    stimulus = [{0: int(k % 3 == 1)} for k in range(10)]
-    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=("MW10",),
-                            symbols=asc)
-    got = bitbyte_scans(path, stimulus, tmp_path, words=("MW10",), symbols=asc)
-    assert first_difference(expected, got) is None
+    path, asc = written(tmp_path, "symbolic", SYMBOLIC_DE, lang, [
+        ("Data", "DB 1", "DB 1"), ("Start", "E 0.0" if lang == "de" else "I 0.0",
+                                   "BOOL")])
+    expected = as_awlsim(path, tmp_path, [{0: int(k % 3 == 1)} for k in range(10)],
+                         ("MW10",), lang, asc)
     assert [row["MW10"] for row in expected][:5] == [4, 7, 7, 7, 10]
     assert cli.main(["asm", str(path), "--symbols", str(asc), "-o", str(tmp_path)]) == 0
     assert '"Data".n' in (tmp_path / f"symbolic_{lang}.lst").read_text()
@@ -397,46 +418,27 @@ L9:   AUF   DB 2
       SPA   L8
 END_FUNCTION
 
-ORGANIZATION_BLOCK OB 1
-BEGIN
-NETWORK
-TITLE =
-      AUF   DB 1
-      CALL  FC 1
-END_ORGANIZATION_BLOCK
-"""
+""" + ob1("      AUF   DB 1\n      CALL  FC 1")
 
 
 @pytest.mark.parametrize("lang", ["de", "en"])
 def test_a_read_of_a_db_field_opens_its_db(tmp_path, lang):
-    path = tmp_path / f"opens_{lang}.awl"
-    path.write_text(READ_OPENS_DE if lang == "de" else english(READ_OPENS_DE))
-    asc = tmp_path / "sym.asc"
-    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
-    stimulus = [{0: 0}] * 3
+    path, asc = written(tmp_path, "opens", READ_OPENS_DE, lang, [("Data", "DB 1",
+                                                                  "DB 1")])
     words = ("MW10", "MW12", "MW14", "MW16")
-    expected = awlsim_scans(path, stimulus, mnemonics=lang, words=words, symbols=asc)
-    got = bitbyte_scans(path, stimulus, tmp_path, words=words, symbols=asc)
-    assert first_difference(expected, got) is None
+    expected = as_awlsim(path, tmp_path, [{0: 0}] * 3, words, lang, asc)
     assert [expected[0][k] for k in words] == [11, 11, 11, 11]
     assert expected[0]["Q0.0"] == expected[0]["Q0.1"] == expected[0]["Q0.2"] == 0
 
 
 def test_the_register_settles_after_many_backward_jumps(tmp_path):
-    path = tmp_path / "backward.awl"
-    path.write_text(BACKWARD_DE)
-    stimulus = [{0: 0}] * 3
-    expected = awlsim_scans(path, stimulus, mnemonics="de", words=("MW10",))
-    got = bitbyte_scans(path, stimulus, tmp_path, words=("MW10",))
-    assert first_difference(expected, got) is None
-    assert expected[0]["MW10"] == 22
+    path, _ = written(tmp_path, "backward", BACKWARD_DE)
+    assert as_awlsim(path, tmp_path, [{0: 0}] * 3, ("MW10",))[0]["MW10"] == 22
 
 
 def test_a_db_field_by_symbol_as_a_call_actual(tmp_path):
-    path = tmp_path / "actual.awl"
-    path.write_text(DB1 + FC_XW + ob1('CALL FC 1 (x := "Data".x, w := MW 2)'))
-    asc = tmp_path / "sym.asc"
-    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
+    path, asc = written(tmp_path, "actual", DB1 + FC_XW + ob1(
+        'CALL FC 1 (x := "Data".x, w := MW 2)'), symbols=[("Data", "DB 1", "DB 1")])
     with pytest.raises(SourceError, match=r':28:17: unsupported: DB field `"Data".x` as '
                        r'a CALL actual'):
         parse_file(str(path), symbols=str(asc))
@@ -469,12 +471,8 @@ END_ORGANIZATION_BLOCK
 def test_members_set_after_begin_of_an_unused_db(tmp_path):
     """awlsim takes `s.x := TRUE;` and `arr[1] := 5;`; a DB the program does not use
     takes nothing, and its STRUCT/ARRAY fields are `unsupported:` once it is used."""
-    path = tmp_path / "members.awl"
-    path.write_text(MEMBERS_DE)
-    stimulus = [{0: k % 2} for k in range(3)]
-    expected = awlsim_scans(path, stimulus, mnemonics="de", words=())
-    got = bitbyte_scans(path, stimulus, tmp_path, words=())
-    assert first_difference(expected, got) is None
+    path, _ = written(tmp_path, "members", MEMBERS_DE)
+    as_awlsim(path, tmp_path, [{0: k % 2} for k in range(3)], ())
     path.write_text(MEMBERS_DE.replace("U     E 0.0", "U     DB1.a"))
     with pytest.raises(SourceError, match=r":4:5: unsupported: field `s` of type "
                        "STRUCT in DB 1"):
@@ -513,10 +511,8 @@ def test_initial_values_awlsim_rejects(tmp_path, decl, message):
 
 def test_a_db_symbol_with_an_address(tmp_path):
     """`"Data".DBW 0`: awlsim's parser rejects it, so does the front end."""
-    path = tmp_path / "symaddr.awl"
-    path.write_text(DB1 + ob1('L "Data".DBW 2\nT MW 10'))
-    asc = tmp_path / "sym.asc"
-    asc.write_text(symbol_table([("Data", "DB 1", "DB 1")], "asc"))
+    path, asc = written(tmp_path, "symaddr", DB1 + ob1('L "Data".DBW 2\nT MW 10'),
+                        symbols=[("Data", "DB 1", "DB 1")])
     with pytest.raises(Exception, match="(?i)awlsim|parser"):
         awlsim_scans(path, [{0: 0}], mnemonics="de", words=("MW10",), symbols=asc)
     with pytest.raises(SourceError, match=r':14:3: malformed operand `"Data".DBW`: a '
@@ -575,11 +571,6 @@ def test_no_startup_part_when_every_initial_value_is_0(tmp_path):
 
 # --------------------------------------------------------------------------------------
 # Errors
-
-def ob1(body: str) -> str:
-    return "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n" + body + \
-        "\nEND_ORGANIZATION_BLOCK\n"
-
 
 DB1 = ("DATA_BLOCK DB 1\n STRUCT\n  x : BOOL;\n  n : INT := 3;\n  f : REAL;\n "
        "END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\n")             # 9 lines
