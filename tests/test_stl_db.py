@@ -436,6 +436,23 @@ def test_the_register_settles_after_many_backward_jumps(tmp_path):
     assert as_awlsim(path, tmp_path, [{0: 0}] * 3, ("MW10",))[0]["MW10"] == 22
 
 
+# a write of the open DB's field first reached by a backward jump (no path to it yet
+# in the register's first pass): the register stays known
+WRITE_LATER_DE = TWO_DBS + ob1("""      AUF   DB 1
+      SPA   L9
+L1:   T     DB1.n
+      SPA   L2
+L9:   L     7
+      SPA   L1
+L2:   L     DBW 2
+      T     MW 10""")
+
+
+def test_a_write_reached_by_a_backward_jump_keeps_the_register(tmp_path):
+    path, _ = written(tmp_path, "later", WRITE_LATER_DE)
+    assert as_awlsim(path, tmp_path, [{0: 0}] * 2, ("MW10",))[0]["MW10"] == 7
+
+
 def test_a_db_field_by_symbol_as_a_call_actual(tmp_path):
     path, asc = written(tmp_path, "actual", DB1 + FC_XW + ob1(
         'CALL FC 1 (x := "Data".x, w := MW 2)'), symbols=[("Data", "DB 1", "DB 1")])

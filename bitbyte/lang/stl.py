@@ -2582,7 +2582,8 @@ class StlFrontEnd:
                     n = int(field_.group(1))
                     if m not in ("=", "S", "R", "T"):
                         state = ("db", n)       # awlsim's __fetchDB, S7: opens DB n
-                    elif state != ("db", n):
+                    elif state not in (None, ("db", n)):   # (None: no path here
+                        # yet in this pass, a later one has it)
                         ops = stmt.operands
                         written = ops[0].shown or " ".join([ops[0].text] + [
                             w.text for w in ops[1:2] if w.text[0].isdigit()])
