@@ -670,6 +670,12 @@ FC_XW = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : BOOL;\n  w : INT;\nEND_VAR\nBEG
                                                         for n in range(6))),
      "1:1: unsupported: the global DBs need M 224 .. M 253, but the translation keeps M "
      "253 and up"),
+    (BIG.replace("  i15 : INT;\n", "").replace("  i14 : INT;\n", "").replace(
+        "  i13 : INT;\n", "") + DB1.replace("DB 1", "DB 2").replace("  f : REAL;\n", "")
+     + ob1("L DB1.DBW 24\nT MW 10\nL DB2.n\nT MW 12\nU E 0.0\n"
+            + "".join(f"L S5T#1S\nSE T {n}\n" for n in range(6))),
+     "20:1: unsupported: the global DBs need M 224 .. M 253, but the translation keeps "
+     "M 253 and up"),                       # at DB 2, whose bytes reach M 253
 ])
 def test_errors(tmp_path, capsys, text, where):
     path = tmp_path / "bad.awl"

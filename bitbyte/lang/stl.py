@@ -2796,8 +2796,9 @@ class StlFrontEnd:
             return
         end = DB_BYTES[0] + sum(d["size"] for d in self.db_used.values())
         low = min((op.byte for op in self.scratch_bits.values()), default=None)
-        if low is not None and low < end:
-            stmt = next(iter(self.db_used.values()))["block"]
+        if low is not None and low < end:       # at the first DB that reaches M low
+            stmt = next(d for d in self.db_used.values() if d["base"] + d["size"] >
+                        low)["block"]
             raise self.error(stmt.line, stmt.col, f"unsupported: the global DBs need M "
                              f"{DB_BYTES[0]} .. M {end - 1}, but the translation keeps M "
                              f"{low} and up for the timers and the startup")
