@@ -333,3 +333,55 @@ def test_the_clocks_docs_s7_states(tmp_path):
     lc, l_z = (scan_clocks(tmp_path, f"{m}    Z 1\nT     MW 10", [0])[0]
                for m in ("LC", "L "))
     assert lc - l_z == 140
+
+
+# Review findings (2026-12-03): a jump target starting with LOOP or LC is judged by
+# the statement after it (both pass /FC on); the SET/CLR the LOOP path emits before
+# its JU where it arrives with /FC = 0 (removing it makes scan 6 differ).
+FC_TARGETS = {
+    "loop_target_reached_by_spa": ("""      U     E 0.1
+      SPB   X
+      L     2
+      U     E 0.0
+N:    LOOP  N
+      =     A 0.0
+      BEA
+X:    L     3
+      SPA   N""", False),
+    "loop_path_with_fc_0": ("""      U     E 0.0
+      L     EW 2
+N:    U     E 0.1
+      =     A 0.0
+      LOOP  N
+      O     E 0.2
+      =     A 0.1""", True),
+    "lc_target_reached_with_fc_0_and_1": ("""      U     E 0.3
+      ZV    Z 1
+      U     E 0.1
+      SPB   X
+      U     E 0.0
+N:    LC    Z 1
+      T     MW 10
+      U     E 0.2
+      =     A 0.0
+      BEA
+X:    U     E 0.4
+      SPBN  N
+      SPA   N""", False),
+}
+
+
+@pytest.mark.parametrize("name", sorted(FC_TARGETS))
+def test_fc_passing_targets_against_awlsim(tmp_path, name):
+    body, counted = FC_TARGETS[name]
+    r = random.Random(3)
+    stim = [{0: r.randrange(32), 1: 0, 2: 0, 3: r.randint(1, 4) if counted else 0}
+            for _ in range(30)]
+    path = tmp_path / "p.awl"
+    path.write_text(ob(body))
+    words = ("MW10",)
+    expected = awlsim_scans(path, stim, mnemonics="de", words=words)
+    got = bitbyte_scans(path, stim, tmp_path, words=words,
+                        in_words=(2,) if counted else ())
+    assert first_difference(expected, got) is None
+    assert {row["Q0.0"] for row in expected} == {0, 1}

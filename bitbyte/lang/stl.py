@@ -103,7 +103,7 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 # ACCU1-L changed in place, ACCU2 left alone in S7 (here: IL steps that change
 # ACCU2 too, a constant or an IL arithmetic instruction each; `+ n` reads its n)
 IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I")}
-FC_PASS = ("L", "T", "LC", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
+FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
