@@ -167,3 +167,37 @@ def test_the_check_catches_a_write_before_its_old_value_is_read():
                                 "LD M0.2\n= M0.1\n")).units
     m, = L.map_units([swap], 4)
     assert L.check(swap, L.program_single(m))          # a cycle: through a scratch bit
+
+
+LONE_NOPS = """LD PI0.0
+JCN skip
+SET
+= M0.0
+skip: NOP
+= PQ0.1
+LD PI0.0
+NOP
+JC there
+SET
+= Q0.2
+there: NOP
+END
+"""
+
+
+def test_a_unit_of_only_nops_keeps_the_rlo():
+    # a lone NOP between a label and a reader of the RLO: it must not set the RLO to 0
+    p = parse("nops.il", LONE_NOPS)
+    s = split_program(p)
+    u = {x.start: x for x in s.units}
+    for a in (4, 7):
+        assert u[a].instrs[0].mnemonic == "NOP" and u[a].rlo_live
+        assert RLO not in u[a].outputs or (
+            u[a].inputs == [RLO] and u[a].outputs[RLO] == u[a].net.var(RLO))
+        assert L.check_against_refsim(u[a], p)
+        m, = L.map_units([u[a]], 4)
+        prog = L.program_single(m)
+        assert L.check(u[a], prog)
+        # the program leaves the RLO as it came in
+        pats, mask = L.patterns([RLO])
+        assert L.execute(prog, pats, mask)[RLO] == pats[RLO]

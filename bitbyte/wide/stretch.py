@@ -32,7 +32,8 @@ The stretch rule (docs/wide-engine.md):
 A unit's inputs: the incoming RLO if an instruction reads it before one sets it, and
 every bit operand read before the unit writes it (an `S`/`R` target counts as read: not
 taken, the bit keeps its old value).  Its outputs: the final value of every bit it
-writes, and the final RLO when the next instruction can observe it.  The dialect has no
+writes, and the final RLO when the next instruction can observe it and the unit
+changes it (a unit of NOPs passes the incoming RLO on).  The dialect has no
 first-check state (spec §3: an `A` at the scan start combines with the RLO 0; S7's /FC
 is compiled away by bitbyte/lang/stl.py), and a unit leaves the parenthesis stack as it
 found it, so the RLO is the only other state the next instruction sees.
@@ -255,7 +256,9 @@ def evaluate(instrs: list[Instr], inputs: list[str]) -> tuple[Net, dict[str, int
     input locations."""
     net = Net()
     state: dict[str, int] = {x: net.var(x) for x in inputs}
-    rlo = state.get(RLO, net.C0)          # unread if absent: any value will do
+    # the incoming RLO is a variable even when no instruction reads it: a unit that
+    # never sets it (a lone NOP) leaves it as it found it
+    rlo = state[RLO] if RLO in state else net.var(RLO)
     stack: list[tuple[int, str, int]] = []
     written: dict[str, int] = {}
 
@@ -306,8 +309,15 @@ def make_unit(program: Program, start: int, stop: int, rlo_live: bool) -> Unit:
     inputs = syntactic_inputs(instrs)
     net, written, rlo = evaluate(instrs, inputs)
     outputs = {x: v for x, v in written.items() if v != net.index.get(("v", x))}
-    if rlo_live:
+    if rlo_live and rlo != net.index.get(("v", RLO)):   # unchanged: nothing to write
         outputs[RLO] = rlo
+    # every variable the outputs depend on is an input (the RLO too when it only
+    # passes through to an output)
+    used = [net.nodes[n][1] for n in net.cone(list(outputs.values()))
+            if net.nodes[n][0] == "v"]
+    for x in used:
+        if x not in inputs:
+            inputs = [RLO] + inputs if x == RLO else inputs + [x]
     return Unit(start, stop, instrs, inputs, outputs, rlo_live, net)
 
 
