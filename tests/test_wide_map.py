@@ -201,3 +201,17 @@ def test_a_unit_of_only_nops_keeps_the_rlo():
         # the program leaves the RLO as it came in
         pats, mask = L.patterns([RLO])
         assert L.execute(prog, pats, mask)[RLO] == pats[RLO]
+
+
+def test_a_waiting_timer_read_cuts():
+    # parallel mode: the bit part's `LD T1` waits for the byte part's SD T1 (bit 16)
+    from bitbyte.compiler.partition import partition
+    p = parse("wait.il", "L MW0\nL 5\n>I\nSD T1\nLD I0.0\n= Q0.2\nLD T1\n= Q0.1\n")
+    bp = partition(p).bit_program()
+    waits = [i for i, x in enumerate(bp.instrs) if getattr(x, "wait_update", False)]
+    assert waits and bp.instrs[waits[0]].operand.address() == "T1"
+    s = split_program(bp)
+    assert s.scalar.get("wait") == waits
+    for u in s.units:
+        assert not any(getattr(x, "wait_update", False) for x in u.instrs)
+        assert "T1" not in u.inputs

@@ -6,13 +6,16 @@ The stretch rule (docs/wide-engine.md):
 * A *pure* bit instruction changes nothing but the RLO, the parenthesis stack and the
   bit images M and Q (the PIO), and reads nothing that can change while the bit
   processor runs straight-line code: `LD`/`LDN`/`A`/`AN`/`O`/`ON`/`X`/`XN` of I, IR,
-  IF, Q, QR, QF, M, T, C; the opening parentheses and `)`; `NOT`, `SET`, `CLR`, `NOP`;
+  IF, Q, QR, QF, M, T, C (a T/C read without the "wait for this scan's update"
+  flag, bit 16, docs/isa.md); the opening parentheses and `)`; `NOT`, `SET`, `CLR`, `NOP`;
   `=`, `S`, `R` of Q or M; `FP`/`FN` on M or Q.
 * Everything else is a *cut*, executed as today (scalar): labels (a cut before the
   labelled instruction), jumps, `END`, `REFRESH` / `REFRESH Q`, direct `PI`/`PQ`
   accesses (the pin is read or written at that instruction's clock), the channels
   FBI/FBY, byte instructions (L, T, arithmetic, compares, READ/WRITE) and the timer and
-  counter instructions (`S`/`R` of T and C included): each has an order-dependent
+  counter instructions (`S`/`R` of T and C included), and a T/C read with the
+  wait-for-update flag (the partitioning compiler's parallel mode sets it: the read
+  stalls until the byte part has updated T n/C n in this scan): each has an order-dependent
   effect outside the bit images, or reads state that such an effect changes.
 * A stretch is a maximal run of pure instructions that ends at the parenthesis depth
   (text order) it starts at and never goes below it: its parentheses are balanced
@@ -66,6 +69,8 @@ def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
     the pin read once per unit, the pin written with the PIO bit's final value)."""
     m, op = ins.mnemonic, ins.operand
     direct = ("PI", "PQ") if absorb_direct else ()
+    if getattr(ins, "wait_update", False):
+        return "wait"           # a T/C read that waits for this scan's update (bit 16)
     if ins.section == "BYTE":
         return "byte"
     if m in COMBINES:
