@@ -215,3 +215,16 @@ def test_a_waiting_timer_read_cuts():
     for u in s.units:
         assert not any(getattr(x, "wait_update", False) for x in u.instrs)
         assert "T1" not in u.inputs
+
+
+def test_pq_writes_cut_even_when_direct_accesses_are_absorbed():
+    # the pin pulses 1 then 0 at the two PQ writes' clocks; a unit would write only
+    # its final value (no pin change at all), and QR/QF would differ
+    text = "LD PI0.0\n= PQ0.0\nCLR\n= PQ0.0\nLD PQ0.0\n= M0.0\n"
+    p = parse("pq.il", text)
+    s = split_program(p, absorb_direct=True)
+    assert s.scalar.get("direct") == [1, 3]
+    for u in s.units:
+        assert not any(x.operand is not None and x.operand.area == "PQ"
+                       and x.mnemonic == "=" for x in u.instrs)
+        assert L.check_against_refsim(u, p)

@@ -65,8 +65,11 @@ def loc(op) -> str:
 
 def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
     """None for a pure bit instruction, else why it cuts a stretch.  absorb_direct:
-    PI reads and PQ accesses count as pure (the measured option of docs/wide-engine.md:
-    the pin read once per unit, the pin written with the PIO bit's final value)."""
+    PI and PQ reads count as pure (the measured option of docs/wide-engine.md: the pin
+    read once per unit, exact under scan-keyed stimuli).  A PQ write always cuts: its
+    pin changes at that instruction's clock, with that instruction's value, and only
+    when the value differs (spec: QR/QF do not flag it), which a unit's final value
+    does not reproduce."""
     m, op = ins.mnemonic, ins.operand
     direct = ("PI", "PQ") if absorb_direct else ()
     if getattr(ins, "wait_update", False):
@@ -80,8 +83,8 @@ def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
     if m in OPENS or m in (")", "NOT", "SET", "CLR", "NOP"):
         return None
     if m in ("=", "S", "R", "FP", "FN"):
-        if op.area in WRITE_AREAS or op.area in direct[1:]:
-            return None
+        if op.area in WRITE_AREAS:
+            return None             # a PQ write cuts even with absorb_direct (below)
         if op.area in ("T", "C"):
             return "timer/counter"
         return "direct" if op.area == "PQ" else "channel"
