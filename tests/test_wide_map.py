@@ -228,3 +228,56 @@ def test_pq_writes_cut_even_when_direct_accesses_are_absorbed():
         assert not any(x.operand is not None and x.operand.area == "PQ"
                        and x.mnemonic == "=" for x in u.instrs)
         assert L.check_against_refsim(u, p)
+
+
+AND8 = "LD I0.0\n" + "".join(f"A I0.{b}\n" for b in range(1, 8)) + "= Q0.0\n"
+
+
+def test_refsim_comparison_is_exhaustive_up_to_10_inputs_and_structured_above():
+    u, = split_program(parse("and8.il", AND8)).units
+    p = parse("and8.il", AND8)
+    assert L.check_against_refsim(u, p)
+    u.outputs["Q0.0"] = u.net.C0                 # wrong only in the all-ones state
+    assert not L.check_against_refsim(u, p)
+    st = L.refsim_states(12, samples=4)
+    full = (1 << 12) - 1
+    assert 0 in st and full in st and all(1 << j in st and full ^ (1 << j) in st
+                                          for j in range(12))
+    assert sorted(L.refsim_states(10)) == list(range(1024))
+    assert sorted(L.refsim_states(2)) == [0] * 8 + [1] * 8 + [2] * 8 + [3] * 8
+
+
+def test_refsim_comparison_randomises_the_state_outside_the_inputs():
+    p = parse("m.il", "LD M0.0\n= Q0.0\n")
+    u, = split_program(p).units
+    assert L.check_against_refsim(u, p)
+    net = u.net
+    u.outputs["Q0.0"] = net.AND(net.var("M0.0"), net.NOT(net.var(RLO)))   # reads the RLO
+    assert not L.check_against_refsim(u, p)
+    u.outputs = {}                               # claims Q0.0 unchanged: refsim changes it
+    assert not L.check_against_refsim(u, p)
+
+
+def test_the_check_rejects_reads_of_non_inputs_and_format_violations():
+    p = parse("m.il", "LD M0.0\n= Q0.0\n")
+    u, = split_program(p).units
+    assert u.inputs == ["M0.0"]
+    good = [L.MInstr(("M0.0",), [("Q0.0", 0b10)])]
+    assert L.check(u, good)
+    # Q0.0 := M0.0 ∧ ¬M0.1: M0.1 is no input (0 in the enumeration, anything on the chip)
+    assert not L.check(u, [L.MInstr(("M0.0", "M0.1"), [("Q0.0", 0b0010)])])
+    # a scratch bit read before it is written
+    assert not L.check(u, [L.MInstr(("M0.0", "S:x"), [("Q0.0", 0b0010)])])
+    # format limits: K operands, dual_s one memory write, single one destination
+    and8, = split_program(parse("and8.il", AND8)).units
+    wide = [L.MInstr(tuple(f"I0.{b}" for b in range(5)), [("S:a", 1 << 31)]),
+            L.MInstr(("S:a", "I0.5", "I0.6", "I0.7"), [("Q0.0", 1 << 15)])]
+    assert L.check(and8, wide) and L.check(and8, wide, K=5, variant="single")
+    assert not L.check(and8, wide, K=4, variant="single")
+    two = [L.MInstr(("M0.0",), [("Q0.0", 0b10), ("M0.1", 0b10)])]
+    u2, = split_program(parse("two.il", "LD M0.0\n= Q0.0\n= M0.1\n")).units
+    assert L.check(u2, two, K=4, variant="dual")
+    assert not L.check(u2, two, K=4, variant="dual_s")
+    assert not L.check(u2, two, K=4, variant="single")
+    many = [L.MInstr(("M0.0",), [(f"S:{k}", 0b10)]) for k in range(L.SCRATCH_BITS + 1)]
+    assert not L.format_ok(many, 4, "single")
