@@ -33,6 +33,7 @@ from bit_engine_bench import adder_il, fmax_lines  # noqa: E402
 from run_synth import git_rev                      # noqa: E402
 
 from benchlib import progress as bl_progress      # noqa: E402
+from bitbyte.compiler.partition import partition  # noqa: E402
 from bitbyte.lang.parser import parse             # noqa: E402
 from bitbyte.wide import lutmap as L              # noqa: E402
 from bitbyte.wide.stretch import split_program    # noqa: E402
@@ -82,15 +83,20 @@ def benchmarks(quick: bool) -> list[tuple[str, list[tuple[str, str]], bool]]:
     ex = ROOT / "examples"
     rand = [(f"rand{k}.il", t) for k, t in enumerate(random_programs(n, True))]
     interlock = [("interlock.il", (ex / "interlock.il").read_text())]
+    t1 = (HERE / "programs" / "table1.il").read_text()
+    t1p = parse("table1.il", t1)
     return [
         ("64-bit ripple-carry adder", [("adder64.il", adder_il())], False),
         (f"{n} random straight-line (randprog)", rand, False),
         ("the same, PI/PQ absorbed", rand, True),
         (f"{n} random, no PI/PQ",
          [(f"randnd{k}.il", t) for k, t in enumerate(random_programs(n, False))], False),
-        ("Table-1 program, bit part", [("table1.il",
-                                        (HERE / "programs" / "table1.il").read_text())],
+        ("Table-1 program, mixed (serial: its bit instructions)", [("table1.il", t1)],
          False),
+        ("Table-1 parallel bit part (channels)",
+         [("table1.bit", partition(t1p).bit_program())], False),
+        ("Table-1 parallel bit part (--tc-path status)",
+         [("table1.bit", partition(t1p, tc_path="status").bit_program())], False),
         ("examples/interlock.il", interlock, False),
         ("the same, PI/PQ absorbed", interlock, True),
         ("examples/star_delta.il", [("star_delta.il", (ex / "star_delta.il").read_text())],
@@ -104,7 +110,7 @@ def measure(quick: bool = False) -> list[dict]:
     for title, sources, absorb in benchmarks(quick):
         units, bit_il, scalar_il, stretches, ref_bad = [], 0, 0, 0, 0
         for name, text in sources:
-            p = parse(name, text)
+            p = parse(name, text) if isinstance(text, str) else text
             s = split_program(p, absorb_direct=absorb)
             stretches += len(s.stretches)
             cut = sum(len(v) for k, v in s.scalar.items() if k not in BYTE_SIDE)

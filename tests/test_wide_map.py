@@ -281,3 +281,20 @@ def test_the_check_rejects_reads_of_non_inputs_and_format_violations():
     assert not L.check(u2, two, K=4, variant="single")
     many = [L.MInstr(("M0.0",), [(f"S:{k}", 0b10)]) for k in range(L.SCRATCH_BITS + 1)]
     assert not L.format_ok(many, 4, "single")
+
+
+def test_a_bit_parts_status_write_is_a_counted_bit_instruction():
+    # --tc-path status: the bit part's `= T1` is a one-clock bit instruction (scalar),
+    # counted in the bench's bit IL (not on the byte side)
+    import wide_map_bench as W
+    from bitbyte.compiler.partition import partition
+    p = parse("st.il", "LD I0.1\nL 5\nSD T1\nLD I0.0\n= Q0.2\nLD T1\n= Q0.1\n")
+    bp = partition(p, tc_path="status").bit_program()
+    s = split_program(bp)
+    writes = [i for i, x in enumerate(bp.instrs) if x.mnemonic == "="
+              and x.operand.area == "T"]
+    assert writes and s.scalar.get("status") == writes
+    assert "status" not in W.BYTE_SIDE and "wait" not in W.BYTE_SIDE
+    titles = [t for t, _, _ in W.benchmarks(True)]
+    assert any("parallel bit part (channels)" in t for t in titles)
+    assert any("--tc-path status" in t for t in titles)

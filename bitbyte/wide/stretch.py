@@ -86,7 +86,9 @@ def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
         if op.area in WRITE_AREAS:
             return None             # a PQ write cuts even with absorb_direct (below)
         if op.area in ("T", "C"):
-            return "timer/counter"
+            # a bit part's `= T n` (--tc-path status): a one-clock bit instruction
+            # writing the status buffer, which the byte part reads
+            return "status" if m == "=" else "timer/counter"
         return "direct" if op.area == "PQ" else "channel"
     if m in ("JU", "JC", "JCN"):
         return "jump"
