@@ -167,3 +167,134 @@ def test_the_check_catches_a_write_before_its_old_value_is_read():
                                 "LD M0.2\n= M0.1\n")).units
     m, = L.map_units([swap], 4)
     assert L.check(swap, L.program_single(m))          # a cycle: through a scratch bit
+
+
+LONE_NOPS = """LD PI0.0
+JCN skip
+SET
+= M0.0
+skip: NOP
+= PQ0.1
+LD PI0.0
+NOP
+JC there
+SET
+= Q0.2
+there: NOP
+END
+"""
+
+
+def test_a_unit_of_only_nops_keeps_the_rlo():
+    # a lone NOP between a label and a reader of the RLO: it must not set the RLO to 0
+    p = parse("nops.il", LONE_NOPS)
+    s = split_program(p)
+    u = {x.start: x for x in s.units}
+    for a in (4, 7):
+        assert u[a].instrs[0].mnemonic == "NOP" and u[a].rlo_live
+        assert RLO not in u[a].outputs or (
+            u[a].inputs == [RLO] and u[a].outputs[RLO] == u[a].net.var(RLO))
+        assert L.check_against_refsim(u[a], p)
+        m, = L.map_units([u[a]], 4)
+        prog = L.program_single(m)
+        assert L.check(u[a], prog)
+        # the program leaves the RLO as it came in
+        pats, mask = L.patterns([RLO])
+        assert L.execute(prog, pats, mask)[RLO] == pats[RLO]
+
+
+def test_a_waiting_timer_read_cuts():
+    # parallel mode: the bit part's `LD T1` waits for the byte part's SD T1 (bit 16)
+    from bitbyte.compiler.partition import partition
+    p = parse("wait.il", "L MW0\nL 5\n>I\nSD T1\nLD I0.0\n= Q0.2\nLD T1\n= Q0.1\n")
+    bp = partition(p).bit_program()
+    waits = [i for i, x in enumerate(bp.instrs) if getattr(x, "wait_update", False)]
+    assert waits and bp.instrs[waits[0]].operand.address() == "T1"
+    s = split_program(bp)
+    assert s.scalar.get("wait") == waits
+    for u in s.units:
+        assert not any(getattr(x, "wait_update", False) for x in u.instrs)
+        assert "T1" not in u.inputs
+
+
+def test_pq_writes_cut_even_when_direct_accesses_are_absorbed():
+    # the pin pulses 1 then 0 at the two PQ writes' clocks; a unit would write only
+    # its final value (no pin change at all), and QR/QF would differ
+    text = "LD PI0.0\n= PQ0.0\nCLR\n= PQ0.0\nLD PQ0.0\n= M0.0\n"
+    p = parse("pq.il", text)
+    s = split_program(p, absorb_direct=True)
+    assert s.scalar.get("direct") == [1, 3]
+    for u in s.units:
+        assert not any(x.operand is not None and x.operand.area == "PQ"
+                       and x.mnemonic == "=" for x in u.instrs)
+        assert L.check_against_refsim(u, p)
+
+
+AND8 = "LD I0.0\n" + "".join(f"A I0.{b}\n" for b in range(1, 8)) + "= Q0.0\n"
+
+
+def test_refsim_comparison_is_exhaustive_up_to_10_inputs_and_structured_above():
+    u, = split_program(parse("and8.il", AND8)).units
+    p = parse("and8.il", AND8)
+    assert L.check_against_refsim(u, p)
+    u.outputs["Q0.0"] = u.net.C0                 # wrong only in the all-ones state
+    assert not L.check_against_refsim(u, p)
+    st = L.refsim_states(12, samples=4)
+    full = (1 << 12) - 1
+    assert 0 in st and full in st and all(1 << j in st and full ^ (1 << j) in st
+                                          for j in range(12))
+    assert sorted(L.refsim_states(10)) == list(range(1024))
+    assert sorted(L.refsim_states(2)) == [0] * 8 + [1] * 8 + [2] * 8 + [3] * 8
+
+
+def test_refsim_comparison_randomises_the_state_outside_the_inputs():
+    p = parse("m.il", "LD M0.0\n= Q0.0\n")
+    u, = split_program(p).units
+    assert L.check_against_refsim(u, p)
+    net = u.net
+    u.outputs["Q0.0"] = net.AND(net.var("M0.0"), net.NOT(net.var(RLO)))   # reads the RLO
+    assert not L.check_against_refsim(u, p)
+    u.outputs = {}                               # claims Q0.0 unchanged: refsim changes it
+    assert not L.check_against_refsim(u, p)
+
+
+def test_the_check_rejects_reads_of_non_inputs_and_format_violations():
+    p = parse("m.il", "LD M0.0\n= Q0.0\n")
+    u, = split_program(p).units
+    assert u.inputs == ["M0.0"]
+    good = [L.MInstr(("M0.0",), [("Q0.0", 0b10)])]
+    assert L.check(u, good)
+    # Q0.0 := M0.0 ∧ ¬M0.1: M0.1 is no input (0 in the enumeration, anything on the chip)
+    assert not L.check(u, [L.MInstr(("M0.0", "M0.1"), [("Q0.0", 0b0010)])])
+    # a scratch bit read before it is written
+    assert not L.check(u, [L.MInstr(("M0.0", "S:x"), [("Q0.0", 0b0010)])])
+    # format limits: K operands, dual_s one memory write, single one destination
+    and8, = split_program(parse("and8.il", AND8)).units
+    wide = [L.MInstr(tuple(f"I0.{b}" for b in range(5)), [("S:a", 1 << 31)]),
+            L.MInstr(("S:a", "I0.5", "I0.6", "I0.7"), [("Q0.0", 1 << 15)])]
+    assert L.check(and8, wide) and L.check(and8, wide, K=5, variant="single")
+    assert not L.check(and8, wide, K=4, variant="single")
+    two = [L.MInstr(("M0.0",), [("Q0.0", 0b10), ("M0.1", 0b10)])]
+    u2, = split_program(parse("two.il", "LD M0.0\n= Q0.0\n= M0.1\n")).units
+    assert L.check(u2, two, K=4, variant="dual")
+    assert not L.check(u2, two, K=4, variant="dual_s")
+    assert not L.check(u2, two, K=4, variant="single")
+    many = [L.MInstr(("M0.0",), [(f"S:{k}", 0b10)]) for k in range(L.SCRATCH_BITS + 1)]
+    assert not L.format_ok(many, 4, "single")
+
+
+def test_a_bit_parts_status_write_is_a_counted_bit_instruction():
+    # --tc-path status: the bit part's `= T1` is a one-clock bit instruction (scalar),
+    # counted in the bench's bit IL (not on the byte side)
+    import wide_map_bench as W
+    from bitbyte.compiler.partition import partition
+    p = parse("st.il", "LD I0.1\nL 5\nSD T1\nLD I0.0\n= Q0.2\nLD T1\n= Q0.1\n")
+    bp = partition(p, tc_path="status").bit_program()
+    s = split_program(bp)
+    writes = [i for i, x in enumerate(bp.instrs) if x.mnemonic == "="
+              and x.operand.area == "T"]
+    assert writes and s.scalar.get("status") == writes
+    assert "status" not in W.BYTE_SIDE and "wait" not in W.BYTE_SIDE
+    titles = [t for t, _, _ in W.benchmarks(True)]
+    assert any("parallel bit part (channels)" in t for t in titles)
+    assert any("--tc-path status" in t for t in titles)

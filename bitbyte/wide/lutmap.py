@@ -187,6 +187,8 @@ def map_units(units: list[Unit], K: int, flow: str = "abc") -> list[Mapped]:
 
         for x in u.outputs:
             m.pos[x] = resolve(pre + "o_" + _esc(x))
+        if u.rlo_live and RLO not in u.outputs and RLO in u.inputs:
+            m.pos[RLO] = "i:" + RLO     # passes through: a format that writes it restores it
         result.append(m)
     return result
 
@@ -429,12 +431,47 @@ def patterns(names: list[str]) -> tuple[dict[str, int], int]:
     return pats, mask
 
 
-def check(unit: Unit, prog: list[MInstr], max_inputs: int = 16) -> bool:
+SCRATCH_BITS = 32          # the scratch register file docs/wide-engine.md assumes
+
+
+def format_ok(prog: list[MInstr], K: int, variant: str,
+              scratch: int = SCRATCH_BITS) -> bool:
+    """The format's limits (module text): at most K operands (rlo: besides the RLO),
+    one destination (dual, dual_s: two, dual_s at most one of them in the bit memory;
+    rlo: the RLO and at most one bit), at most `scratch` scratch bits."""
+    for p in prog:
+        ops = [x for x in p.inputs if not (variant == "rlo" and x == RLO)]
+        dests = [d for d, _ in p.outs]
+        if len(ops) > K or len(set(dests)) != len(dests):
+            return False
+        if variant == "single" and len(dests) != 1:
+            return False
+        if variant in ("dual", "dual_s") and not 1 <= len(dests) <= 2:
+            return False
+        if variant == "dual_s" and len([d for d in dests if not d.startswith("S:")]) > 1:
+            return False
+        if variant == "rlo" and (RLO not in dests or len(dests) > 2):
+            return False
+    return len({d for p in prog for d, _ in p.outs if d.startswith("S:")}) <= scratch
+
+
+def check(unit: Unit, prog: list[MInstr], max_inputs: int = 16, K: int | None = None,
+          variant: str | None = None) -> bool:
     """Exhaustive: prog over every combination of the unit's inputs leaves every output
     location (and the live RLO) as the scalar semantics does, and no other bit image
-    changed.  False also when the unit has too many inputs to enumerate."""
+    changed; it reads nothing but the unit's inputs and what it wrote before (a read of
+    any other location, scratch bits included, would see a value the network does not
+    know).  With K and variant, also the format's limits (format_ok).  False also when
+    the unit has too many inputs to enumerate."""
     if len(unit.inputs) > max_inputs:
         return False
+    if K is not None and variant is not None and not format_ok(prog, K, variant):
+        return False
+    known = set(unit.inputs)
+    for p in prog:
+        if any(x not in known for x in p.inputs):
+            return False
+        known.update(d for d, _ in p.outs)
     if unit.expected is None:                  # the scalar semantics, once per unit
         pats, mask = patterns(unit.inputs)
         unit.expected = (pats, mask, dict(zip(unit.outputs, unit.net.evaluate(
@@ -444,6 +481,8 @@ def check(unit: Unit, prog: list[MInstr], max_inputs: int = 16) -> bool:
     for x, v in want.items():
         if got.get(x) != v:
             return False
+    if unit.rlo_live and RLO not in want and got.get(RLO, pats.get(RLO)) != pats.get(RLO):
+        return False                           # the RLO passes through unchanged
     for p in prog:
         for d, _ in p.outs:
             if d not in want and not d.startswith("S:") and d != RLO \
@@ -452,50 +491,91 @@ def check(unit: Unit, prog: list[MInstr], max_inputs: int = 16) -> bool:
     return True
 
 
-def check_against_refsim(unit: Unit, program, samples: int = 32, seed: int = 0) -> bool:
-    """The unit's network against the reference interpreter (bitbyte/ref/refsim.py) on
-    random states (every state when there are few inputs)."""
-    from bitbyte.ref.refsim import RefSim
+_IMAGES = {"I": "pii", "IR": "ir", "IF": "if_", "Q": "pio", "QR": "qr", "QF": "qf",
+           "M": "markers"}
+
+
+def refsim_states(n: int, exhaustive: int = 10, samples: int = 32, seed: int = 0):
+    """The input combinations check_against_refsim tries: all 2^n up to `exhaustive`
+    inputs (repeated up to `samples` states: each in a new random machine state), else
+    all 0, all 1, one-hot, one-cold and `samples` random ones."""
+    if n <= exhaustive:                        # each at least once, `samples` in all
+        every = list(range(1 << n))
+        return every * max(1, -(-samples // len(every)))
     rng = random.Random(seed)
-    n = len(unit.inputs)
-    combos = range(1 << n) if n <= 5 else [rng.getrandbits(n) for _ in range(samples)]
-    for a in combos:
+    full = (1 << n) - 1
+    return ([0, full] + [1 << j for j in range(n)] + [full ^ (1 << j) for j in range(n)]
+            + [rng.getrandbits(n) for _ in range(samples)])
+
+
+def check_against_refsim(unit: Unit, program, samples: int = 32, seed: int = 0,
+                         exhaustive: int = 10) -> bool:
+    """The unit's network against the reference interpreter (bitbyte/ref/refsim.py's
+    `_step` on the unit's instructions): over the input combinations of refsim_states,
+    each in a random machine state (every image bit, timer and counter status, the
+    RLO, the input and output pins random; the inputs then set), comparing the whole
+    state after the unit: the outputs as the network says, every other image bit,
+    status, pin and (when live) the RLO as before."""
+    from bitbyte.ref.refsim import RefSim
+    net = unit.net
+    if any(net.nodes[n][0] == "v" and net.nodes[n][1] not in unit.inputs
+           for n in net.cone(list(unit.outputs.values()))):
+        return False                           # the network reads a non-input
+    rng = random.Random(seed ^ 0x5EED)
+    cfg = program.config if hasattr(program, "config") else None
+    sim = RefSim(program) if cfg is None else RefSim(program, cfg)
+    cfg = sim.config
+    sizes = {a: 8 * cfg.area_size(a) for a in _IMAGES}
+    sizes["PI"] = 8 * cfg.area_size("PI")
+    for a in refsim_states(len(unit.inputs), exhaustive, samples, seed):
+        st = {a_: rng.getrandbits(w) for a_, w in sizes.items()}
+        outputs = rng.getrandbits(8 * cfg.area_size("PQ"))
+        timers = [rng.getrandbits(1) for _ in sim.timers]
+        counters = [rng.getrandbits(1) for _ in sim.counters]
+        rlo = rng.getrandbits(1)
         values = {x: (a >> j) & 1 for j, x in enumerate(unit.inputs)}
-        sim = RefSim(program)
-        pins = 0
-        sim.pins = lambda clock: pins
         for x, v in values.items():
             if x == RLO:
-                sim.rlo = v
+                rlo = v
                 continue
             area = re.match(r"[A-Z]+", x).group(0)
-            if area == "PI":                       # the pins, as a scan stimulus has them
-                pins |= v << _bit_number(x, area)
-                continue
             if area in ("T", "C"):
-                idx = int(x[len(area):])
-                if area == "T":
-                    sim.timers[idx].status = v
-                else:
-                    sim.counters[idx].value = v
+                (timers if area == "T" else counters)[int(x[len(area):])] = v
                 continue
             b = _bit_number(x, area)
-            attr = {"I": "pii", "IR": "ir", "IF": "if_", "Q": "pio", "QR": "qr",
-                    "QF": "qf", "M": "markers"}[area]
-            setattr(sim, attr, getattr(sim, attr) | (v << b))
+            st[area] = st[area] & ~(1 << b) | (v << b)
+        for area, attr in _IMAGES.items():
+            setattr(sim, attr, st[area])
+        sim.outputs = outputs
+        sim.output_events = []
+        pins = st["PI"]
+        sim.pins = lambda clock, pins=pins: pins
+        sim.rlo = rlo
+        sim.stack = []
+        for t, v in zip(sim.timers, timers):
+            t.status = v
+        for c, v in zip(sim.counters, counters):
+            c.value = v
         for k, ins in enumerate(unit.instrs):
             sim._step(ins, unit.start + k, 0)
-        pats = {x: v for x, v in values.items()}
-        want = dict(zip(unit.outputs, unit.net.evaluate(list(unit.outputs.values()), pats, 1)))
+        want = dict(zip(unit.outputs, unit.net.evaluate(list(unit.outputs.values()),
+                                                         values, 1)))
+        exp = dict(st)
         for x, v in want.items():
             if x == RLO:
-                got = sim.rlo
-            else:
-                area = re.match(r"[A-Z]+", x).group(0)
-                vec = sim.pio if area == "Q" else sim.markers
-                got = (vec >> _bit_number(x, area)) & 1
-            if got != v:
-                return False
+                continue
+            area = re.match(r"[A-Z]+", x).group(0)
+            b = _bit_number(x, area)
+            exp[area] = exp[area] & ~(1 << b) | (v << b)
+        if any(getattr(sim, attr) != exp[area] for area, attr in _IMAGES.items()):
+            return False
+        if unit.rlo_live and sim.rlo != want.get(RLO, rlo):
+            return False
+        if sim.outputs != outputs or sim.stack:
+            return False
+        if [t.status for t in sim.timers] != timers or \
+                [c.value for c in sim.counters] != counters:
+            return False
     return True
 
 
@@ -517,5 +597,5 @@ def compile_units(units: list[Unit], K: int, variant: str, flow: str = "abc",
     out = []
     for u, m in zip(units, mapped):
         prog = PROGRAMS[variant](m, K)
-        out.append(prog if check(u, prog, max_inputs) else None)
+        out.append(prog if check(u, prog, max_inputs, K, variant) else None)
     return out

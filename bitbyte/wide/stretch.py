@@ -6,13 +6,16 @@ The stretch rule (docs/wide-engine.md):
 * A *pure* bit instruction changes nothing but the RLO, the parenthesis stack and the
   bit images M and Q (the PIO), and reads nothing that can change while the bit
   processor runs straight-line code: `LD`/`LDN`/`A`/`AN`/`O`/`ON`/`X`/`XN` of I, IR,
-  IF, Q, QR, QF, M, T, C; the opening parentheses and `)`; `NOT`, `SET`, `CLR`, `NOP`;
+  IF, Q, QR, QF, M, T, C (a T/C read without the "wait for this scan's update"
+  flag, bit 16, docs/isa.md); the opening parentheses and `)`; `NOT`, `SET`, `CLR`, `NOP`;
   `=`, `S`, `R` of Q or M; `FP`/`FN` on M or Q.
 * Everything else is a *cut*, executed as today (scalar): labels (a cut before the
   labelled instruction), jumps, `END`, `REFRESH` / `REFRESH Q`, direct `PI`/`PQ`
   accesses (the pin is read or written at that instruction's clock), the channels
   FBI/FBY, byte instructions (L, T, arithmetic, compares, READ/WRITE) and the timer and
-  counter instructions (`S`/`R` of T and C included): each has an order-dependent
+  counter instructions (`S`/`R` of T and C included), and a T/C read with the
+  wait-for-update flag (the partitioning compiler's parallel mode sets it: the read
+  stalls until the byte part has updated T n/C n in this scan): each has an order-dependent
   effect outside the bit images, or reads state that such an effect changes.
 * A stretch is a maximal run of pure instructions that ends at the parenthesis depth
   (text order) it starts at and never goes below it: its parentheses are balanced
@@ -32,7 +35,8 @@ The stretch rule (docs/wide-engine.md):
 A unit's inputs: the incoming RLO if an instruction reads it before one sets it, and
 every bit operand read before the unit writes it (an `S`/`R` target counts as read: not
 taken, the bit keeps its old value).  Its outputs: the final value of every bit it
-writes, and the final RLO when the next instruction can observe it.  The dialect has no
+writes, and the final RLO when the next instruction can observe it and the unit
+changes it (a unit of NOPs passes the incoming RLO on).  The dialect has no
 first-check state (spec §3: an `A` at the scan start combines with the RLO 0; S7's /FC
 is compiled away by bitbyte/lang/stl.py), and a unit leaves the parenthesis stack as it
 found it, so the RLO is the only other state the next instruction sees.
@@ -61,10 +65,15 @@ def loc(op) -> str:
 
 def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
     """None for a pure bit instruction, else why it cuts a stretch.  absorb_direct:
-    PI reads and PQ accesses count as pure (the measured option of docs/wide-engine.md:
-    the pin read once per unit, the pin written with the PIO bit's final value)."""
+    PI and PQ reads count as pure (the measured option of docs/wide-engine.md: the pin
+    read once per unit, exact under scan-keyed stimuli).  A PQ write always cuts: its
+    pin changes at that instruction's clock, with that instruction's value, and only
+    when the value differs (spec: QR/QF do not flag it), which a unit's final value
+    does not reproduce."""
     m, op = ins.mnemonic, ins.operand
     direct = ("PI", "PQ") if absorb_direct else ()
+    if getattr(ins, "wait_update", False):
+        return "wait"           # a T/C read that waits for this scan's update (bit 16)
     if ins.section == "BYTE":
         return "byte"
     if m in COMBINES:
@@ -74,10 +83,12 @@ def cut_reason(ins: Instr, absorb_direct: bool = False) -> str | None:
     if m in OPENS or m in (")", "NOT", "SET", "CLR", "NOP"):
         return None
     if m in ("=", "S", "R", "FP", "FN"):
-        if op.area in WRITE_AREAS or op.area in direct[1:]:
-            return None
+        if op.area in WRITE_AREAS:
+            return None             # a PQ write cuts even with absorb_direct (below)
         if op.area in ("T", "C"):
-            return "timer/counter"
+            # a bit part's `= T n` (--tc-path status): a one-clock bit instruction
+            # writing the status buffer, which the byte part reads
+            return "status" if m == "=" else "timer/counter"
         return "direct" if op.area == "PQ" else "channel"
     if m in ("JU", "JC", "JCN"):
         return "jump"
@@ -255,7 +266,9 @@ def evaluate(instrs: list[Instr], inputs: list[str]) -> tuple[Net, dict[str, int
     input locations."""
     net = Net()
     state: dict[str, int] = {x: net.var(x) for x in inputs}
-    rlo = state.get(RLO, net.C0)          # unread if absent: any value will do
+    # the incoming RLO is a variable even when no instruction reads it: a unit that
+    # never sets it (a lone NOP) leaves it as it found it
+    rlo = state[RLO] if RLO in state else net.var(RLO)
     stack: list[tuple[int, str, int]] = []
     written: dict[str, int] = {}
 
@@ -306,8 +319,15 @@ def make_unit(program: Program, start: int, stop: int, rlo_live: bool) -> Unit:
     inputs = syntactic_inputs(instrs)
     net, written, rlo = evaluate(instrs, inputs)
     outputs = {x: v for x, v in written.items() if v != net.index.get(("v", x))}
-    if rlo_live:
+    if rlo_live and rlo != net.index.get(("v", RLO)):   # unchanged: nothing to write
         outputs[RLO] = rlo
+    # every variable the outputs depend on is an input (the RLO too when it only
+    # passes through to an output)
+    used = [net.nodes[n][1] for n in net.cone(list(outputs.values()))
+            if net.nodes[n][0] == "v"]
+    for x in used:
+        if x not in inputs:
+            inputs = [RLO] + inputs if x == RLO else inputs + [x]
     return Unit(start, stop, instrs, inputs, outputs, rlo_live, net)
 
 
