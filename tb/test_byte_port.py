@@ -505,6 +505,55 @@ async def every_output_word_bit(dut):
                 assert await read(dut, qw.addr + n) == sext16(words[n])
 
 
+
+@cocotb.test()
+async def tick_div_every_bit(dut):
+    """TICK_DIV written with patterns that give every bit both values, alone and with
+    all the others (one bit set, one bit clear) and each bit a code of its own (its
+    position in binary, and inverted): it reads back exactly, and keeps the value over
+    the clocks after the write. The random traffic writes small divisors only (short
+    milliseconds), so a bit that goes wrong only when another is set (mutation 9 of
+    the 2026-12-03 campaign: bit 9 flipped while bit 6 is set) needs these."""
+    await reset(dut)
+    tick = REG["TICK_DIV"]
+    assert await read(dut, tick.addr) == tick.reset
+    patterns = [1 << k for k in range(32)] + [M32 ^ (1 << k) for k in range(32)]
+    for mask in (0x55555555, 0x33333333, 0x0F0F0F0F, 0x00FF00FF, 0x0000FFFF):
+        patterns += [mask, M32 ^ mask]
+    for value in patterns:
+        await access(dut, tick.addr, value)
+        for _ in range(2):
+            assert await read(dut, tick.addr) == value, hex(value)
+
+
+@cocotb.test()
+async def dispatch_iw_every_word(dut):
+    """DISPATCH_IW for each of the 16 input words an instruction can name (bits 3..0
+    of the instruction word, as BusModel), every bit of the named word at both values
+    (a random input vector, then its complement): the dispatch's first clock reads the
+    named word live, the clocks after it the snapshot while the input words change.
+    The random traffic rarely reads a snapshot of a given word (mutation 16 of the
+    2026-12-03 campaign: word 5's bit 0 inverted on its way to the snapshot)."""
+    rng = random.Random(16)
+    await reset(dut)
+    iw = REG["DISPATCH_IW"].addr
+    full = (1 << 16 * WORDS) - 1
+    for n in range(WORDS):
+        vec = rng.getrandbits(16 * WORDS)
+        for words in (vec, full ^ vec):
+            dut.next_i.value = 0                  # no dispatch pending: the next is fresh
+            await RisingEdge(dut.clk_i)
+            await FallingEdge(dut.clk_i)
+            dut.in_words_i.value = words
+            dut.dispatch_instr_i.value = rng.getrandbits(28) << 4 | n
+            dut.next_i.value = 1
+            want = sext16(word(words, n))
+            assert await read(dut, iw) == want, (n, "live")
+            dut.in_words_i.value = full ^ words   # changes after the first clock
+            for _ in range(2):
+                assert await read(dut, iw) == want, (n, "snapshot")
+    dut.next_i.value = 0
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_byte_port(sim):
     run_cocotb(sim, "byte_port", "test_byte_port", parameters={"Channels": CHANNELS})
