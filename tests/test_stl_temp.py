@@ -19,7 +19,7 @@ from bitbyte.lang.errors import SourceError
 from bitbyte.lang.stl import parse_stl
 from tracecmp import first_difference
 
-TO_EN = {"U": "A", "UN": "AN", "SPB": "JC", "SPBN": "JCN", "SPA": "JU", "BEB": "BEC",
+TO_EN = {"U": "A", "UN": "AN", "SPB": "JC", "SPBN": "JCN", "SPA": "JU", "SPL": "JL", "BEB": "BEC",
          "E": "I", "A": "Q", "EW": "IW"}
 
 
@@ -79,6 +79,24 @@ END_DATA_BLOCK
 
 """
 
+JUMP_LIST = """
+      L     EW 2
+      SPL   M9
+      SPA   M1
+      SPA   M2
+M9:   SPA   M3
+M1:   U     E 0.0
+      =     #t
+      SPA   M4
+M2:   SPA   M4
+M3:   CLR
+      =     #t
+M4:   U     #t
+      =     A 0.0
+      U     E 0.1
+      =     A 0.1
+      """
+
 # (OB 1's body, blocks before it, the text of the line the error is on, its column
 # (the TEMP's `#`), the message's TEMP and block)
 REJECTED = {
@@ -130,6 +148,7 @@ M1:   U     #t
       =     A 0.0
       """, FC_TEMPS.replace("M1:   U     #f", "M1:   U     E 0.5"),
         "U     #t", "#t` of OB 1"),
+    "jump_list_entry": (JUMP_LIST, "", "M4:   U     #t", "#t` of OB 1"),
     "fb_input_actual": ("""
       CALL  FB 1, DB 1 (i := #t, o := A 0.0)
       """, FB_IN, "CALL  FB 1", "#t` of OB 1"),
@@ -188,6 +207,8 @@ def test_start_information_of_ob1():
 
 # written before they are read on every path: compared with awlsim
 ACCEPTED = {
+    "jump_list": JUMP_LIST.replace("M2:   SPA   M4", "M2:   SET\n      =     #t\n"
+                                   "      SPA   M4"),
     "write_then_read": """
       U     E 0.0
       UN    E 0.1
