@@ -149,6 +149,16 @@ M1:   U     #t
       """, FC_TEMPS.replace("M1:   U     #f", "M1:   U     E 0.5"),
         "U     #t", "#t` of OB 1"),
     "jump_list_entry": (JUMP_LIST, "", "M4:   U     #t", "#t` of OB 1"),
+    "fc_output_after_beb": ("""
+      CALL  FC 1 (q := #t)
+      U     #t
+      =     A 0.0
+      """, fc(1, """\
+      U     E 0.3
+      BEB
+      U     E 0.4
+      =     #q
+"""), "U     #t", "#t` of OB 1"),
     "fb_input_actual": ("""
       CALL  FB 1, DB 1 (i := #t, o := A 0.0)
       """, FB_IN, "CALL  FB 1", "#t` of OB 1"),
