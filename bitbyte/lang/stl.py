@@ -260,6 +260,7 @@ class Stmt:
     labels: list[Word] = field(default_factory=list)
     canon: str = ""     # canonical (English) mnemonic, once the language is known
     extra: object = None  # CALL: its CallInfo; @CALL/@END: the copies; @RET: the label
+    callee: str = ""    # @CALL: the called block's name (its TEMPs start undefined)
 
 
 _CALL_START = re.compile(r"\s*(?:[A-Za-z_]\w*\s*:(?!=)\s*)*(CALL|UC|CC)\b", re.I)
@@ -433,9 +434,110 @@ class StlFrontEnd:
         self.prepare_timers()
         self.check_db_region()
         program = self.translate()
+        self.check_temps()
         program.symbols = self.symbol_operands()
         program.startup_scans = 1 if self.startup else 0
         return program
+
+    # -- TEMPs: written before they are read -----------------------------------------
+
+    def check_temps(self) -> None:
+        """S7 leaves a block's TEMPs undefined at its start (the L stack holds what
+        an earlier block left there; awlsim: the stack's last contents, 0 at first);
+        here a TEMP is a marker that keeps its value from the last call.  So a TEMP
+        read where some path from its block's start has not written it is rejected
+        (docs/s7.md, "Blocks and calls").  A must analysis over the inlined program:
+        the set of TEMP markers written on every path, the states at the labels
+        iterated to their fixed point (they only shrink).  `=` and `T` write; `S`/`R`
+        write only when the RLO is 1, so not for sure; `FP`/`FN` and everything else
+        that names a TEMP read it; an FB's copies read the actuals in and write them
+        out; an FC's parameters are the actuals themselves (its reads and writes of
+        them are the caller's); a CALL starts the callee's TEMPs unwritten."""
+        owner: dict[str, tuple[Block, Decl]] = {}
+        for block in self.blocks.values():
+            for key, decl in block.decls.items():
+                word = self.cells.get((block.name, "TEMP", key))
+                if decl.section == "TEMP" and word is not None:
+                    owner[word.text.upper()] = (block, decl)
+        if not owner:
+            return
+        temps: dict[str, frozenset] = {}
+        for text, (block, _) in owner.items():
+            temps[block.name] = temps.get(block.name, frozenset()) | {text}
+
+        def meet(a, b):
+            return b if a is None else a if b is None else a & b
+
+        def temp_words(words):
+            return [w for w in words or [] if w.local and w.text.upper() in owner]
+
+        at: dict[str, frozenset] = {}       # label -> written on every path there
+        while True:
+            changed, errors = False, []
+            state, entries = frozenset(), None      # OB 1's start: none written
+
+            def reads(stmt: Stmt, words) -> None:
+                errors.extend((stmt, w) for w in temp_words(words)
+                              if w.text.upper() not in state)
+
+            def jump(label: str) -> None:
+                nonlocal changed
+                new = meet(at.get(label.upper()), state)
+                changed |= new != at.get(label.upper())
+                at[label.upper()] = new
+
+            for stmt in self.stmts:
+                m = stmt.canon
+                if m == "@STARTUP":                 # OB 100 starts: none written
+                    state, entries = frozenset(), None
+                    continue
+                if stmt.labels:
+                    entries = None
+                    for w in stmt.labels:
+                        state = meet(state, at.get(w.text.upper()))
+                elif state is None and entries is not None and m == "JU":
+                    state = entries                 # an entry of a jump list
+                if state is None or not stmt.mnemonic.text:
+                    continue                        # not reached
+                if m == "@CALL":
+                    for _, src, _ in stmt.extra:
+                        reads(self.param_stmt(stmt, src[0]) if src else stmt, src)
+                    state -= temps.get(stmt.callee, frozenset())
+                elif m == "@END":
+                    state |= {w.text.upper() for _, _, dst in stmt.extra
+                              for w in temp_words(dst)}
+                elif m in ("=", "T"):
+                    state |= {w.text.upper() for w in temp_words(stmt.operands)}
+                elif m not in ("S", "R") and not self.is_jump(stmt):
+                    reads(stmt, stmt.operands)
+                if m in ("JC", "JCN", "LOOP"):
+                    jump(stmt.operands[0].text)
+                elif m == "JL":
+                    jump(stmt.operands[0].text)
+                    state, entries = None, state
+                elif m == "JU":
+                    jump(stmt.operands[0].text)
+                    state = None
+                elif m == "@RET":
+                    jump(stmt.extra)
+                    state = None
+                elif m in ("BE", "BEU", "@STARTED"):
+                    state = None
+            if not changed:
+                break
+        if errors:
+            stmt, w = errors[0]
+            block, decl = owner[w.text.upper()]
+            name = f"#{decl.name}"
+            via = w.shown.split(" = ")[0] if w.shown else name
+            through = f" (as `{via}`)" if via.upper() != name.upper() else ""
+            start = (f"; {block.name}'s start information is not provided here"
+                     if block.kind == "OB" and decl.name.upper().startswith(
+                         f"OB{block.number}_") else "")
+            raise self.error(stmt.line, w.col, f"unsupported: TEMP `{name}` of "
+                             f"{block.name}{through} may be read before it is written "
+                             "(S7 leaves TEMPs undefined at the block's start; this CPU "
+                             f"keeps last scan's value{start})")
 
     # -- symbols -------------------------------------------------------------------
 
@@ -608,7 +710,7 @@ class StlFrontEnd:
                                                                      word.col)
         shown = f"{word.text} = {' '.join(w.shown or w.text for w in words)}" \
             if binding.cell is None else word.text
-        out = [Word(w.text, word.col, shown if i == 0 else "", w.local)
+        out = [Word(w.text, word.col, shown if i == 0 else "", w.local, word.line)
                for i, w in enumerate(words)]
         return binding, out
 
@@ -764,7 +866,7 @@ class StlFrontEnd:
         if m == "CC":                   # S7: called when RLO = 1; RLO := 1 either way
             out.append(Stmt(*where, [Word(prefix, stmt.col)], labels, "JCN"))
             labels = []
-        out.append(Stmt(*where, [], labels, "@CALL", copy_in))
+        out.append(Stmt(*where, [], labels, "@CALL", copy_in, callee.name))
         out += body
         out.append(Stmt(*where, [], [], "@LEAVE"))
         out.append(Stmt(*where, [], [Word(prefix, stmt.col)] if inner["returns"] else [],
