@@ -181,7 +181,7 @@ def test_read_before_write_is_unsupported(name, lang):
     first = str(err.value).split("\n")[0]
     assert first == (f"t.awl:{line}:{col}: unsupported: TEMP `{temp} may be read "
                      "before it is written (S7 leaves TEMPs undefined at the block's "
-                     "start; this CPU keeps last scan's value)"), first
+                     "start; this CPU keeps the value of the block's last run, 0 at first)"), first
 
 
 def test_fc_output_bound_to_a_temp_names_the_parameter():

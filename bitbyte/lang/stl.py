@@ -537,7 +537,7 @@ class StlFrontEnd:
             raise self.error(stmt.line, w.col, f"unsupported: TEMP `{name}` of "
                              f"{block.name}{through} may be read before it is written "
                              "(S7 leaves TEMPs undefined at the block's start; this CPU "
-                             f"keeps last scan's value{start})")
+                             f"keeps the value of the block's last run, 0 at first{start})")
 
     # -- symbols -------------------------------------------------------------------
 
