@@ -385,3 +385,19 @@ def test_fc_passing_targets_against_awlsim(tmp_path, name):
                         in_words=(2,) if counted else ())
     assert first_difference(expected, got) is None
     assert {row["Q0.0"] for row in expected} == {0, 1}
+
+
+@pytest.mark.parametrize("body, first", [
+    ("      LC    Z 1\n      T     MW 200",
+     "(first: the translation of `LC` at line 5 keeps a scratch cell there)"),
+    ("      L     3\nN:    LOOP  N\n      =     M 150.0",
+     "(first: the translation of `LOOP` at line 6 keeps a scratch cell there)"),
+])
+def test_the_region_message_names_what_opened_it(tmp_path, capsys, body, first):
+    """A program without FBs or TEMPs whose LC / LOOP opened the block-local region:
+    the message names that statement, not FB instances or TEMPs it does not have."""
+    path = tmp_path / "region.awl"
+    path.write_text(ob(body))
+    assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert "which this program's block-local data" in err and first in err, err

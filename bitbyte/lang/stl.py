@@ -639,6 +639,7 @@ class StlFrontEnd:
         @LEAVE (the block end: /FC = 0, OR = 0), @END (an FB's outputs copied out,
         the label the block's BEA/BEB jump to), @RET (BEA/BE)."""
         self.cells: dict[tuple, Word] = {}
+        self.first_local: tuple[Stmt, tuple] | None = None   # who opened the region
         self.local_bits = 0
         self.local_words = 0
         self.inlined = 0
@@ -688,6 +689,8 @@ class StlFrontEnd:
         text = f"M{k // 8}.{k % 8}" if bit else f"MW{k}"
         word = Word(text, 0, "", True)
         self.cells[binding.cell] = word
+        if self.first_local is None:
+            self.first_local = (stmt, binding.cell)
         return [word]
 
     def bound_words(self, stmt: Stmt, word: Word, scope: dict) -> tuple[Binding,
@@ -939,8 +942,17 @@ class StlFrontEnd:
                 raise self.unsupported(self.param_stmt(stmt, ops[0]),
                                        f"`{shown}` is in M {LOCAL_BYTES[0]} .. "
                                        f"M {LOCAL_BYTES[1] - 1}, which this program's "
-                                       "block-local data (FB instances, TEMPs) uses",
-                                       ops[0].col)
+                                       "block-local data (FB instances, TEMPs) uses"
+                                       + self.first_local_user(), ops[0].col)
+
+    def first_local_user(self) -> str:
+        """What put the first cell into the block-local region, for the message above
+        (a program without FBs or TEMPs opens it with an `SPL`, `LC` or `LOOP`)."""
+        stmt, key = self.first_local
+        if key[0] == "@":
+            return (f" (first: the translation of `{stmt.mnemonic.text}` at line "
+                    f"{stmt.line} keeps a scratch cell there)")
+        return f" (first: `#{key[-1]}` of {key[0]}, line {stmt.line})"
 
     def marker_uses(self):
         """(statement, operand words, first byte, last byte) of every marker bit or
