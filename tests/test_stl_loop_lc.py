@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from asmcheck import assert_refused
 from awlsim_oracle import awlsim_scans, bitbyte_scans
-from bitbyte import cli
 from bitbyte.lang import stl
 from tracecmp import first_difference
 
@@ -173,11 +173,7 @@ def ob(body: str) -> str:
 
 
 def assert_rejected(tmp: Path, capsys, body: str, line: int, col: int, message: str):
-    path = tmp / "bad.awl"
-    path.write_text(ob(body))
-    code = cli.main(["asm", str(path), "-o", str(tmp)])
-    err = capsys.readouterr().err
-    assert code == 1 and err.startswith(f"{path}:{line}:{col}: {message}"), err
+    assert_refused(tmp, capsys, ob(body), f"{line}:{col}: {message}")
 
 
 # -- LC ----------------------------------------------------------------------------------
@@ -396,8 +392,5 @@ def test_fc_passing_targets_against_awlsim(tmp_path, name):
 def test_the_region_message_names_what_opened_it(tmp_path, capsys, body, first):
     """A program without FBs or TEMPs whose LC / LOOP opened the block-local region:
     the message names that statement, not FB instances or TEMPs it does not have."""
-    path = tmp_path / "region.awl"
-    path.write_text(ob(body))
-    assert cli.main(["asm", str(path), "-o", str(tmp_path)]) == 1
-    err = capsys.readouterr().err
+    err = assert_refused(tmp_path, capsys, ob(body), "")
     assert "which this program's block-local data" in err and first in err, err

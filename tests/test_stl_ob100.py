@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from asmcheck import assert_refused
 from awlsim_oracle import awlsim_scans, bitbyte_scans, equal_or_rejected, timer_scans
 from stlgen import IN_WORDS, random_inputs, random_program
 from stlgen import WORDS as WORDS_RANDOM
@@ -342,13 +343,7 @@ def test_listing_labels_the_startup_part(tmp_path, capsys):
     (block(100, "L MW 10\n+I\nT MW 12") + block(1, "SET"), "6:1: unsupported: `+I` reads"),
 ])
 def test_errors(tmp_path, capsys, text, where):
-    path = tmp_path / "bad.awl"
-    path.write_text(text)
-    code = cli.main(["asm", str(path), "-o", str(tmp_path)])
-    err = capsys.readouterr().err
-    assert code == cli.EXIT_SOURCE, err
-    assert err.startswith(f"{path}:{where}"), err
-    assert "Traceback" not in err
+    assert_refused(tmp_path, capsys, text, where)
 
 
 def test_ob100_starts_with_rlo_0(tmp_path):
