@@ -19,45 +19,38 @@
 // the next clock. Writes pipeline, one per clock (a merge reads the one before it
 // through the bypass).
 //
-// The read port is the one shared resource: ReaderFirst = 1 gives it to the reader
-// whenever it asks (the bit side reads its FBI cells at one per clock and never
-// waits; the byte side's writes wait a clock), ReaderFirst = 0 to the writer (the bit
-// side writes FBY cells at one per clock; the byte side's bus reads wait). Neither
-// side can be starved by the other in a program: the bit side's reads and writes of
-// cells are some of its instructions, never all of a scan (END is one).
+// The RAM is kept twice, written alike: the reader reads its copy, the writer's merge
+// reads the other, so the two sides never share a port and neither ever waits for the
+// other (spec §1: a write region per side, no arbitration). The price is a second
+// block RAM per direction (one 256 x 16 iCE40 RAM each at 128 cells).
 //
 // After reset the RAM is cleared, one word a clock (4 * Words clocks): all cells read
 // 0 then, and writes wait (ready_o low).
 module marker_region #(
   parameter integer Cells       = 128,  // condition cells (a power of two; 100 crossings fit)
-  parameter integer WordBits    = 16,   // cells per RAM word (16: the iCE40's 256 x 16)
-  parameter integer ReaderFirst = 1     // 1: the reader has the read port first, 0: the writer
+  parameter integer WordBits    = 16    // cells per RAM word (16: the iCE40's 256 x 16)
 ) (
   input  wire                     clk_i,
   input  wire                     rst_ni,
   input  wire                     write_buffer_i,  // 1: snapshots take published cells
   output wire                     ready_o,         // cleared after reset
-  // writer: a write is taken in a clock with wr_req_i && wr_ready_o
+  // writer: a write is taken in every clock with wr_req_i once ready_o (after reset)
   input  wire                     wr_req_i,
   input  wire [$clog2(Cells)-1:0] wr_idx_i,
   input  wire                     wr_data_i,
-  output wire                     wr_ready_o,
   input  wire                     publish_i,       // writer's scan end (this clock's write in)
-  // reader: a read is taken in a clock with rd_req_i && rd_ready_o; its cell is on
-  // rd_data_o in the next clock (only then: a block RAM's output register)
+  // reader: a read is taken in every clock with rd_req_i; its cell is on rd_data_o in
+  // the next clock (only then: a block RAM's output register)
   input  wire                     snap_i,          // reader's scan start: reads from this
                                                    // clock on see the cells of before it
   input  wire                     rd_req_i,
   input  wire [$clog2(Cells)-1:0] rd_idx_i,
-  output wire                     rd_ready_o,
   output wire                     rd_data_o
 );
   `PARAM_CHECK(g_bad_word_bits, WordBits < 2 || WordBits > 16 || (WordBits & (WordBits - 1)) != 0,
                "marker_region: WordBits must be 2, 4, 8 or 16 (a block RAM word)")
   `PARAM_CHECK(g_bad_cells, Cells < 2 * WordBits || Cells > 4096 || (Cells & (Cells - 1)) != 0,
                "marker_region: Cells must be a power of two, 2*WordBits..4096")
-  `PARAM_CHECK(g_bad_reader_first, ReaderFirst < 0 || ReaderFirst > 1,
-               "marker_region: ReaderFirst must be 0 or 1")
 
   localparam integer Words = Cells / WordBits;
   localparam integer IW    = $clog2(Cells);
@@ -80,16 +73,10 @@ module marker_region #(
   wire [2*Words-1:0] r_next = snap_i ? (write_buffer_i ? p_q : w_q) : r_q;
   wire [1:0] r_of_r = r_next[2*r_word +: 2];
 
-  // ---------------------------------------------------------------- read port
-  wire rd_take = rd_req_i && rd_ready_o;
-  wire wr_take = wr_req_i && wr_ready_o;
-  if (ReaderFirst != 0) begin : g_reader_first
-    assign rd_ready_o = 1'b1;
-    assign wr_ready_o = !clearing && !rd_req_i;
-  end else begin : g_writer_first
-    assign wr_ready_o = !clearing;
-    assign rd_ready_o = !wr_req_i || clearing;
-  end
+  // ---------------------------------------------------------------- the two sides
+  // a read is always taken (while clearing it answers 0); a write once cleared
+  wire rd_take = rd_req_i;
+  wire wr_take = wr_req_i && !clearing;
 
   // The slot a write goes to: not the reader's (after this clock's update) and, with
   // the write buffer, not the published one; w itself if it is neither.
@@ -99,30 +86,38 @@ module marker_region #(
   wire [1:0] free_slot = !busy[0] ? 2'd0 : !busy[1] ? 2'd1 : 2'd2;
   wire [1:0] w_slot = busy[w_of_w] ? free_slot : w_of_w;
 
-  // ---------------------------------------------------------------- the RAM
+  // ---------------------------------------------------------------- the RAM, twice
   // no_rw_check: a read of the word written in the same clock may return either value;
-  // the bypass below gives the new one.
+  // the bypasses below give the new one (a merge reads the word the merge before it
+  // writes; a snapshot taken in a clock may point the reader at a word being merged).
   (* no_rw_check *)
-  reg  [WordBits-1:0] mem [0:(1 << AW)-1];
-  reg  [WordBits-1:0] ram_q;
-  wire          re    = rd_take || wr_take;
-  wire [AW-1:0] raddr = wr_take ? {w_of_w, w_word} : {r_of_r, r_word};
+  reg  [WordBits-1:0] mem_r [0:(1 << AW)-1];   // the reader's copy
+  (* no_rw_check *)
+  reg  [WordBits-1:0] mem_w [0:(1 << AW)-1];   // the writer's copy (merge reads)
+  reg  [WordBits-1:0] ram_r_q, ram_w_q;
+  wire [AW-1:0] r_raddr = {r_of_r, r_word};
+  wire [AW-1:0] w_raddr = {w_of_w, w_word};
   // the merge of a write taken last clock (pend_*): the word it read, one bit new
   reg           pend_q, pend_data_q;
   reg  [AW-1:0] pend_addr_q;
   reg  [BW-1:0] pend_bit_q;
-  reg           byp_q;                   // the last read's address was written in its clock
-  reg  [WordBits-1:0] byp_data_q;
-  wire [WordBits-1:0] read_word = byp_q ? byp_data_q : ram_q;
-  wire [WordBits-1:0] merged = (read_word & ~({{(WordBits-1){1'b0}}, 1'b1} << pend_bit_q)) |
+  reg           byp_r_q, byp_w_q;        // the last read's address was written in its clock
+  reg  [WordBits-1:0] byp_data_q;        // ... with this word (one write a clock)
+  wire [WordBits-1:0] merge_in = byp_w_q ? byp_data_q : ram_w_q;
+  wire [WordBits-1:0] read_word = byp_r_q ? byp_data_q : ram_r_q;
+  wire [WordBits-1:0] merged = (merge_in & ~({{(WordBits-1){1'b0}}, 1'b1} << pend_bit_q)) |
                                ({{(WordBits-1){1'b0}}, pend_data_q} << pend_bit_q);
   wire          we    = clearing || pend_q;
   wire [AW-1:0] waddr = clearing ? clear_q[AW-1:0] : pend_addr_q;
   wire [WordBits-1:0] wdata = clearing ? {WordBits{1'b0}} : merged;
 
   always @(posedge clk_i) begin
-    if (we) mem[waddr] <= wdata;
-    if (re) ram_q <= mem[raddr];
+    if (we) begin
+      mem_r[waddr] <= wdata;
+      mem_w[waddr] <= wdata;
+    end
+    if (rd_take) ram_r_q <= mem_r[r_raddr];
+    if (wr_take) ram_w_q <= mem_w[w_raddr];
   end
 
   // ---------------------------------------------------------------- state
@@ -139,7 +134,8 @@ module marker_region #(
       pend_data_q <= 1'b0;
       pend_addr_q <= {AW{1'b0}};
       pend_bit_q  <= {BW{1'b0}};
-      byp_q       <= 1'b0;
+      byp_r_q     <= 1'b0;
+      byp_w_q     <= 1'b0;
       byp_data_q  <= {WordBits{1'b0}};
       rd_bit_q    <= {BW{1'b0}};
       rd_zero_q   <= 1'b0;
@@ -157,10 +153,10 @@ module marker_region #(
       pend_data_q <= wr_data_i;
       pend_addr_q <= {w_slot, w_word};
       pend_bit_q  <= wr_idx_i[BW-1:0];
-      if (re) begin
-        byp_q      <= we && (waddr == raddr);
-        byp_data_q <= wdata;
-      end
+      // one write a clock: both bypasses take the same word
+      byp_data_q <= wdata;
+      if (rd_take) byp_r_q <= we && (waddr == r_raddr);
+      if (wr_take) byp_w_q <= we && (waddr == w_raddr);
       if (rd_take) begin
         rd_bit_q  <= rd_idx_i[BW-1:0];
         rd_zero_q <= clearing;
@@ -212,12 +208,6 @@ module marker_region #(
     if (f_rd_q) assert (rd_data_o == f_snap[f_ridx_q]);
     // the clearing takes one clock per RAM address, then ends
     assert (clear_q == f_age);
-    // the arbitration as promised: the side without priority is served whenever the
-    // other does not ask
-    if (ReaderFirst != 0) assert (rd_ready_o);
-    if (ReaderFirst == 0 && !clearing) assert (wr_ready_o);
-    if (ReaderFirst == 0) assert (rd_ready_o || wr_req_i);
-    if (!clearing) assert (wr_ready_o || rd_req_i);
     // invariants for the induction (f_inv_*: the bmc task drops them, so a mutant
     // must break a claim)
     if (clearing) begin
@@ -228,19 +218,20 @@ module marker_region #(
     if (pend_q) f_inv_pend: assert (w_q[2*pend_addr_q[WW-1:0] +: 2] == pend_addr_q[AW-1:WW]);
   end
   // per word (and per RAM address while clearing), gathered into one assertion each
-  wire [(1 << AW)-1:0] f_cleared;
+  wire [(1 << AW)-1:0] f_cleared, f_copies;
   wire [Words-1:0]     f_slots_ok, f_r_ok, f_w_ok, f_p_ok;
   genvar f_a, f_w;
   for (f_a = 0; f_a < (1 << AW); f_a = f_a + 1) begin : g_f_clear
-    assign f_cleared[f_a] = !(clearing && f_a < clear_q[AW-1:0]) || mem[f_a] == 0;
+    assign f_cleared[f_a] = !(clearing && f_a < clear_q[AW-1:0]) || mem_r[f_a] == 0;
+    assign f_copies[f_a]  = (clearing && f_a >= clear_q[AW-1:0]) || mem_r[f_a] == mem_w[f_a];
   end
   // what each pointer's slot holds: the RAM, or the merge being written this clock
   for (f_w = 0; f_w < Words; f_w = f_w + 1) begin : g_f_word
     localparam [WW-1:0] Wd = f_w;
     wire [1:0] r = r_q[2*f_w +: 2], p = p_q[2*f_w +: 2], w = w_q[2*f_w +: 2];
-    wire [WordBits-1:0] r_has = (pend_q && pend_addr_q == {r, Wd}) ? merged : mem[{r, Wd}];
-    wire [WordBits-1:0] p_has = (pend_q && pend_addr_q == {p, Wd}) ? merged : mem[{p, Wd}];
-    wire [WordBits-1:0] w_has = (pend_q && pend_addr_q == {w, Wd}) ? merged : mem[{w, Wd}];
+    wire [WordBits-1:0] r_has = (pend_q && pend_addr_q == {r, Wd}) ? merged : mem_r[{r, Wd}];
+    wire [WordBits-1:0] p_has = (pend_q && pend_addr_q == {p, Wd}) ? merged : mem_r[{p, Wd}];
+    wire [WordBits-1:0] w_has = (pend_q && pend_addr_q == {w, Wd}) ? merged : mem_r[{w, Wd}];
     assign f_slots_ok[f_w] = r != 2'd3 && p != 2'd3 && w != 2'd3;
     assign f_r_ok[f_w] = r_has == f_snap[f_w*WordBits +: WordBits];
     assign f_w_ok[f_w] = w_has == f_work[f_w*WordBits +: WordBits];
@@ -248,6 +239,7 @@ module marker_region #(
   end
   always @(*) if (rst_ni) begin
     f_inv_cleared: assert (&f_cleared);
+    f_inv_copies: assert (&f_copies);        // both copies are written alike
     f_inv_slots: assert (&f_slots_ok);
     if (!clearing) begin
       f_inv_r: assert (&f_r_ok);

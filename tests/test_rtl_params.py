@@ -58,7 +58,7 @@ CPU_CORNERS = [
 ]
 # rtl/marker_region.v (issue 16 item 2), on its own until the CPU instantiates it
 REGION_CORNERS = [
-    {}, {"ReaderFirst": 0}, {"Cells": 4, "WordBits": 2}, {"Cells": 16, "WordBits": 8},
+    {}, {"Cells": 4, "WordBits": 2}, {"Cells": 16, "WordBits": 8},
     {"Cells": 32, "WordBits": 16}, {"Cells": 4096},
 ]
 PLANT_CORNERS = [
@@ -115,7 +115,6 @@ BAD = [
     ("marker_region", {"Cells": 8192}, "Cells"),
     ("marker_region", {"WordBits": 3}, "WordBits"),
     ("marker_region", {"WordBits": 32}, "WordBits"),
-    ("marker_region", {"ReaderFirst": 2}, "ReaderFirst"),
     ("plc_system", {"Cores": 1}, "Cores"),
     ("plc_system", {"Cores": 9}, "Cores"),
     ("plc_system", {"PlanWords": 1000}, "PlanWords"),
