@@ -12,6 +12,7 @@
 #define BB_NUM_IW               16u
 #define BB_NUM_QW               16u
 #define BB_NUM_CHANNELS         8u     /* FBY/FBI k: the bus decodes them all */
+#define BB_NUM_CELLS            128u   /* FBY/FBI k with the marker exchange (the MCELL window) */
 #define BB_POOL_WORDS           1024u  /* constant pool (L#POOL) */
 #define BB_PROG_WORDS           4096u  /* byte program (parallel mode) */
 #define BB_MAX_STEPS_DEFAULT    1000000u /* bb_state.max_steps after bb_init() */

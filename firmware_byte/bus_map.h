@@ -46,6 +46,7 @@
 #define BB_BUS_FORCE_IN_VAL(n)  (0x74u + (unsigned)(n)) /* W, n < 4 */
 #define BB_BUS_FORCE_OUT_MASK(n) (0x78u + (unsigned)(n)) /* W, n < 4 */
 #define BB_BUS_FORCE_OUT_VAL(n) (0x7Cu + (unsigned)(n)) /* W, n < 4 */
+#define BB_BUS_MCELL(n)         (0x80u + (unsigned)(n)) /* RW, n < 128 */
 #define BB_BUS_MW(n)            (0x100u + (unsigned)(n)) /* RW, n < 256 */
 
 #define BB_BUS_ID_VALUE         0xB17B7E01u
@@ -69,6 +70,7 @@
 #define BB_BUS_CHANNELS         8u     /* FBY 0..7 */
 #define BB_BUS_IW_WORDS         16u    /* IW 0..15 */
 #define BB_BUS_QW_WORDS         16u    /* QW 0..15 */
+#define BB_BUS_MCELLS           128u   /* MCELL 0..127 */
 #define BB_BUS_MW_WORDS         256u   /* MW 0..255 */
 
 #endif /* BB_BUS_MAP_H */

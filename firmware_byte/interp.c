@@ -91,7 +91,7 @@ int bb_classify(uint32_t instr) {
     case BB_OP_CU: case BB_OP_CD: case BB_OP_SC: case BB_OP_RC:
       return (area == BB_AREA_C && n < BB_NUM_COUNTERS) ? BB_CL_COUNTER : BB_CL_ILLEGAL;
     case BB_OP_READ: case BB_OP_WRITE:
-      return (area == BB_AREA_FB && n < BB_NUM_CHANNELS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
+      return (area == BB_AREA_FB && n < BB_NUM_CELLS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
     case BB_OP_JU_B: case BB_OP_JC_B: case BB_OP_JCN_B:
       return BB_CL_BINARY;     /* the target is checked by execution (program length) */
     case BB_OP_END_B:

@@ -52,7 +52,7 @@ def bench(module: str, *more: str) -> Campaign:
 CPU_PROGRAMS = 60
 
 CAMPAIGNS = [
-    bench("cond_ff"), bench("hsem"), bench("marker_area"),
+    bench("cond_ff"), bench("hsem"), bench("marker_region"),
     # its saturation test runs on Verilator only (131 000 clocks)
     Campaign("cond_queue", ["tb/test_cond_queue.py"], ["cond_queue"], keyword="icarus or saturation"),
     bench("dispatch"), bench("input_unit"), bench("output_unit"), bench("scan_ctrl"),

@@ -44,7 +44,8 @@ module bit_proc #(
   parameter integer MarkerBits  = 2048,  // marker bits (M)
   parameter integer StatusBits  = 64,    // timers and counters each (T, C)
   parameter integer Channels    = 4,     // exchange channels (FBI, FBY)
-  parameter integer NestDepth   = 8      // parenthesis levels
+  parameter integer NestDepth   = 8,     // parenthesis levels
+  parameter integer Cells       = 128    // marker area cells per direction (FBI/FBY k)
 ) (
   input  wire                         clk_i,
   input  wire                         rst_ni,
@@ -96,6 +97,17 @@ module bit_proc #(
   output wire [Channels-1:0]          fby_wr_req_o,
   output wire                         fby_wr_data_o,
   input  wire [Channels-1:0]          fby_wr_ready_i,
+  // the marker exchange (marker_i, a register): FBI k / FBY k are cell k of the marker
+  // area (cond_exchange.v), never waiting. The cell of an FBI read is read while the
+  // instruction is in operand and comes in its first execute clock; `= FBY k` writes
+  // cell k in the clock it completes.
+  input  wire                         marker_i,
+  output wire                         cell_re_o,
+  output wire [$clog2(Cells)-1:0]     cell_ridx_o,
+  input  wire                         cell_rdata_i,
+  output wire                         cell_we_o,
+  output wire [$clog2(Cells)-1:0]     cell_widx_o,
+  output wire                         cell_wdata_o,
   // serial dispatch of byte instructions (dispatch.v)
   output wire                         byte_req_o,     // a byte instruction waits in execute
   output wire [31:0]                  byte_instr_o,
@@ -160,6 +172,8 @@ module bit_proc #(
   `PARAM_CHECK(g_bad_channels, Channels < 1 || Channels > 4096,
                "bit_proc: Channels must be 1..4096 (12-bit operand index)")
   `PARAM_CHECK(g_bad_nest_depth, NestDepth < 1, "bit_proc: NestDepth must be at least 1")
+  `PARAM_CHECK(g_bad_cells, Cells < 2 || Cells > 4096,
+               "bit_proc: Cells must be 2..4096 (12-bit operand index)")
 
   // ---------------------------------------------------------------- fetch / decode
   reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM
@@ -277,8 +291,10 @@ module bit_proc #(
   wire w_fact     = w_fwait_q && exec_i;
   wire e_act      = e_go && !w_busy;     // not blocked behind the wait slot
   wire e_blocked  = e_go && w_busy;
-  wire fbi_read   = e_act && e_on_fb_q && e_logic_q;
-  wire fby_write  = e_act && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  // (with the marker exchange an FB access is a cell's, never a channel's: no wait)
+  wire fbi_read   = e_act && e_on_fb_q && e_logic_q && !marker_i;
+  wire fby_cell   = e_act && e_on_fb_q && (e_assign_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
+  wire fby_write  = fby_cell && !marker_i;
   wire e_fby_data = !e_rstbit_q && rlo_o;               // =: RLO; S: 1; R: 0
   wire chan_wait  = (fbi_read  && !(|(fbi_rd_ready_i & e_chan_q))) ||
                     (fby_write && !(|(fby_wr_ready_i & e_chan_q)));
@@ -467,6 +483,18 @@ module bit_proc #(
   wire [ChW-1:0] o_ch = o_index[ChW-1:0];
   // (the index fits when its bits above a channel number are 0: no wide compare; a
   // number past the last channel shifts the one out of the vector)
+  // the marker exchange: the cell of an FBI read in operand (read every clock it is
+  // there: the last read before it moves on is the one that comes in its first
+  // execute clock; the reader's snapshot is taken in the start clock, the read of that
+  // clock included)
+  localparam integer CW = $clog2(Cells);
+  // (not gated by marker_i: a read has no effect, and the setting may arrive with the
+  // scan's start)
+  assign cell_re_o   = o_valid_q && (o_area == `AREA_FB);
+  assign cell_ridx_o = o_index[CW-1:0];
+  assign cell_we_o    = fby_cell && marker_i;
+  assign cell_widx_o  = e_instr_q[CW-1:0];
+  assign cell_wdata_o = e_fby_data;
   wire [Channels-1:0] o_chan = (o_index[11:ChW] == 0)
       ? ({{(Channels-1){1'b0}}, 1'b1} << o_ch) : {Channels{1'b0}};
 
@@ -496,7 +524,10 @@ module bit_proc #(
   // the pending edge or the edge between the last clock's pin and this one.
   wire pin_live  = |(pins_i & e_pinsel_q);
   wire m_opnd    = e_mfwd_q ? e_mfwd_val_q : m_hold_q;
-  wire fb_opnd   = |(fbi_rd_data_i & e_chan_q);
+  // a cell: as read for the first execute clock, kept for the clocks it is held there
+  reg  e_first_q, cell_hold_q;
+  wire cell_bit  = e_first_q ? cell_rdata_i : cell_hold_q;
+  wire fb_opnd   = marker_i ? cell_bit : |(fbi_rd_data_i & e_chan_q);
   wire operand   = e_src_m_q ? m_opnd : e_src_fb_q ? fb_opnd : e_opnd_q;
 
   // ---------------------------------------------------------------- RLO and stack
@@ -597,6 +628,15 @@ module bit_proc #(
   // Taken jump: squash operand and decode, fetch the target. END in decode: fetch
   // address 0. END in execute: address 0 (in operand) moves on only if a scan follows.
   wire e_load = start_i || (exec_i && !e_hold && !end_o);
+  // the marker cell of the instruction in execute, kept after its first clock there
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      e_first_q   <= 1'b0;
+      cell_hold_q <= 1'b0;
+    end else begin
+      e_first_q <= e_load;
+      if (e_first_q) cell_hold_q <= cell_rdata_i;
+    end
   wire o_move = e_load || !o_valid_q;
   assign d_move = o_move || !d_valid_q;
   // The waits reach the program RAM's read enable and d_pc_q's enable only, not the
@@ -771,6 +811,19 @@ module bit_proc #(
     if (copy_en_i) assume (f_since_wr >= 2'd2);
   end
 
+  // the marker area (exchange marker): the reader's snapshot, any cells, constant here
+  // (the snapshot's timing is marker_region.v's proof); a read's cell comes in the next
+  // clock, and only then. The setting does not change during the proof.
+  (* anyconst *) reg [Cells-1:0] f_cells;
+  reg            f_cre_q = 1'b0;
+  reg [CW-1:0]   f_cidx_q;
+  always @(posedge clk_i) begin
+    f_cre_q  <= cell_re_o;
+    f_cidx_q <= cell_ridx_o;
+  end
+  always @(*) if (f_cre_q) assume (cell_rdata_i == f_cells[f_cidx_q]);
+  always @(posedge clk_i) if (f_past_valid) assume ($stable(marker_i));
+
   // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
   // (its PIO register) and T/C status buffer (written by the byte side at any time)
   wire [InBits-1:0]     f_pii, f_rise, f_fall, f_rpend, f_fpend;
@@ -922,7 +975,7 @@ module bit_proc #(
       `AREA_M:  f_x = f_m_hit ? f_m : m_opnd;
       `AREA_T:  f_x = f_tst[f_ti];
       `AREA_C:  f_x = f_cst[f_ti];
-      `AREA_FB: f_x = fbi_rd_data_i[f_ci];
+      `AREA_FB: f_x = marker_i ? f_cells[f_idx[CW-1:0]] : fbi_rd_data_i[f_ci];
       default:  f_x = 1'b0;
     endcase
   end
@@ -948,8 +1001,8 @@ module bit_proc #(
   // clock), a byte instruction until DONE, END while the byte side holds it
   wire f_fbwr = f_on_fb && (f_isassign || ((f_isset || f_isrst) && rlo_o));
   wire f_upd  = !latch_i && ((f_area == `AREA_C) ? f_cupd[f_ti] : f_tupd[f_ti]);
-  wire f_wait = (f_on_fb && f_islogic && !fbi_rd_ready_i[f_ci]) ||
-                (f_fbwr && !fby_wr_ready_i[f_ci]) ||
+  wire f_wait = (f_on_fb && f_islogic && !marker_i && !fbi_rd_ready_i[f_ci]) ||
+                (f_fbwr && !marker_i && !fby_wr_ready_i[f_ci]) ||
                 (f_islogic && f_on_tc && e_instr_q[`ISA_WAIT_UPDATE] && !f_upd) ||
                 (f_isbyte && !byte_done_i) || (f_isend && end_hold_i);
 
@@ -1007,11 +1060,22 @@ module bit_proc #(
       assert (fbi_rd_req_o == ((w_fwait_q && fw_isread) ? fw_chan : {Channels{1'b0}}));
       if (w_fwait_q && !fw_isread) assert (fby_wr_data_o == fw_wval);
     end else begin
-      assert (fby_wr_req_o == ((e_go && f_fbwr && !f_isbyte) ?
+      assert (fby_wr_req_o == ((e_go && f_fbwr && !f_isbyte && !marker_i) ?
                                ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
       if (f_fbwr) assert (fby_wr_data_o == f_wval);
-      assert (fbi_rd_req_o == ((e_go && f_on_fb && f_islogic) ?
+      assert (fbi_rd_req_o == ((e_go && f_on_fb && f_islogic && !marker_i) ?
                                ({{(Channels-1){1'b0}}, 1'b1} << f_ci) : {Channels{1'b0}}));
+    end
+    // the marker exchange: `= FBY k` (S / R with RLO 1) writes cell k as it completes;
+    // no cell access ever waits (the slot holds none)
+    assert (cell_we_o == (e_done && f_fbwr && marker_i && !f_isbyte));
+    if (cell_we_o) assert (cell_widx_o == f_idx[CW-1:0] && cell_wdata_o == f_wval);
+    if (w_fwait_q) assert (!marker_i);
+    // (induction helpers) a cell read in execute was read for it as it entered, and
+    // is kept from then on
+    if (e_valid_q && f_on_fb && marker_i) begin
+      if (e_first_q) f_inv_cell_rd: assert (f_cre_q && f_cidx_q == f_idx[CW-1:0]);
+      else f_inv_cell_hold: assert (cell_hold_q == f_cells[f_idx[CW-1:0]]);
     end
     assert (end_o == (e_done && f_isend));
     assert (refresh_o == (e_done && f_isref));
@@ -1023,8 +1087,8 @@ module bit_proc #(
     // (1, 2) the instruction waits exactly when the ISA says so: in execute (it moves
     // into the slot if it waits for the byte side's answer), then in the slot
     if (e_act) assert (e_wait == f_wait &&
-                       to_slot == ((f_on_fb && f_islogic && !fbi_rd_ready_i[f_ci]) ||
-                                   (f_fbwr && !fby_wr_ready_i[f_ci]) ||
+                       to_slot == ((f_on_fb && f_islogic && !marker_i && !fbi_rd_ready_i[f_ci]) ||
+                                   (f_fbwr && !marker_i && !fby_wr_ready_i[f_ci]) ||
                                    (f_isbyte && !byte_done_i)));
     if (w_busy) assert (w_done == !fw_wait);
     // the slot holds its instruction's decode, the next instruction (if any) behind it

@@ -12,6 +12,7 @@ module bitbyte_cpu #(
   parameter integer MarkerBytes = 256,   // marker bytes: M 0.0 .. MarkerBytes-1.7
   parameter integer StatusBits  = 64,    // timers T0.. and counters C0.. (status bits each)
   parameter integer Channels    = 4,     // exchange channels FBI k / FBY k (handshake)
+  parameter integer MarkerCells = 128,   // marker area cells FBI k / FBY k (exchange marker)
   parameter integer QueueDepth  = 8,     // condition queue depth per direction
   parameter integer Exchanges   = 7,     // exchange circuits built (cond_exchange.v): 1 the
                                          // flip-flops, 2 the queues, 4 the marker area
@@ -111,6 +112,12 @@ module bitbyte_cpu #(
   wire [Channels-1:0] fbi_rd_req, fbi_rd_data, fbi_rd_ready, fbi_wr_req, fbi_wr_ready, fbi_full;
   wire [Channels-1:0] fby_wr_req, fby_wr_ready, fby_rd_req, fby_rd_data, fby_rd_ready, fby_full;
   wire        fby_wr_data, fbi_wr_data, bit_stall;
+  // the marker area's cells (exchange marker)
+  localparam integer CellW = $clog2(MarkerCells);
+  wire             marker, marker_ready;
+  wire             bit_cell_we, bit_cell_wdata, bit_cell_re, bit_cell_rdata;
+  wire             byte_cell_we, byte_cell_wdata, byte_cell_re, byte_cell_rdata;
+  wire [CellW-1:0] bit_cell_widx, bit_cell_ridx, byte_cell_widx, byte_cell_ridx;
   wire        byte_req, byte_done, byte_rlo, byte_rlo_we;
   wire [31:0] byte_instr, dispatch_instr, dispatch_ctx;
   wire        next, dispatch_next, done_we, byte_scan_done, byte_scan_end;
@@ -138,7 +145,7 @@ module bitbyte_cpu #(
   scan_ctrl u_scan_ctrl (
     .clk_i            (clk_i),
     .rst_ni           (rst_ni),
-    .mem_ready_i      (mem_ready),
+    .mem_ready_i      (mem_ready && marker_ready),   // markers and marker area cleared
     .run_i            (run_i),
     .end_i            (end_exec),
     .watchdog_limit_i (watchdog_limit_i),
@@ -211,7 +218,8 @@ module bitbyte_cpu #(
     .MarkerBits(MarkerBytes * 8),
     .StatusBits(StatusBits),
     .Channels  (Channels),
-    .NestDepth (NestDepth)
+    .NestDepth (NestDepth),
+    .Cells     (MarkerCells)
   ) u_bit_proc (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -254,6 +262,13 @@ module bitbyte_cpu #(
     .fby_wr_req_o    (fby_wr_req),
     .fby_wr_data_o   (fby_wr_data),
     .fby_wr_ready_i  (fby_wr_ready),
+    .marker_i        (marker),
+    .cell_re_o       (bit_cell_re),
+    .cell_ridx_o     (bit_cell_ridx),
+    .cell_rdata_i    (bit_cell_rdata),
+    .cell_we_o       (bit_cell_we),
+    .cell_widx_o     (bit_cell_widx),
+    .cell_wdata_o    (bit_cell_wdata),
     .byte_req_o      (byte_req),
     .byte_instr_o    (byte_instr),
     .byte_done_i     (byte_done),
@@ -289,7 +304,8 @@ module bitbyte_cpu #(
   cond_exchange #(
     .Channels  (Channels),
     .QueueDepth(QueueDepth),
-    .Exchanges (Exchanges)
+    .Exchanges (Exchanges),
+    .Cells     (MarkerCells)
   ) u_exchange (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
@@ -315,6 +331,21 @@ module bitbyte_cpu #(
     .fbi_rd_data_o (fbi_rd_data),
     .fbi_rd_ready_o(fbi_rd_ready),
     .fbi_full_o    (fbi_full),
+    .marker_o      (marker),
+    .marker_ready_o(marker_ready),
+    .bit_snap_i    (start),
+    .bit_cell_we_i (bit_cell_we),
+    .bit_cell_widx_i(bit_cell_widx),
+    .bit_cell_wdata_i(bit_cell_wdata),
+    .bit_cell_re_i (bit_cell_re),
+    .bit_cell_ridx_i(bit_cell_ridx),
+    .bit_cell_rdata_o(bit_cell_rdata),
+    .byte_cell_we_i (byte_cell_we),
+    .byte_cell_widx_i(byte_cell_widx),
+    .byte_cell_wdata_i(byte_cell_wdata),
+    .byte_cell_re_i (byte_cell_re),
+    .byte_cell_ridx_i(byte_cell_ridx),
+    .byte_cell_rdata_o(byte_cell_rdata),
     .overflows_o   (queue_overflows),
     .underflows_o  (queue_underflows),
     .overflows_now_o (queue_overflows_now),
@@ -380,7 +411,8 @@ module bitbyte_cpu #(
     .StatusBits(StatusBits),
     .Channels  (Channels),
     .InWords   (InWords),
-    .OutWords  (OutWords)
+    .OutWords  (OutWords),
+    .Cells     (MarkerCells)
   ) u_byte_port (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -419,6 +451,13 @@ module bitbyte_cpu #(
     .fbi_wr_data_o   (fbi_wr_data),
     .fbi_wr_ready_i  (fbi_wr_ready),
     .fbi_full_i      (fbi_full),
+    .marker_i        (marker),
+    .cell_re_o       (byte_cell_re),
+    .cell_ridx_o     (byte_cell_ridx),
+    .cell_rdata_i    (byte_cell_rdata),
+    .cell_we_o       (byte_cell_we),
+    .cell_widx_o     (byte_cell_widx),
+    .cell_wdata_o    (byte_cell_wdata),
     .in_words_i      (in_words_i),
     .out_words_o     (out_words_o),
     .bit_stall_i     (bit_stall),

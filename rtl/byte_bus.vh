@@ -46,6 +46,7 @@
 `define BUS_FORCE_IN_VAL     8'h74     // W, 4 registers
 `define BUS_FORCE_OUT_MASK   8'h78     // W, 4 registers
 `define BUS_FORCE_OUT_VAL    8'h7C     // W, 4 registers
+`define BUS_MCELL            8'h80     // RW, 128 registers
 `define BUS_ID_VALUE         32'hB17B7E01 // what ID reads
 `define BUS_TICK_DIV_RESET   32'd100000 // TICK_DIV after reset
 

@@ -12,7 +12,8 @@ module byte_port #(
   parameter integer StatusBits = 64,  // timers and counters (each); 2..64
   parameter integer Channels   = 4,   // condition channels per direction; 1..8
   parameter integer InWords    = 16,  // IW n; 1..16
-  parameter integer OutWords   = 16   // QW n; 1..16
+  parameter integer OutWords   = 16,  // QW n; 1..16
+  parameter integer Cells      = 128  // marker area cells per direction; 8..128
 ) (
   input  wire                          clk_i,
   input  wire                          rst_ni,
@@ -57,6 +58,16 @@ module byte_port #(
   output wire                          fbi_wr_data_o,
   input  wire [Channels-1:0]           fbi_wr_ready_i,
   input  wire [Channels-1:0]           fbi_full_i,
+  // the marker exchange (marker_i, a register): READ FBY k / WRITE FBI k are cell k of
+  // the marker area, at FBY k / FBI k (k < 8) and in the MCELL window; a read takes two
+  // clocks (block RAM: the first answers not ready, no stall), a write one
+  input  wire                          marker_i,
+  output wire                          cell_re_o,
+  output wire [$clog2(Cells)-1:0]      cell_ridx_o,
+  input  wire                          cell_rdata_i,
+  output wire                          cell_we_o,
+  output wire [$clog2(Cells)-1:0]      cell_widx_o,
+  output wire                          cell_wdata_o,
   // word I/O (analog), no process image
   input  wire [InWords*16-1:0]         in_words_i,
   output reg  [OutWords*16-1:0]        out_words_o,
@@ -74,6 +85,7 @@ module byte_port #(
   localparam [7:0] AddrFbi = `BUS_FBI;
   localparam [7:0] AddrIw  = `BUS_IW;
   localparam [7:0] AddrQw  = `BUS_QW;
+  localparam [7:0] AddrMc  = `BUS_MCELL;
 
   // The register map fixes the sizes this port can serve (TC_BIT carries a 6-bit index,
   // the status registers are LO/HI pairs).
@@ -81,6 +93,8 @@ module byte_port #(
                "byte_port: StatusBits must be 2..64 (the bus has LO/HI status registers only)")
   `PARAM_CHECK(g_bad_channels, Channels < 1 || Channels > 8,
                "byte_port: Channels must be 1..8 (the bus decodes 8 FBY/FBI channels)")
+  `PARAM_CHECK(g_bad_cells, Cells < 8 || Cells > 128 || (Cells & (Cells - 1)) != 0,
+               "byte_port: Cells must be a power of two in 8..128 (the MCELL window)")
   `PARAM_CHECK(g_bad_in_words, InWords < 1 || InWords > 16,
                "byte_port: InWords must be 1..16 (the bus window IW has 16 registers)")
   `PARAM_CHECK(g_bad_out_words, OutWords < 1 || OutWords > 16,
@@ -140,8 +154,26 @@ module byte_port #(
   wire is_qw        = bus_addr_i[7:4] == AddrQw[7:4];
   wire [3:0] word   = bus_addr_i[3:0];
 
-  assign fby_rd_req_o  = is_fby_rd ? chan_sel : {Channels{1'b0}};
-  assign fbi_wr_req_o  = is_fbi_wr ? chan_sel : {Channels{1'b0}};
+  // the marker exchange: cell k at FBY k / FBI k and in the window (its top address bit)
+  localparam integer CW = $clog2(Cells);
+  wire       in_mc     = bus_addr_i[7] == AddrMc[7];
+  wire [6:0] mc_k      = in_mc ? bus_addr_i[6:0] : {4'd0, chan};
+  wire       mc_ok     = (mc_k >> CW) == 7'd0;       // a cell the build has
+  wire       mc_rd     = bus_re_i && marker_i && (in_mc || is_fby_rd);
+  wire       mc_wr     = bus_we_i && marker_i && (in_mc || is_fbi_wr);
+  reg        mc_pend_q;                          // the last clock read this cell
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) mc_pend_q <= 1'b0;
+    else         mc_pend_q <= mc_rd && !mc_pend_q;
+  assign cell_re_o    = mc_rd && !mc_pend_q;
+  assign cell_ridx_o  = mc_k[CW-1:0];
+  assign cell_we_o    = mc_wr && mc_ok;
+  assign cell_widx_o  = mc_k[CW-1:0];
+  assign cell_wdata_o = bus_wdata_i[0];
+  wire       mc_data   = mc_ok && cell_rdata_i;
+
+  assign fby_rd_req_o  = (is_fby_rd && !marker_i) ? chan_sel : {Channels{1'b0}};
+  assign fbi_wr_req_o  = (is_fbi_wr && !marker_i) ? chan_sel : {Channels{1'b0}};
   assign fbi_wr_data_o = bus_wdata_i[0];
 
   assign done_we_o   = bus_we_i && (bus_addr_i == `BUS_DONE);
@@ -187,7 +219,9 @@ module byte_port #(
       localparam [7:0] A = ga[7:0];
       if (A[7:3] == AddrFby[7:3]) begin : g_fby
         // a channel's condition, only under the read strobe (a write reads 0)
-        assign rd_tab[ga] = {31'd0, bus_re_i && fby_data8[ga % 8]};
+        assign rd_tab[ga] = {31'd0, bus_re_i && (marker_i ? mc_data : fby_data8[ga % 8])};
+      end else if (A[7] == AddrMc[7]) begin : g_mcell
+        assign rd_tab[ga] = {31'd0, bus_re_i && marker_i && mc_data};
       end else if (A[7:4] == AddrIw[7:4] || A[7:4] == AddrQw[7:4]) begin : g_word
         // a word window, sign-extended
         wire [15:0] word_v = (A[7:4] == AddrIw[7:4]) ? in_words16[(ga % 16)*16 +: 16]
@@ -241,12 +275,14 @@ module byte_port #(
   // number, again without a compare.
   wire [7:0] fby_ready8 = {{(8-Channels){1'b1}}, fby_rd_ready_i};
   wire [7:0] fbi_ready8 = {{(8-Channels){1'b1}}, fbi_wr_ready_i};
-  assign bus_ready_o = !(is_fby_rd && !fby_ready8[chan]) && !(is_fbi_wr && !fbi_ready8[chan])
-                    && !(is_tc_wait_rd && !tc_wait_written);
+  // (a marker cell's read is not ready in its first clock: the RAM's, not a wait)
+  assign bus_ready_o = !(is_fby_rd && !marker_i && !fby_ready8[chan])
+                    && !(is_fbi_wr && !marker_i && !fbi_ready8[chan])
+                    && !(is_tc_wait_rd && !tc_wait_written) && !(mc_rd && !mc_pend_q);
 
   // ---------------------------------------------------------------- statistics
   // Every clock in which an access is refused is one byte-side stall (it is repeated).
-  wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;
+  wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o && !mc_rd;
   bus_stats u_bus_stats (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
@@ -291,11 +327,51 @@ module byte_port #(
   always @(*) if (!f_past_valid) assume (!rst_ni);
   always @(*) assume (!(bus_re_i && bus_we_i));          // one access per clock
 
-  // An access waits only on a condition channel the build has, and exactly while
-  // that channel cannot take / give a condition, or on TC_WAIT, exactly while the
-  // timer / counter its last write selected is not written in this scan.
+  // The byte processor repeats a refused access (the bus protocol, docs/byte-bus.md).
+  reg        f_refused_q = 1'b0;
+  reg [7:0]  f_addr_q;
+  reg        f_re_q, f_we_q;
+  always @(posedge clk_i) begin
+    f_refused_q <= rst_ni && (bus_re_i || bus_we_i) && !bus_ready_o;
+    f_addr_q    <= bus_addr_i;
+    f_re_q      <= bus_re_i;
+    f_we_q      <= bus_we_i;
+  end
+  always @(*) if (f_refused_q && rst_ni)
+    assume (bus_addr_i == f_addr_q && bus_re_i == f_re_q && bus_we_i == f_we_q);
+  always @(posedge clk_i) if (f_past_valid) assume ($stable(marker_i) || !f_refused_q);
+
+  // The marker exchange's cells: at FBY k / FBI k (k < 8) and in the MCELL window.
+  wire       f_in_win = bus_addr_i >= `BUS_MCELL;
+  wire [6:0] f_k      = f_in_win ? bus_addr_i - `BUS_MCELL : {4'd0, bus_addr_i[2:0]};
+  wire       f_cell_rd = rst_ni && bus_re_i && marker_i && (f_in_win || is_fby_rd);
+  wire       f_cell_wr = rst_ni && bus_we_i && marker_i && (f_in_win || is_fbi_wr);
+  wire       f_cell_ok = f_k < Cells;
+
+  // An access waits only on a condition channel the build has (not with the marker
+  // exchange), and exactly while that channel cannot take / give a condition, or on
+  // TC_WAIT, exactly while the timer / counter its last write selected is not written
+  // in this scan; a marker cell's read is refused in its first clock (the RAM's).
   always @(*) if (rst_ni && !bus_ready_o)
-    assert (((is_fby_rd || is_fbi_wr) && chan_ok) || (bus_re_i && bus_addr_i == `BUS_TC_WAIT));
+    assert (((is_fby_rd || is_fbi_wr) && chan_ok && !marker_i) ||
+            (bus_re_i && bus_addr_i == `BUS_TC_WAIT) || (f_cell_rd && !f_refused_q));
+  always @(*) if (f_cell_rd) begin
+    // the first clock reads the RAM, the second answers with its cell
+    assert (bus_ready_o == f_refused_q);
+    assert (cell_re_o == !f_refused_q);
+    if (!f_refused_q) assert (cell_ridx_o == f_k[$clog2(Cells)-1:0]);
+    if (f_refused_q) assert (bus_rdata_o == {31'd0, f_cell_ok && cell_rdata_i});
+  end else if (rst_ni) assert (!cell_re_o);
+  always @(*) if (rst_ni) begin
+    // a cell's write is taken at once (never refused), a cell the build lacks dropped
+    if (f_cell_wr) assert (bus_ready_o);
+    assert (cell_we_o == (f_cell_wr && f_cell_ok));
+    if (cell_we_o) assert (cell_widx_o == f_k[$clog2(Cells)-1:0] &&
+                           cell_wdata_o == bus_wdata_i[0]);
+  end
+  always @(posedge clk_i) if (rst_ni)
+    cover (f_past_valid && $past(f_cell_rd && !bus_ready_o) && f_cell_rd && bus_ready_o &&
+           f_in_win && f_k == 7'd100 && bus_rdata_o[0]);
   reg [6:0] f_sel;
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) f_sel <= 7'd0;
@@ -312,31 +388,39 @@ module byte_port #(
   always @(posedge clk_i) if (rst_ni)
     cover (f_past_valid && $past(bus_re_i && bus_addr_i == `BUS_TC_WAIT && !bus_ready_o)
            && bus_re_i && bus_addr_i == `BUS_TC_WAIT && bus_ready_o && f_sel[6]);
-  always @(*) if (rst_ni && is_fby_rd && chan_ok)
+  always @(*) if (rst_ni && is_fby_rd && chan_ok && !marker_i)
     assert (bus_ready_o == |(fby_rd_ready_i & chan_sel));
-  always @(*) if (rst_ni && is_fbi_wr && chan_ok)
+  always @(*) if (rst_ni && is_fbi_wr && chan_ok && !marker_i)
     assert (bus_ready_o == |(fbi_wr_ready_i & chan_sel));
   // A channel is asked only by an access to it; strobes name exactly one channel.
   always @(*) begin
-    assert ((fby_rd_req_o == {Channels{1'b0}}) || (is_fby_rd && $onehot(fby_rd_req_o)));
-    assert ((fbi_wr_req_o == {Channels{1'b0}}) || (is_fbi_wr && $onehot(fbi_wr_req_o)));
+    assert ((fby_rd_req_o == {Channels{1'b0}}) ||
+            (is_fby_rd && !marker_i && $onehot(fby_rd_req_o)));
+    assert ((fbi_wr_req_o == {Channels{1'b0}}) ||
+            (is_fbi_wr && !marker_i && $onehot(fbi_wr_req_o)));
     assert (!done_we_o || (bus_we_i && bus_addr_i == `BUS_DONE));
     assert (!tc_we_o || (bus_we_i && bus_addr_i == `BUS_TC_BIT));
   end
   // Stall counting, against the byte processor's view rather than the refusal logic:
-  // every clock with an access either completes it or is a stall (it is repeated), so
-  // the stalls are the access clocks minus the completed accesses (each count wraps
-  // at 32 bits, like the counter).
-  reg [31:0] f_access_clocks, f_completed;
+  // every clock with an access either completes it or is a stall (it is repeated),
+  // except a marker cell read's first clock (the RAM's read, not a wait for the other
+  // side), so the stalls are the access clocks minus the completed accesses and the
+  // cell reads (each count wraps at 32 bits, like the counter).
+  reg [31:0] f_access_clocks, f_completed, f_cell_reads;
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) begin
       f_access_clocks <= 32'd0;
       f_completed     <= 32'd0;
+      f_cell_reads    <= 32'd0;
     end else begin
       if (bus_re_i || bus_we_i)                f_access_clocks <= f_access_clocks + 32'd1;
       if ((bus_re_i || bus_we_i) && bus_ready_o) f_completed   <= f_completed + 32'd1;
+      if (f_cell_rd && !f_refused_q)           f_cell_reads    <= f_cell_reads + 32'd1;
     end
-  always @(*) if (rst_ni) assert (stalls_byte_o == f_access_clocks - f_completed);
+  always @(*) if (rst_ni) begin
+    assert (stalls_byte_o == f_access_clocks - f_completed - f_cell_reads);
+    assert (mc_pend_q == (f_refused_q && f_cell_rd));   // induction helper
+  end
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
     // SCAN_DONE: set by its write, cleared by the next latch, held otherwise
     if ($past(bus_we_i) && $past(bus_addr_i) == `BUS_SCAN_DONE) assert (byte_scan_done_o);

@@ -8,7 +8,10 @@
 //   1 queue:      one strict pointer-based queue per direction (Fig. 16); k ignored
 //   2 queue-free: the same queues, free-running (no waits; losses counted)
 //   3 marker:     the dual-port marker area with auxiliary buffer (Fig. 17): cell k
-//                 per direction, written any time, read from the reader's snapshot
+//                 per direction, written any time, read from the reader's snapshot;
+//                 Cells per direction in block RAM (marker_region.v), reached through
+//                 the cell ports below (an index, a read's cell a clock later), not the
+//                 channel ports
 // Direction "fby": bit side writes, byte side reads; "fbi": byte writes, bit reads.
 //
 // Exchanges says which circuits are built (a mask: 1 the flip-flops, 2 the queues, 4
@@ -19,12 +22,15 @@
 module cond_exchange #(
   parameter integer Channels   = 4,  // handshake channels per direction
   parameter integer QueueDepth = 8,  // queue depth per direction (a power of two)
-  parameter integer Exchanges  = 7   // circuits built: 1 flip-flops, 2 queues, 4 marker area
+  parameter integer Exchanges  = 7,  // circuits built: 1 flip-flops, 2 queues, 4 marker area
+  parameter integer Cells      = 128 // marker area cells per direction (a power of two)
 ) (
   input  wire                clk_i,
   input  wire                rst_ni,
   input  wire [1:0]          exchange_i,
   input  wire                bit_start_i,    // the bit side's scan start (its latch)
+  input  wire                bit_snap_i,     // the clock before it (the bit side reads its
+                                             // first instruction's cell then)
   input  wire                bit_end_i,      // the bit side's scan end (END)
   input  wire                byte_start_i,   // the byte side's scan start
   input  wire                byte_end_i,     // the byte side's scan end
@@ -45,6 +51,23 @@ module cond_exchange #(
   output wire [Channels-1:0] fbi_rd_data_o,
   output wire [Channels-1:0] fbi_rd_ready_o,
   output wire [Channels-1:0] fbi_full_o,
+  // marker area (exchange marker): cell k by index. F_bB: the bit side writes, the byte
+  // side reads; F_Bb: the byte side writes, the bit side reads. A read's cell comes in
+  // the next clock; nothing ever waits.
+  output wire                     marker_o,          // the marker exchange is in use
+  output wire                     marker_ready_o,    // its RAMs are cleared (after reset)
+  input  wire                     bit_cell_we_i,     // `= FBY k`
+  input  wire [$clog2(Cells)-1:0] bit_cell_widx_i,
+  input  wire                     bit_cell_wdata_i,
+  input  wire                     bit_cell_re_i,     // `A FBI k` ...
+  input  wire [$clog2(Cells)-1:0] bit_cell_ridx_i,
+  output wire                     bit_cell_rdata_o,
+  input  wire                     byte_cell_we_i,    // WRITE FBI k
+  input  wire [$clog2(Cells)-1:0] byte_cell_widx_i,
+  input  wire                     byte_cell_wdata_i,
+  input  wire                     byte_cell_re_i,    // READ FBY k
+  input  wire [$clog2(Cells)-1:0] byte_cell_ridx_i,
+  output wire                     byte_cell_rdata_o,
   // free-running losses: {to-bit, to-byte}; up to one clock late, *_now_o exact
   // (cond_queue.v)
   output wire [31:0]         overflows_o,
@@ -59,6 +82,7 @@ module cond_exchange #(
   if (Channels < 1) begin : g_bad_channels
     `PARAM_ERROR("cond_exchange: Channels must be at least 1");
   end
+  // (marker_region.v checks Cells)
   if (Exchanges < 1 || Exchanges > 7) begin : g_bad_exchanges
     `PARAM_ERROR("cond_exchange: Exchanges must be 1..7 (1 flip-flops, 2 queues, 4 marker area)");
   end
@@ -176,37 +200,58 @@ module cond_exchange #(
   end
 
   // ------------------------------------------------------------ marker area
-  wire [Channels-1:0] m_bit_rd, m_byte_rd;
+  // One block-RAM region per direction (marker_region.v): the writer's cells and the
+  // reader's snapshot, taken at the reader's scan start; with the write buffer, of the
+  // writer's cells as at its last scan end.
+  assign marker_o = use_marker;
   if (HasMarker) begin : g_marker
-    marker_area #(.Cells(Channels)) u_marker (
+    wire fby_ready, fbi_ready;
+    marker_region #(.Cells(Cells)) u_region_fby (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),
       .write_buffer_i(marker_write_buffer_i),
-      .bit_start_i   (bit_start_i),
-      .bit_end_i     (bit_end_i),
-      .bit_wr_i      (use_marker ? fby_wr_req_i : {Channels{1'b0}}),
-      .bit_wr_data_i (fby_wr_data_i),
-      .bit_rd_data_o (m_bit_rd),
-      .byte_start_i  (byte_start_i),
-      .byte_end_i    (byte_end_i),
-      .byte_wr_i     (use_marker ? fbi_wr_req_i : {Channels{1'b0}}),
-      .byte_wr_data_i(fbi_wr_data_i),
-      .byte_rd_data_o(m_byte_rd)
+      .ready_o       (fby_ready),
+      .wr_req_i      (bit_cell_we_i && use_marker),
+      .wr_idx_i      (bit_cell_widx_i),
+      .wr_data_i     (bit_cell_wdata_i),
+      .publish_i     (bit_end_i),
+      .snap_i        (byte_start_i),
+      .rd_req_i      (byte_cell_re_i),      // (a read has no effect)
+      .rd_idx_i      (byte_cell_ridx_i),
+      .rd_data_o     (byte_cell_rdata_o)
     );
+    marker_region #(.Cells(Cells)) u_region_fbi (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .write_buffer_i(marker_write_buffer_i),
+      .ready_o       (fbi_ready),
+      .wr_req_i      (byte_cell_we_i && use_marker),
+      .wr_idx_i      (byte_cell_widx_i),
+      .wr_data_i     (byte_cell_wdata_i),
+      .publish_i     (byte_end_i),
+      .snap_i        (bit_snap_i),
+      .rd_req_i      (bit_cell_re_i),
+      .rd_idx_i      (bit_cell_ridx_i),
+      .rd_data_o     (bit_cell_rdata_o)
+    );
+    assign marker_ready_o = fby_ready && fbi_ready;
   end else begin : g_no_marker
-    assign m_bit_rd  = {Channels{1'b0}};     // never selected
-    assign m_byte_rd = {Channels{1'b0}};
+    assign marker_ready_o    = 1'b1;    // never selected
+    assign bit_cell_rdata_o  = 1'b0;
+    assign byte_cell_rdata_o = 1'b0;
   end
 
   // ------------------------------------------------------------ selection
-  wire [Channels-1:0] ones = {Channels{1'b1}};
+  wire [Channels-1:0] ones  = {Channels{1'b1}};
+  wire [Channels-1:0] zeros = {Channels{1'b0}};
+  // (the marker area's cells go through the cell ports: its channels are always ready)
   assign fby_wr_ready_o = use_queue ? {Channels{q_fby_wr_ready}} : use_marker ? ones : ff_fby_wr_ready;
-  assign fby_rd_data_o  = use_queue ? {Channels{q_fby_rd_data}}  : use_marker ? m_byte_rd : ff_fby_rd_data;
+  assign fby_rd_data_o  = use_queue ? {Channels{q_fby_rd_data}}  : use_marker ? zeros : ff_fby_rd_data;
   assign fby_rd_ready_o = use_queue ? {Channels{q_fby_rd_ready}} : use_marker ? ones : ff_fby_rd_ready;
   assign fby_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fby_full} :
                           use_marker ? {Channels{1'b0}} : ff_fby_full;
   assign fbi_wr_ready_o = use_queue ? {Channels{q_fbi_wr_ready}} : use_marker ? ones : ff_fbi_wr_ready;
-  assign fbi_rd_data_o  = use_queue ? {Channels{q_fbi_rd_data}}  : use_marker ? m_bit_rd : ff_fbi_rd_data;
+  assign fbi_rd_data_o  = use_queue ? {Channels{q_fbi_rd_data}}  : use_marker ? zeros : ff_fbi_rd_data;
   assign fbi_rd_ready_o = use_queue ? {Channels{q_fbi_rd_ready}} : use_marker ? ones : ff_fbi_rd_ready;
   assign fbi_full_o     = use_queue ? {{(Channels-1){1'b0}}, q_fbi_full} :
                           use_marker ? {Channels{1'b0}} : ff_fbi_full;
@@ -216,7 +261,11 @@ module cond_exchange #(
   // verilator lint_off UNUSEDSIGNAL
   wire unused_absent = ^{q_fby_empty, q_fbi_empty, bit_start_i, bit_end_i, byte_start_i,
                          byte_end_i, marker_write_buffer_i, fby_rd_req_i, fbi_rd_req_i,
-                         use_ff, free};
+                         use_ff, free, bit_snap_i, fby_wr_req_i, fby_wr_data_i,
+                         fbi_wr_req_i, fbi_wr_data_i, bit_cell_we_i, bit_cell_widx_i,
+                         bit_cell_wdata_i, bit_cell_re_i, bit_cell_ridx_i, byte_cell_we_i,
+                         byte_cell_widx_i, byte_cell_wdata_i, byte_cell_re_i,
+                         byte_cell_ridx_i};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

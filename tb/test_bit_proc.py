@@ -42,7 +42,8 @@ class Bench:
                     d.timer_updated_i, d.counter_updated_i, d.end_hold_i,
                     d.fbi_rd_data_i, d.fbi_rd_ready_i, d.byte_done_i, d.byte_rlo_i,
                     d.byte_rlo_we_i, d.copy_en_i, d.copy_we_i, d.copy_addr_i, d.copy_wdata_i,
-                    d.tc_we_i, d.tc_is_counter_i, d.tc_idx_i, d.tc_val_i):
+                    d.tc_we_i, d.tc_is_counter_i, d.tc_idx_i, d.tc_val_i,
+                    d.marker_i, d.cell_rdata_i):
             sig.value = 0
         d.fby_wr_ready_i.value = 0b1111
         # the input unit's image; in the latch clock the first instruction sees the

@@ -16,6 +16,7 @@ from bitbyte.lang.definition import DEF
 from simrun import SIMULATORS, run_cocotb
 
 CHANNELS = 4
+CELLS = 128            # marker area cells (the MCELL window full)
 STATUS_BITS = 64       # byte_port's defaults (the register map's LO/HI pairs full)
 WORDS = 16             # InWords = OutWords
 
@@ -26,7 +27,7 @@ async def reset(dut):
                 dut.latch_i, dut.time_start_i, dut.exec_i, dut.fault_i, dut.next_i, dut.dispatch_instr_i,
                 dut.dispatch_ctx_i, dut.timer_status_i, dut.counter_status_i,
                 dut.timer_enable_i, dut.counter_pulse_i, dut.timer_written_i,
-                dut.counter_written_i, dut.fby_rd_data_i,
+                dut.counter_written_i, dut.fby_rd_data_i, dut.marker_i, dut.cell_rdata_i,
                 dut.fby_rd_ready_i, dut.fby_full_i, dut.fbi_wr_ready_i, dut.fbi_full_i,
                 dut.in_words_i, dut.bit_stall_i, dut.queue_overflows_i,
                 dut.queue_underflows_i):
@@ -285,6 +286,7 @@ class BusModel:
         self.pending = False
         self.disp_ms = self.disp_iw = 0
         self.tc_wait_sel = 0
+        self.mc_pend = False            # a marker cell's read was refused last clock
 
     def tc_wait_bit(self, i: dict, timer: str, counter: str) -> int:
         vec = i[counter] if self.tc_wait_sel & F["TC_COUNTER"] else i[timer]
@@ -314,8 +316,11 @@ class BusModel:
             "C_WRITTEN_LO": lambda: lo(i["c_wr"]), "C_WRITTEN_HI": lambda: hi(i["c_wr"]),
             # the enable / pulse bit of the timer / counter the last TC_WAIT write chose
             "TC_WAIT": lambda: self.tc_wait_bit(i, "t_en", "c_pulse"),
-            # pops channel n: its condition in bit 0 (a channel the build lacks: 0)
-            "FBY": lambda: int(bool(i["re"] and n < CHANNELS and i["fby_data"] >> n & 1)),
+            # pops channel n: its condition in bit 0 (a channel the build lacks: 0); with
+            # the marker exchange cell n (the cell port's answer, a clock after its read)
+            "FBY": lambda: int(bool(i["re"] and (self.cell_data(i, n) if i["marker"] else
+                                                 n < CHANNELS and i["fby_data"] >> n & 1))),
+            "MCELL": lambda: int(bool(i["re"] and i["marker"] and self.cell_data(i, n))),
             # bits 7..0 FBY n full, bits 15..8 FBI n full
             "CHAN_STATUS": lambda: i["fby_full"] | i["fbi_full"] << 8,
             "IW": lambda: sext16(word(i["in_words"], n)),
@@ -330,22 +335,42 @@ class BusModel:
         assert readable == set(values), "BusModel: the register map changed"
         return values[name]() if name in values else 0     # write-only registers read 0
 
+    @staticmethod
+    def cell_data(i: dict, k: int) -> int:
+        return int(k < CELLS and i["cell_rdata"])   # a cell the build lacks reads 0
+
+    @staticmethod
+    def cell_access(i: dict, name: str | None):
+        """(cell read, cell write, k) of the marker exchange: cell k at FBY k / FBI k
+        and in the MCELL window."""
+        k = i["addr"] - REG["MCELL"].addr if name == "MCELL" else i["addr"] & 7
+        m = i["marker"]
+        return (bool(i["re"] and m and name in ("FBY", "MCELL")),
+                bool(i["we"] and m and name in ("FBI", "MCELL")), k)
+
     def outputs(self, i: dict) -> dict:
         reg, n = register_at(i["addr"])
         name = reg.name if reg else None
         chan = i["addr"] & 7
-        fby_rd = i["re"] and name == "FBY"
-        fbi_wr = i["we"] and name == "FBI"
+        fby_rd = i["re"] and name == "FBY" and not i["marker"]
+        fbi_wr = i["we"] and name == "FBI" and not i["marker"]
         have = chan < CHANNELS
+        cell_rd, cell_wr, k = self.cell_access(i, name)
         ready = not (fby_rd and have and not i["fby_ready"] >> chan & 1) and \
             not (fbi_wr and have and not i["fbi_ready"] >> chan & 1) and \
-            not (i["re"] and name == "TC_WAIT" and not self.tc_wait_bit(i, "t_wr", "c_wr"))
+            not (i["re"] and name == "TC_WAIT" and not self.tc_wait_bit(i, "t_wr", "c_wr")) \
+            and not (cell_rd and not self.mc_pend)     # a cell's read: two clocks
         w = i["wdata"]
         return {
             "bus_rdata_o": self.read_value(name, n, i) if name else 0,
             "bus_ready_o": int(ready),
             "fby_rd_req_o": (1 << chan) if fby_rd and have else 0,
             "fbi_wr_req_o": (1 << chan) if fbi_wr and have else 0,
+            "cell_re_o": int(cell_rd and not self.mc_pend),
+            "cell_ridx_o": k % CELLS,
+            "cell_we_o": int(cell_wr and k < CELLS),
+            "cell_widx_o": k % CELLS,
+            "cell_wdata_o": w & 1,
             "fbi_wr_data_o": w & 1,
             "done_we_o": int(bool(i["we"] and name == "DONE")),
             "done_data_o": (w & (F["DONE_RLO"] | F["DONE_RLO_WE"])),
@@ -370,8 +395,10 @@ class BusModel:
             if self.since_step >= self.tick_div:
                 self.ms, self.since_step = (self.ms + 1) & M32, 0
         self.stalls_bit = (self.stalls_bit + i["bit_stall"]) & M32
-        if (i["re"] or i["we"]) and not out["bus_ready_o"]:
-            self.stalls_byte = (self.stalls_byte + 1) & M32
+        cell_rd, _, _ = self.cell_access(i, name)
+        if (i["re"] or i["we"]) and not out["bus_ready_o"] and not cell_rd:
+            self.stalls_byte = (self.stalls_byte + 1) & M32   # (a cell's RAM read is none)
+        self.mc_pend = cell_rd and not self.mc_pend
         if i["we"] and name == "SCAN_DONE":
             self.scan_done = 1
         elif i["latch"]:
@@ -400,7 +427,8 @@ INPUTS = {"addr": "bus_addr_i", "wdata": "bus_wdata_i", "we": "bus_we_i", "re": 
           "fby_data": "fby_rd_data_i", "fby_ready": "fby_rd_ready_i",
           "fby_full": "fby_full_i", "fbi_ready": "fbi_wr_ready_i", "fbi_full": "fbi_full_i",
           "in_words": "in_words_i", "bit_stall": "bit_stall_i",
-          "qov": "queue_overflows_i", "qun": "queue_underflows_i"}
+          "qov": "queue_overflows_i", "qun": "queue_underflows_i",
+          "marker": "marker_i", "cell_rdata": "cell_rdata_i"}
 
 
 def random_inputs(rng: random.Random, addr: int, kind: str, tick_div_small: bool) -> dict:
@@ -423,7 +451,8 @@ def random_inputs(rng: random.Random, addr: int, kind: str, tick_div_small: bool
             "fbi_ready": rng.getrandbits(CHANNELS) | (ch if rng.random() < 0.5 else 0),
             "fbi_full": rng.getrandbits(CHANNELS), "in_words": rng.getrandbits(16 * WORDS),
             "bit_stall": rng.getrandbits(1), "qov": rng.getrandbits(32),
-            "qun": rng.getrandbits(32)}
+            "qun": rng.getrandbits(32), "marker": int(rng.random() < 0.4),
+            "cell_rdata": rng.getrandbits(1)}
 
 
 async def against_model(dut, model: BusModel, accesses, rng: random.Random,

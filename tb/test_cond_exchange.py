@@ -4,10 +4,11 @@ behaviour: the handshake flip-flops (Fig. 11: one place per channel), the strict
 (a FIFO of QueueDepth conditions), the free-running queue (slot i holds the i-th
 condition of the writer's scan; losses counted, the bus's counts a clock late) and the
 marker area (Fig. 17: each reader's snapshot of the writer's cells, taken at its scan
-start; with the write buffer, of the cells published at the writer's scan end). Every
-output is compared in every clock, with random requests, data and scan starts/ends.
-The selection takes effect in the clock after exchange_i is set; after reset no
-circuit is selected (the flip-flops' outputs show, and nothing takes a request)."""
+start; with the write buffer, of the cells published at the writer's scan end; cell k
+by index through the cell ports, a read's cell a clock later). Every output is
+compared in every clock, with random requests, data and scan starts/ends.
+The selection takes effect in the clock after exchange_i is set; the comparison starts
+when the marker area's RAMs are cleared after reset (4 * cells / 16 clocks)."""
 from __future__ import annotations
 
 import random
@@ -22,6 +23,7 @@ from tbutil import start_in_reset
 
 CHANNELS = 4           # the module's defaults
 DEPTH = 8
+CELLS = DEF.sizes["marker_cells"]
 ALL = (1 << CHANNELS) - 1
 # exchange_i codes: the run-time settings' order (bit_isa.vh's EXCHANGE_*)
 CODE = {name: code for code, name in enumerate(DEF.exchanges)}
@@ -106,31 +108,41 @@ class Queue:
 
 
 class Markers:
-    """Both directions' marker cells: each side's cells as written and as published
-    (at its scan end, that clock's write included), each reader's snapshot of the
-    other side's visible cells (published with the write buffer, else live) taken at
-    its scan start and seen already in that clock."""
+    """Both directions' marker cells (marker_region.v each): each side's cells as
+    written and as published (at its scan end, that clock's write included), each
+    reader's snapshot of the other side's visible cells (published with the write
+    buffer, else live) taken at its snapshot clock and seen already by a read in that
+    clock; a read's cell comes in the next clock. The bit side's snapshot clock is
+    bit_snap_i (the clock before its scan start: it reads its first instruction's cell
+    then), the byte side's its scan start. Writes are taken in the marker setting only,
+    snapshots, publications and reads whatever the setting."""
 
     def __init__(self):
         self.work = {"bit": 0, "byte": 0}
         self.pub = {"bit": 0, "byte": 0}
         self.snap = {"bit": 0, "byte": 0}
+        # the cell a reader's read of the last clock returns (None: no read then; the
+        # port shows a cell only in the clock after its read)
+        self.pending = {"bit": None, "byte": None}
 
     def visible(self, side: str, buffered: int) -> int:
         return self.pub[side] if buffered else self.work[side]
 
-    def read(self, reader: str, start: int, buffered: int) -> int:
-        other = "byte" if reader == "bit" else "bit"
-        return self.visible(other, buffered) if start else self.snap[reader]
+    def outputs(self) -> dict:
+        return {"bit_cell": self.pending["bit"], "byte_cell": self.pending["byte"]}
 
-    def clock(self, i: dict, wr: dict) -> None:
+    def clock(self, i: dict, on: bool) -> None:
         buffered = i["buffer"]
         for side, other in (("bit", "byte"), ("byte", "bit")):
-            if i[f"{side}_start"]:
+            snap = i["bit_snap"] if side == "bit" else i["byte_start"]
+            if snap:
                 self.snap[side] = self.visible(other, buffered)
+            self.pending[side] = (self.snap[side] >> i[f"{side}_cridx"] & 1
+                                  if i[f"{side}_cre"] else None)
         for side in ("bit", "byte"):
-            w = wr[side]
-            self.work[side] = (self.work[side] & ~w) | (w if i[f"{side}_data"] else 0)
+            if on and i[f"{side}_cwe"]:
+                bit = 1 << i[f"{side}_cwidx"]
+                self.work[side] = (self.work[side] & ~bit) | (bit if i[f"{side}_cwdata"] else 0)
             if i[f"{side}_end"]:
                 self.pub[side] = self.work[side]
 
@@ -158,14 +170,13 @@ class Exchange:
         for d in ("fby", "fbi"):
             if self.sel in (QUEUE, QUEUE_FREE):
                 o = self.queue[d].outputs(free, *self._starts(i, d))
-            elif self.sel == MARKER:
-                reader = "byte" if d == "fby" else "bit"
-                o = {"wr_ready": ALL, "rd_ready": ALL, "full": 0,
-                     "rd_data": self.markers.read(reader, i[f"{reader}_start"], i["buffer"])}
+            elif self.sel == MARKER:   # the cells go through the cell ports
+                o = {"wr_ready": ALL, "rd_ready": ALL, "full": 0, "rd_data": 0}
             else:
                 o = self.ff[d].outputs()
             for k, v in o.items():
                 out[f"{d}_{k}"] = v
+        out.update(self.markers.outputs(), marker=int(self.sel == MARKER))
         # the loss counts: {to-bit (fbi), to-byte (fby)}
         for name in ("over", "under", "over_now", "under_now"):
             out[name] = self.queue["fbi"].counts()[name] << 16 | self.queue["fby"].counts()[name]
@@ -180,9 +191,7 @@ class Exchange:
             self.ff[d].clock(wr if on_ff else 0, data, rd if on_ff else 0)
             self.queue[d].clock(free, wr if on_queue else 0, data, rd if on_queue else 0,
                                 *self._starts(i, d))
-        on_m = self.sel == MARKER
-        self.markers.clock(dict(i, bit_data=i["fby_data"], byte_data=i["fbi_data"]),
-                           {"bit": i["fby_wr"] if on_m else 0, "byte": i["fbi_wr"] if on_m else 0})
+        self.markers.clock(i, self.sel == MARKER)
         self.sel = i["exchange"]
 
 
@@ -190,11 +199,16 @@ INPUTS = {"exchange": "exchange_i", "buffer": "marker_write_buffer_i",
           "bit_start": "bit_start_i", "bit_end": "bit_end_i",
           "byte_start": "byte_start_i", "byte_end": "byte_end_i",
           "fby_wr": "fby_wr_req_i", "fby_data": "fby_wr_data_i", "fby_rd": "fby_rd_req_i",
-          "fbi_wr": "fbi_wr_req_i", "fbi_data": "fbi_wr_data_i", "fbi_rd": "fbi_rd_req_i"}
+          "fbi_wr": "fbi_wr_req_i", "fbi_data": "fbi_wr_data_i", "fbi_rd": "fbi_rd_req_i",
+          "bit_snap": "bit_snap_i",
+          **{f"{side}_{k}": f"{side}_cell_{port}_i" for side in ("bit", "byte")
+             for k, port in (("cwe", "we"), ("cwidx", "widx"), ("cwdata", "wdata"),
+                             ("cre", "re"), ("cridx", "ridx"))}}
 OUTPUTS = {f"{d}_{k}": f"{d}_{k}_o" for d in ("fby", "fbi")
            for k in ("wr_ready", "rd_ready", "full", "rd_data")}
 OUTPUTS.update(over="overflows_o", under="underflows_o", over_now="overflows_now_o",
-               under_now="underflows_now_o")
+               under_now="underflows_now_o", bit_cell="bit_cell_rdata_o",
+               byte_cell="byte_cell_rdata_o", marker="marker_o")
 
 
 def requests(rng: random.Random, one_hot: bool) -> int:
@@ -216,6 +230,14 @@ async def against_model(dut, model: Exchange, settings, rng: random.Random,
         for side in ("bit", "byte"):
             i[f"{side}_start"] = int(rng.random() < 0.08)
             i[f"{side}_end"] = int(rng.random() < 0.08)
+            # cells: indices clustered on a few words (merges meet), any cell at times
+            pick = (lambda: rng.choice((0, 1, 17, 18, CELLS - 1))) if rng.random() < 0.7 \
+                else (lambda: rng.randrange(CELLS))
+            i[f"{side}_cwe"] = int(rng.random() < busy)
+            i[f"{side}_cwidx"], i[f"{side}_cwdata"] = pick(), rng.getrandbits(1)
+            i[f"{side}_cre"] = int(rng.random() < busy)
+            i[f"{side}_cridx"] = pick()
+        i["bit_snap"] = int(rng.random() < 0.08)
         for d in ("fby", "fbi"):
             i[f"{d}_wr"] = requests(rng, False) if rng.random() < busy else 0
             i[f"{d}_rd"] = requests(rng, False) if rng.random() < busy else 0
@@ -224,8 +246,10 @@ async def against_model(dut, model: Exchange, settings, rng: random.Random,
             getattr(dut, sig).value = CODE[i[key]] if key == "exchange" else i[key]
         await Timer(1, unit="ns")
         want = model.outputs(i)
-        got = {k: int(getattr(dut, sig).value) for k, sig in OUTPUTS.items()}
-        diff = {k: (got[k], want[k]) for k in OUTPUTS if got[k] != want[k]}
+        got = {k: int(getattr(dut, sig).value) if want[k] is not None else None
+               for k, sig in OUTPUTS.items()}
+        diff = {k: (got[k], want[k]) for k in OUTPUTS
+                if want[k] is not None and got[k] != want[k]}
         assert not diff, (clk, setting, model.sel, i, diff)
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
@@ -233,9 +257,20 @@ async def against_model(dut, model: Exchange, settings, rng: random.Random,
 
 
 async def reset(dut, setting: str):
+    """Reset with `setting`; return at the clock the marker area's RAMs are cleared
+    (4 * CELLS / 16 clocks), the setting taken, with the model of that state."""
     await start_in_reset(dut, *(getattr(dut, s) for s in INPUTS.values()),
                          exchange_i=CODE[setting])
-    return Exchange()
+    assert int(dut.marker_ready_o.value) == 0
+    clocks = 0
+    while not int(dut.marker_ready_o.value):
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+        clocks += 1
+    assert clocks == 4 * CELLS // 16
+    model = Exchange()
+    model.sel = setting
+    return model
 
 
 async def one_setting(dut, setting: str, buffer: int, seed: int, clocks: int = 500):

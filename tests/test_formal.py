@@ -89,10 +89,6 @@ MUTATIONS = [
      "wire [PtrW-1:0] rd_slot = rd_restart ? {PtrW{1'b0}} : rd_ptr_q[PtrW-1:0];",
      "wire [PtrW-1:0] rd_slot = rd_ptr_q[PtrW-1:0];",
      "rd_data_o == f_n_val"),                  # ... its first read: out of order
-    ("marker_area", "marker_area.v", "if (bit_start_i)  bit_snap_q  <= byte_visible;",
-     "bit_snap_q <= byte_visible;"),                        # the view moves mid-scan
-    ("marker_area", "marker_area.v", "if (byte_end_i)   byte_pub_q  <= byte_work_d;",
-     "byte_pub_q <= byte_work_d;"),                         # publishes half a scan
     # marker_region (issue 16 item 2): every read against the shadow snapshot (f_snap)
     ("marker_region", "marker_region.v",
      "wire [1:0] w_slot = busy[w_of_w] ? free_slot : w_of_w;",
@@ -141,12 +137,23 @@ MUTATIONS = [
     ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",
      "assign done_o        = done_we_i;"),                 # DONE without a request
     ("byte_port", "byte_port.v",
-     "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
-     "wire byte_refused = bus_re_i && !bus_ready_o;",
+     "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o && !mc_rd;",
+     "wire byte_refused = bus_re_i && !bus_ready_o && !mc_rd;",
      "f_access_clocks - f_completed"),                     # misses refused writes
+    ("byte_port", "byte_port.v",
+     "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o && !mc_rd;",
+     "wire byte_refused = (bus_re_i || bus_we_i) && !bus_ready_o;",
+     "f_access_clocks - f_completed"),                     # a cell's RAM read as a stall
+    # byte_port: the marker exchange's cells (issue 16 item 2)
+    ("byte_port", "byte_port.v", "    else         mc_pend_q <= mc_rd && !mc_pend_q;",
+     "    else         mc_pend_q <= 1'b0;", "bus_ready_o == f_refused_q"),  # never answers
+    ("byte_port", "byte_port.v",
+     "wire [6:0] mc_k      = in_mc ? bus_addr_i[6:0] : {4'd0, chan};",
+     "wire [6:0] mc_k      = {4'd0, chan};", "_widx_o == f_k"),   # the window's cell lost
     # byte_port: TC_WAIT, parallel mode's status wait (docs/exchange.md)
-    ("byte_port", "byte_port.v", "                    && !(is_tc_wait_rd && !tc_wait_written);",
-     "                    ;", "bus_ready_o == f_wr"),    # reads last scan's enable
+    ("byte_port", "byte_port.v",
+     "&& !(is_tc_wait_rd && !tc_wait_written) && !(mc_rd",
+     "&& !(mc_rd", "bus_ready_o == f_wr"),    # reads last scan's enable
     ("byte_port", "byte_port.v", "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? c_wr : t_wr;",
      "wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? t_wr : c_wr;",
      "bus_ready_o == f_wr"),                     # waits on the other kind's bit
@@ -184,6 +191,14 @@ MUTATIONS = [
      "assert (cpu_run_o && !lock_req_o && copy_fail_o"),  # forgets the postcycle: late
     ("core_seq", "core_seq.v", "if (!started_q || period_i == 64'd0) nominal_q <= now_m;",
      "nominal_q <= now_m;", "assert (lock_req_o && !cpu_run_o"),  # a late scan shifts the plan
+    # bit_proc (issue 16 item 2): the marker exchange's cells
+    ("bit_proc", "bit_proc.v", "      if (e_first_q) cell_hold_q <= cell_rdata_i;",
+     "      cell_hold_q <= cell_rdata_i;", "rlo_d == f_rlo_nx"),   # a held read sees another's
+    ("bit_proc", "bit_proc.v", "  assign cell_ridx_o = o_index[CW-1:0];",
+     "  assign cell_ridx_o = e_instr_q[CW-1:0];", "rlo_d == f_rlo_nx"),  # the cell a clock late
+    ("bit_proc", "bit_proc.v",
+     "wire fbi_read   = e_act && e_on_fb_q && e_logic_q && !marker_i;",
+     "wire fbi_read   = e_act && e_on_fb_q && e_logic_q;", "fbi_rd_req_o =="),  # asks a channel
     # bit_proc (issue 20 item 5): the pipeline against the ISA reference model
     ("bit_proc", "bit_proc.v", "assign tcw_we_o         = target_we && e_assign_q && e_on_tc_q;",
      "assign tcw_we_o         = e_assign_q && e_on_tc_q;",

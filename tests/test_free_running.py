@@ -162,3 +162,60 @@ def test_marker_write_buffer_needs_the_marker_exchange(tmp_path, capsys):
     for extra in (["--mode", "free", "--exchange", "queue-free"], ["--mode", "parallel"]):
         assert cli.main(["run", str(il), "--marker-write-buffer", *extra]) == cli.EXIT_USAGE
         assert "--marker-write-buffer" in capsys.readouterr().err
+
+
+# 100 conditions cross each way in one scan (issue 16 item 2: the marker area in block
+# RAM, 128 cells a direction): input k goes to the byte side (the jump over word code
+# carries it), which writes it into MW k and hands `MW k > 0` back for Q k. Every
+# crossing has a cell of its own (the 4 flip-flop cells of before refused this).
+CROSSINGS = 100
+
+
+def round_trip_program(n: int) -> str:
+    lines = []
+    for k in range(n):
+        pin = f"{k // 8}.{k % 8}"
+        lines += [f"      LD    I{pin}", f"      JCN   z{k}", "      L     1", f"      T     MW{k}",
+                  f"      JU    d{k}", f"z{k}:  L     0", f"      T     MW{k}",
+                  f"d{k}:  L     MW{k}", "      L     0", "      >I", f"      =     Q{pin}"]
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_marker_area_carries_100_crossings_each_way(tmp_path, sim, capsys):
+    """Each input's pattern reaches its output within the bound of the round trip:
+    the bit side latches the input and writes its cell within two of its scans, the
+    byte side takes it at its next scan start and uses it in that scan (two byte
+    scans), writes the compare's cell, which the bit side takes at its next scan start
+    and uses in that scan (two bit scans); one bit scan more to see it in the trace
+    (rows at bit-scan ends)."""
+    n = CROSSINGS
+    il = tmp_path / "rt.il"
+    il.write_text(round_trip_program(n))
+    pattern = [int(k % 3 == 0) for k in range(n)]
+    change_us, end_us = 200, 400
+    pins = [f"I{k // 8}.{k % 8}" for k in range(n)]
+    st = tmp_path / "rt.csv"
+    st.write_text("t_us," + ",".join(pins) + "\n0," + ",".join(map(str, pattern)) +
+                  f"\n{change_us}," + ",".join(str(1 - v) for v in pattern) + "\n")
+    trace = tmp_path / "rt.trace.csv"
+    outs = [f"Q{k // 8}.{k % 8}" for k in range(n)]
+    assert cli.main(["run", str(il), "--mode", "free", "--exchange", "marker", "--sim", sim,
+                     "--stimulus", str(st), "--until-us", str(end_us), "--trace", str(trace),
+                     "--watch", ",".join(outs)]) == 0
+    out = capsys.readouterr().out
+    byte_scans = int(out.split("\nbyte side", 1)[1].split()[0])     # its summary line
+    rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
+    t = [float(r[1]) for r in rows]
+    bit_scan = max(int(r[2]) for r in rows) / 100                      # us at 100 MHz
+    # the byte side's scans are alike (each crossing one of two short paths): their
+    # mean over the run, with a tenth for the difference
+    byte_scan = 1.1 * end_us / byte_scans
+    bound = 4 * bit_scan + 2 * byte_scan + bit_scan
+    assert byte_scans >= 5 and bound < change_us, (byte_scans, bound)
+    for t0, want in ((0, pattern), (change_us, [1 - v for v in pattern])):
+        window = [i for i, ti in enumerate(t) if t0 + bound <= ti < t0 + change_us]
+        assert len(window) >= 3
+        for k in range(n):
+            got = {int(rows[i][3 + k]) for i in window}
+            assert got == {want[k]}, (outs[k], t0, got)

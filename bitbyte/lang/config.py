@@ -20,6 +20,7 @@ class Config:
     timers: int = _S["timers"]  # Timers: T 0..timers-1
     counters: int = _S["counters"]  # Counters: C 0..counters-1
     channels: int = _S["channels"]  # Channels: FBI/FBY k = 0..channels-1
+    marker_cells: int = _S["marker_cells"]  # MarkerCells: FBI/FBY k with the marker exchange
     nest_depth: int = _S["nest_depth"]  # NestDepth: parenthesis nesting levels
     in_words: int = _S["in_words"]  # IW n
     out_words: int = _S["out_words"]  # QW n

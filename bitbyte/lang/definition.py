@@ -246,6 +246,9 @@ class Definition:
                  f"{self.sizes[size]}")
         need(self.register("FBY").count == self.register("FBI").count >= self.sizes["channels"],
              "the FBY and FBI windows must be alike and hold [sizes] channels")
+        need(self.register("MCELL").count >= self.sizes["marker_cells"] >=
+             self.register("FBY").count,
+             "the MCELL window must hold [sizes] marker_cells, and they the FBY window's")
 
 
 class DefinitionError(ValueError):

@@ -135,7 +135,7 @@ def c_bus_map(d: Definition) -> str:
             val = f"{v}" if fname.endswith("SHIFT") else _h(v, 1 if v < 16 else 2)
             b.append(_cdef(f"BB_{fname}", val, r.name))
     b += ["", "/* Window sizes: the elements the bus can address. */"]
-    names = {"FBY": "BB_BUS_CHANNELS", "FBI": None, "IW": "BB_BUS_IW_WORDS",
+    names = {"FBY": "BB_BUS_CHANNELS", "FBI": None, "MCELL": "BB_BUS_MCELLS", "IW": "BB_BUS_IW_WORDS",
              "QW": "BB_BUS_QW_WORDS", "MW": "BB_BUS_MW_WORDS"}
     for r in windows:
         if names.get(r.name):
@@ -153,6 +153,8 @@ def c_isa(d: Definition) -> str:
          _cdef("BB_NUM_QW", f"{d.register('QW').count}u"),
          _cdef("BB_NUM_CHANNELS", f"{d.register('FBY').count}u",
                "FBY/FBI k: the bus decodes them all"),
+         _cdef("BB_NUM_CELLS", f"{d.register('MCELL').count}u",
+               "FBY/FBI k with the marker exchange (the MCELL window)"),
          _cdef("BB_POOL_WORDS", f"{fw['pool_words']}u", "constant pool (L#POOL)"),
          _cdef("BB_PROG_WORDS", f"{fw['byte_prog_words']}u", "byte program (parallel mode)"),
          _cdef("BB_MAX_STEPS_DEFAULT", f"{fw['max_steps_default']}u",

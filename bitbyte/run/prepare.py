@@ -6,7 +6,7 @@ that every simulator driver runs alike.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 from bitbyte.compiler.partition import partition
@@ -134,6 +134,10 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
     if marker_write_buffer and exchange != "marker":
         raise UsageError("--marker-write-buffer: the marker exchange's option "
                          "(--mode free, --exchange marker)")
+    # the marker exchange's FBI / FBY k are the marker area's cells, not the channels
+    cells = mode == "free" and exchange == "marker"
+    if cells:
+        config = replace(config, channels=config.marker_cells)
     program = parse_file(program_path, config, lang=lang, mnemonics=mnemonics,
                          symbols=symbols)
     byte_words: list[int] = []
@@ -146,12 +150,13 @@ def prepare(program_path: str, *, stimulus: str | None = None, watch: str = "",
         # free-running: nobody waits, so no ordering of status reads (paper Fig. 2)
         free = mode == "free"
         if channels is not None and not 1 <= channels <= config.channels:
-            raise UsageError(f"--channels must be 1..{config.channels}")
+            raise UsageError(f"--channels must be 1..{config.channels}"
+                             + (" (the marker area's cells)" if cells else ""))
         part = partition(program, channels or config.channels, config=config,
                          status_sync=not free,
                          hardware_wait=not free, costs=costs, tc_path=tc_path)
         words, byte_words, pool = part.bit_words, part.byte_words, part.pool
-        if free and exchange == "marker":
+        if cells:
             _one_cell_per_condition(program, part, channels or config.channels)
     else:
         words, pool = encode_words(program, config), constant_pool(program)

@@ -36,10 +36,27 @@ static void test_write(void) {
   CHECK_EQ(FH.log[1].data, 0);
 }
 
+static void test_cells_past_the_channels(void) {
+  /* the marker exchange's cells 8..127 are in the MCELL window (0x80 + k); cells 0..7
+   * stay at the channel registers (the hardware serves both there) */
+  setup();
+  RLO = 1;
+  CHECK_EQ(ex(i_ch(BB_OP_READ, 8)), BB_CL_BINARY);
+  CHECK_EQ(FH.log[FH.nlog - 1].addr, 0x88);
+  CHECK_EQ(FH.log[FH.nlog - 1].write, 0);
+  CHECK_EQ(RLO, 0);                   /* the fake HAL's window reads 0 */
+  RLO = 1;
+  CHECK_EQ(ex(i_ch(BB_OP_WRITE, 127)), BB_CL_BINARY);
+  CHECK_EQ(FH.log[FH.nlog - 1].addr, 0xFF);
+  CHECK_EQ(FH.log[FH.nlog - 1].write, 1);
+  CHECK_EQ(FH.log[FH.nlog - 1].data, 1);
+  CHECK_EQ(S.flags, 0);
+}
+
 static void test_bad_channel(void) {
   setup();
   RLO = 1;
-  CHECK_EQ(ex(i_ch(BB_OP_READ, 8)), BB_CL_ILLEGAL);
+  CHECK_EQ(ex(i_ch(BB_OP_READ, BB_NUM_CELLS)), BB_CL_ILLEGAL);
   CHECK_EQ(ex(BB_INSTR(BB_OP_WRITE, BB_AREA_MW, 0)), BB_CL_ILLEGAL);
   CHECK_EQ(RLO, 1);
   CHECK_EQ(S.flags, BB_FLAG_ILLEGAL);
@@ -112,6 +129,7 @@ static void test_step_stall(void) {
 void suite_exchange(void) {
   RUN(test_read);
   RUN(test_write);
+  RUN(test_cells_past_the_channels);
   RUN(test_bad_channel);
   RUN(test_step_exact_cost);
   RUN(test_step_stall);
