@@ -813,7 +813,8 @@ module bit_proc #(
 
   // the marker area (exchange marker): the reader's snapshot, any cells, constant here
   // (the snapshot's timing is marker_region.v's proof); a read's cell comes in the next
-  // clock, and only then. The setting does not change during the proof.
+  // clock, and only then. The setting changes between scans only (the host writes it
+  // before RUN: it may arrive in the clock a scan starts in).
   (* anyconst *) reg [Cells-1:0] f_cells;
   reg            f_cre_q = 1'b0;
   reg [CW-1:0]   f_cidx_q;
@@ -822,7 +823,7 @@ module bit_proc #(
     f_cidx_q <= cell_ridx_o;
   end
   always @(*) if (f_cre_q) assume (cell_rdata_i == f_cells[f_cidx_q]);
-  always @(posedge clk_i) if (f_past_valid) assume ($stable(marker_i));
+  always @(posedge clk_i) if (f_past_valid && f_exec) assume ($stable(marker_i));
 
   // the CPU's own input unit (latched at a scan start and by REFRESH), output unit
   // (its PIO register) and T/C status buffer (written by the byte side at any time)

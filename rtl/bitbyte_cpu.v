@@ -95,6 +95,11 @@ module bitbyte_cpu #(
                "bitbyte_cpu: OutBytes must be 1..512 (12-bit operand index)")
   `PARAM_CHECK(g_bad_marker_bytes, MarkerBytes < 1 || MarkerBytes > 512,
                "bitbyte_cpu: MarkerBytes must be 1..512 (12-bit operand index)")
+  // the marker area packs 16 cells a block-RAM word, two words at least; the bus
+  // window MCELL holds 128
+  `PARAM_CHECK(g_bad_marker_cells,
+               MarkerCells < 32 || MarkerCells > 128 || (MarkerCells & (MarkerCells - 1)) != 0,
+               "bitbyte_cpu: MarkerCells must be a power of two in 32..128")
 
   wire start, latch, exec, mem_ready, end_exec, refresh;
   wire [InBits-1:0]  pii, rise, fall, rise_pend, fall_pend;

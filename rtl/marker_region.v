@@ -25,7 +25,8 @@
 // block RAM per direction (one 256 x 16 iCE40 RAM each at 128 cells).
 //
 // After reset the RAM is cleared, one word a clock (4 * Words clocks): all cells read
-// 0 then, and writes wait (ready_o low).
+// 0 then, and writes are dropped (ready_o low: the CPU starts no scan, and its hosts
+// write nothing, before it is ready).
 module marker_region #(
   parameter integer Cells       = 128,  // condition cells (a power of two; 100 crossings fit)
   parameter integer WordBits    = 16    // cells per RAM word (16: the iCE40's 256 x 16)

@@ -163,7 +163,10 @@ module plc_core #(
     .MarkerBytes(MarkerBytes),
     .StatusBits (StatusBits),
     .InWords    (InWords),
-    .OutWords   (OutWords)
+    .OutWords   (OutWords),
+    // a plant core runs serial or parallel (spec §7), never free: the handshake
+    // flip-flops and the queues, no marker area (its block RAMs would idle)
+    .Exchanges  (3)
   ) u_cpu (
     .clk_i                (clk_i),
     .rst_ni               (rst_ni),

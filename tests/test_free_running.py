@@ -183,12 +183,13 @@ def round_trip_program(n: int) -> str:
 
 @pytest.mark.parametrize("sim", ["verilator", "icarus"])
 def test_marker_area_carries_100_crossings_each_way(tmp_path, sim, capsys):
-    """Each input's pattern reaches its output within the bound of the round trip:
-    the bit side latches the input and writes its cell within two of its scans, the
-    byte side takes it at its next scan start and uses it in that scan (two byte
-    scans), writes the compare's cell, which the bit side takes at its next scan start
-    and uses in that scan (two bit scans); one bit scan more to see it in the trace
-    (rows at bit-scan ends)."""
+    """Each crossing is seen within the reader's next complete scan, both ways:
+    bit -> byte, the bit side latches input k and writes its cell within two of its
+    scans, the byte side takes the cell at its next scan start and writes MW k in
+    that scan (two byte scans; one bit scan more to see MW k in the trace, whose rows
+    are bit-scan ends); byte -> bit, the compare's cell is written a few word
+    instructions after MW k in the same byte scan, the bit side takes it at its next
+    scan start and writes Q k in that scan (two bit scans, one more to see it)."""
     n = CROSSINGS
     il = tmp_path / "rt.il"
     il.write_text(round_trip_program(n))
@@ -200,9 +201,10 @@ def test_marker_area_carries_100_crossings_each_way(tmp_path, sim, capsys):
                   f"\n{change_us}," + ",".join(str(1 - v) for v in pattern) + "\n")
     trace = tmp_path / "rt.trace.csv"
     outs = [f"Q{k // 8}.{k % 8}" for k in range(n)]
+    words = [f"MW{k}" for k in range(n)]
     assert cli.main(["run", str(il), "--mode", "free", "--exchange", "marker", "--sim", sim,
                      "--stimulus", str(st), "--until-us", str(end_us), "--trace", str(trace),
-                     "--watch", ",".join(outs)]) == 0
+                     "--watch", ",".join(outs + words)]) == 0
     out = capsys.readouterr().out
     byte_scans = int(out.split("\nbyte side", 1)[1].split()[0])     # its summary line
     rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
@@ -211,11 +213,74 @@ def test_marker_area_carries_100_crossings_each_way(tmp_path, sim, capsys):
     # the byte side's scans are alike (each crossing one of two short paths): their
     # mean over the run, with a tenth for the difference
     byte_scan = 1.1 * end_us / byte_scans
-    bound = 4 * bit_scan + 2 * byte_scan + bit_scan
-    assert byte_scans >= 5 and bound < change_us, (byte_scans, bound)
+    to_byte = 2 * bit_scan + 2 * byte_scan + bit_scan
+    to_bit = 0.5 + 2 * bit_scan + bit_scan       # (0.5 us: the word instructions between)
+    assert byte_scans >= 5 and to_byte + to_bit < change_us, (byte_scans, to_byte, to_bit)
+
+    def settled(col: int, t0: float, want: int) -> float:
+        """When column `col` took `want` for good after t0 (until the next change)."""
+        seen = None
+        for i, ti in enumerate(t):
+            if t0 <= ti < t0 + change_us:
+                if int(rows[i][col]) != want:
+                    seen = None
+                elif seen is None:
+                    seen = ti
+        assert seen is not None, (col, t0)
+        return seen
     for t0, want in ((0, pattern), (change_us, [1 - v for v in pattern])):
-        window = [i for i, ti in enumerate(t) if t0 + bound <= ti < t0 + change_us]
-        assert len(window) >= 3
         for k in range(n):
-            got = {int(rows[i][3 + k]) for i in window}
-            assert got == {want[k]}, (outs[k], t0, got)
+            t_mw = settled(3 + n + k, t0, want[k])
+            t_q = settled(3 + k, t0, want[k])
+            assert t_mw - t0 <= to_byte, (words[k], t0, t_mw)
+            assert t_q - t_mw <= to_bit, (outs[k], t0, t_q, t_mw)
+            assert t_q + 3 * bit_scan < t0 + change_us      # and stays so for a while
+
+
+# The byte side flips FBI 0 and FBI 1 every scan (its scans are a few bit scans long);
+# the bit side reads each twice in one scan, NOPs between, and sets Q0.0 / Q0.1 for
+# good if the two reads of a scan differ: they never may, its snapshot is taken once,
+# at its scan start (review finding: with the snapshot a clock late, at the latch, the
+# first instruction's read, made a clock early, saw the old one).
+ONE_SNAPSHOT = """\
+BIT:
+      LD    FBI 0
+      =     M0.0
+      LD    FBI 1
+      =     M0.1
+      NOP
+      NOP
+      LD    FBI 0
+      X     M0.0
+      S     Q0.0
+      LD    FBI 1
+      X     M0.1
+      S     Q0.1
+      LD    FBI 0
+      =     Q0.2
+BYTE:
+      L     MW0
+      L     1
+      +I
+      T     MW0
+      L     MW0
+      L     2
+      MOD
+      L     0
+      ==I
+      WRITE FBI 0
+      WRITE FBI 1
+"""
+
+
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+def test_marker_bit_side_reads_one_snapshot_per_scan(tmp_path, sim):
+    il = tmp_path / "snap.il"
+    il.write_text(ONE_SNAPSHOT)
+    trace = tmp_path / "snap.trace.csv"
+    assert cli.main(["run", str(il), "--mode", "free", "--exchange", "marker", "--sim", sim,
+                     "--scans", "200", "--trace", str(trace), "--watch", "Q0.0,Q0.1,Q0.2"]) == 0
+    rows = [line.split(",")[3:] for line in trace.read_text().splitlines()[1:]]
+    assert all(r[0] == "0" and r[1] == "0" for r in rows)          # never two snapshots
+    q2 = [r[2] for r in rows]
+    assert sum(a != b for a, b in zip(q2, q2[1:])) >= 20             # the cells do change

@@ -112,6 +112,11 @@ def _set_register(name, **values):
     # a build profile only shrinks [sizes] keys (issue 20, the hx8k profile)
     (lambda raw: raw["profiles"]["hx8k"].update(in_words=99), r"profiles.hx8k\] in_words"),
     (lambda raw: raw["profiles"]["hx8k"].update(no_such_size=1), "not a \\[sizes\\] key"),
+    # the marker area's cells: what bitbyte_cpu builds (issue 16 item 2)
+    (lambda raw: raw["profiles"]["hx8k"].update(marker_cells=16),
+     r"profiles.hx8k\] marker_cells must be a power of two in 32..128, not 16"),
+    (lambda raw: raw["profiles"]["hx8k"].update(marker_cells=100), "not 100"),
+    (lambda raw: raw["sizes"].update(marker_cells=256), "MCELL window must hold"),
 ])
 def test_definition_rejects_contradictions(mutate, message):
     with pytest.raises(DefinitionError, match=message):

@@ -54,9 +54,10 @@ CPU_CORNERS = [
     {"QueueDepth": 2}, {"InWords": 1}, {"OutWords": 1},
     {"Exchanges": 1}, {"Exchanges": 2}, {"Exchanges": 4}, {"Exchanges": 3}, {"Exchanges": 5},
     {"Exchanges": 6}, {"Exchanges": 2, "Channels": 1}, {"Exchanges": 4, "Channels": 8},
+    {"MarkerCells": 32}, {"MarkerCells": 64}, {"Exchanges": 4, "MarkerCells": 32},
     CPU_MIN, CPU_MAX,
 ]
-# rtl/marker_region.v (issue 16 item 2), on its own until the CPU instantiates it
+# rtl/marker_region.v (issue 16 item 2) on its own, at sizes the CPU does not build
 REGION_CORNERS = [
     {}, {"Cells": 4, "WordBits": 2}, {"Cells": 16, "WordBits": 8},
     {"Cells": 32, "WordBits": 16}, {"Cells": 4096},
@@ -110,6 +111,9 @@ BAD = [
     ("bitbyte_cpu", {"InBytes": 513}, "InBytes"),
     ("bitbyte_cpu", {"OutBytes": 0}, "OutBytes"),
     ("bitbyte_cpu", {"MarkerBytes": 1024}, "MarkerBytes"),
+    ("bitbyte_cpu", {"MarkerCells": 16}, "MarkerCells"),      # one RAM word
+    ("bitbyte_cpu", {"MarkerCells": 100}, "MarkerCells"),     # not a power of two
+    ("bitbyte_cpu", {"MarkerCells": 256}, "MarkerCells"),     # past the MCELL window
     ("marker_region", {"Cells": 100}, "Cells"),                  # not a power of two
     ("marker_region", {"Cells": 16, "WordBits": 16}, "Cells"),   # one word only
     ("marker_region", {"Cells": 8192}, "Cells"),

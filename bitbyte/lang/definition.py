@@ -249,6 +249,15 @@ class Definition:
         need(self.register("MCELL").count >= self.sizes["marker_cells"] >=
              self.register("FBY").count,
              "the MCELL window must hold [sizes] marker_cells, and they the FBY window's")
+        # the marker area's regions (rtl/marker_region.v) pack 16 cells a RAM word and
+        # need two words at least; the byte port's window holds 128 (bitbyte_cpu checks
+        # the same at elaboration)
+        for where, sizes in [("[sizes]", self.sizes)] + [
+                (f"[profiles.{n}]", self.profile_sizes(n)) for n in self.profiles]:
+            cells = sizes["marker_cells"]
+            need(32 <= cells <= self.register("MCELL").count and cells & (cells - 1) == 0,
+                 f"{where} marker_cells must be a power of two in 32.."
+                 f"{self.register('MCELL').count}, not {cells}")
 
 
 class DefinitionError(ValueError):
