@@ -98,11 +98,8 @@ def test_marker_needs_a_cell_per_condition(tmp_path):
     assert cli.main(["run", str(il), "--mode", "free", "--exchange", "queue-free"]) == 0
 
 
-# The byte side counts its scans in MW0 and hands "MW0 is even" to the bit side twice
-# in one scan, word work between the two crossings; the bit side sets Q0.0 for good
-# when the two disagree, i.e. when its snapshot holds one crossing of a byte scan and
-# not the other, and shows the first in Q0.1.
-TWO_OF_ONE_SCAN = """\
+# The byte side counts its scans in MW0 and works out "MW0 is even" (RLO)
+COUNT_AND_PARITY = """\
       L     MW0
       L     1
       +I
@@ -112,6 +109,13 @@ TWO_OF_ONE_SCAN = """\
       MOD
       L     0
       ==I
+"""
+
+# ... and hands it to the bit side twice in one scan, word work between the two
+# crossings; the bit side sets Q0.0 for good when the two disagree, i.e. when its
+# snapshot holds one crossing of a byte scan and not the other, and shows the first
+# in Q0.1.
+TWO_OF_ONE_SCAN = COUNT_AND_PARITY + """\
       =     M0.0
       L     MW1
       L     MW2
@@ -259,15 +263,7 @@ BIT:
       LD    FBI 0
       =     Q0.2
 BYTE:
-      L     MW0
-      L     1
-      +I
-      T     MW0
-      L     MW0
-      L     2
-      MOD
-      L     0
-      ==I
+""" + COUNT_AND_PARITY + """\
       WRITE FBI 0
       WRITE FBI 1
 """
