@@ -24,6 +24,8 @@ ROOT = Path(__file__).resolve().parents[1]
 BUILD = ROOT / "build" / "bench"
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "synth"))
+from run_synth import git_rev  # noqa: E402,F401  (the tree a figure was measured on)
 DEFAULT_CLOCK_MHZ = Fraction(100)
 
 

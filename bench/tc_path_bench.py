@@ -25,7 +25,7 @@ sys.path.insert(0, str(HERE.parent))
 import benchlib as bl                     # noqa: E402
 
 PATHS = ("channel", "status")
-MODES = ("parallel", "free:queue-free")
+MODES = ("parallel", "free:queue-free", "free:marker")
 BEGIN = "<!-- tc-path: bench/tc_path_bench.py -->"
 END = "<!-- /tc-path -->"
 
@@ -47,7 +47,7 @@ def _partition_counts(prog: Path, mode: str, tc_path: str) -> dict:
 def measure(case: dict, f: Fraction) -> dict:
     """case: run_bench.scan_cases' Table-1 entry (program, stimulus, scans)."""
     out = dict(program=str(case["prog"].relative_to(bl.ROOT)), scans=case["scans"],
-               clock_mhz=float(f), runs=[])
+               clock_mhz=float(f), rev=bl.git_rev(), runs=[])
     for spec in MODES:
         mode, _ = bl.split_mode(spec)
         for tp in PATHS:
@@ -74,14 +74,17 @@ def markdown(res: dict) -> list[str]:
     L = [BEGIN, "", "### Timer / counter inputs: `--tc-path channel` vs `status` "
          "(issue 16 item 1)", "",
          f"The Table-1 program (`{res['program']}`, {res['scans']} scans, the stimulus of "
-         f"§1, {res['clock_mhz']:g} MHz). *Transfers* are per straight-line scan as the "
+         f"§1, {res['clock_mhz']:g} MHz; measured at `{res.get('rev', '?')}`). "
+         "*Transfers* are per straight-line scan as the "
          "compiler makes them (bit → byte / byte → bit); *status* counts the byte "
          "instructions whose enable / count input the bit side leaves in the status buffer "
          "(`= T n` / `= C n`) instead of a channel; in parallel mode the byte side waits for "
          "this scan's write there (the status-wait bit, docs/exchange.md), so both of its "
          "rows keep the serial result. In free-running mode the median is "
-         "the bit side's scan, then the byte side's scans (simulated clocks / its scans) and "
-         "the queues' losses (overflows / underflows, to-byte and to-bit).", "",
+         "the bit side's scan, then the byte side's scans (simulated clocks / its scans) and, "
+         "with the free-running queues, their losses (overflows / underflows, to-byte and "
+         "to-bit); the marker area loses nothing (each crossing has a cell of its own, "
+         "read from the reader's snapshot).", "",
          "| mode | --tc-path | transfers bit→byte / byte→bit | via status buffer | "
          "bit part / byte part [instr.] | median / max [clocks] | stalls per scan bit / byte "
          "| free-running: byte side, losses |",
