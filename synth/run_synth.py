@@ -104,6 +104,7 @@ SWEEP = [
 # Block RAM overuse halves the program memory first.
 SHRINK = [
     {"ForceBits": 16},              # forcing is a debugging aid: a small board forces fewer pins
+    {"MarkerCells": 32},            # the free-running marker area: 32 crossings a direction
     {"InWords": 4, "OutWords": 4},
     {"StatusBits": 32},
     {"InBytes": 8, "OutBytes": 8},
