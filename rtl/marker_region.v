@@ -69,10 +69,15 @@ module marker_region #(
   wire [WW-1:0] w_word = wr_idx_i[IW-1:BW];
   wire [WW-1:0] r_word = rd_idx_i[IW-1:BW];
   wire [1:0] w_of_w = w_q[2*w_word +: 2];
-  // the reader's slot after this clock's update (a read in the snap clock sees the new
-  // snapshot)
-  wire [2*Words-1:0] r_next = snap_i ? (write_buffer_i ? p_q : w_q) : r_q;
-  wire [1:0] r_of_r = r_next[2*r_word +: 2];
+  // the reader's slots after this clock's update (a read in the snap clock sees the new
+  // snapshot). snap_i is the latest input (the bit side's scan start): each slot below
+  // is picked per word from the pointer registers first, for both cases, and snap_i
+  // chooses last.
+  wire [2*Words-1:0] r_snap = write_buffer_i ? p_q : w_q;
+  wire [2*Words-1:0] r_next = snap_i ? r_snap : r_q;
+  wire [1:0] r_keep_r = r_q[2*r_word +: 2];
+  wire [1:0] r_new_r  = r_snap[2*r_word +: 2];
+  wire [1:0] r_of_r = snap_i ? r_new_r : r_keep_r;
 
   // ---------------------------------------------------------------- the two sides
   // a read is always taken (while clearing it answers 0); a write once cleared
@@ -80,12 +85,21 @@ module marker_region #(
   wire wr_take = wr_req_i && !clearing;
 
   // The slot a write goes to: not the reader's (after this clock's update) and, with
-  // the write buffer, not the published one; w itself if it is neither.
-  wire [1:0] w_r = r_next[2*w_word +: 2];
+  // the write buffer, not the published one; w itself if it is neither (three slots
+  // always leave one). Worked out for the reader's slot with and without this clock's
+  // update; snap_i picks last.
+  function automatic [1:0] write_slot(input [1:0] r, input [1:0] p, input [1:0] w,
+                                      input wb);
+    reg [2:0] busy;
+    begin
+      busy = (3'b001 << r) | (wb ? (3'b001 << p) : 3'b000);
+      write_slot = !busy[w] ? w : !busy[0] ? 2'd0 : !busy[1] ? 2'd1 : 2'd2;
+    end
+  endfunction
   wire [1:0] w_p = p_q[2*w_word +: 2];
-  wire [2:0] busy = (3'b001 << w_r) | (write_buffer_i ? (3'b001 << w_p) : 3'b000);
-  wire [1:0] free_slot = !busy[0] ? 2'd0 : !busy[1] ? 2'd1 : 2'd2;
-  wire [1:0] w_slot = busy[w_of_w] ? free_slot : w_of_w;
+  wire [1:0] w_slot_keep = write_slot(r_q[2*w_word +: 2], w_p, w_of_w, write_buffer_i);
+  wire [1:0] w_slot_new  = write_slot(r_snap[2*w_word +: 2], w_p, w_of_w, write_buffer_i);
+  wire [1:0] w_slot = snap_i ? w_slot_new : w_slot_keep;
 
   // ---------------------------------------------------------------- the RAM, twice
   // no_rw_check: a read of the word written in the same clock may return either value;

@@ -91,19 +91,19 @@ MUTATIONS = [
      "rd_data_o == f_n_val"),                  # ... its first read: out of order
     # marker_region (issue 16 item 2): every read against the shadow snapshot (f_snap)
     ("marker_region", "marker_region.v",
-     "wire [1:0] w_slot = busy[w_of_w] ? free_slot : w_of_w;",
-     "wire [1:0] w_slot = w_of_w;", "rd_data_o == f_snap"),   # a write tears the snapshot
+     "write_slot = !busy[w] ? w : !busy[0] ? 2'd0 : !busy[1] ? 2'd1 : 2'd2;",
+     "write_slot = w;", "rd_data_o == f_snap"),   # a write tears the snapshot
     ("marker_region", "marker_region.v",
      "wire [WordBits-1:0] merge_in = byp_w_q ? byp_data_q : ram_w_q;",
      "wire [WordBits-1:0] merge_in = ram_w_q;", "rd_data_o == f_snap"),  # merge loses a write
     ("marker_region", "marker_region.v", "      mem_w[waddr] <= wdata;\n",
      "", "rd_data_o == f_snap"),                           # the writer's copy not written
-    ("marker_region", "marker_region.v", "(write_buffer_i ? (3'b001 << w_p) : 3'b000)",
+    ("marker_region", "marker_region.v", "(wb ? (3'b001 << p) : 3'b000)",
      "3'b000", "rd_data_o == f_snap"),                     # the write buffer overwritten
     ("marker_region", "marker_region.v", "if (clearing) clear_q <= clear_q + 1'b1;",
      "if (1'b0) clear_q <= clear_q + 1'b1;", "assert (clear_q == f_age)"),  # never ready
-    ("marker_region", "marker_region.v", "wire [1:0] r_of_r = r_next[2*r_word +: 2];",
-     "wire [1:0] r_of_r = r_q[2*r_word +: 2];", "rd_data_o == f_snap"),  # update a clock late
+    ("marker_region", "marker_region.v", "wire [1:0] r_of_r = snap_i ? r_new_r : r_keep_r;",
+     "wire [1:0] r_of_r = r_keep_r;", "rd_data_o == f_snap"),  # update a clock late
     # hsem: against the shadow of the lock (f_held, f_holder) and the grants counted
     ("hsem", "hsem.v", "wire grant_any = !locked_o && any_req;",
      "wire grant_any = any_req;", "if (f_held) assert (grant_o"),   # grant while held
