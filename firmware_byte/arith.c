@@ -1,5 +1,6 @@
 /*
- * arith.c — +I -I *I /I MOD (spec §3): ACCU1 := INT(ACCU2) op INT(ACCU1), wrapped to
+ * arith.c — +I -I *I /I MOD (spec §3), and +D -D *D /D MODD (docs/isa.md, DINT) below.
+ * +I ...: ACCU1 := INT(ACCU2) op INT(ACCU1), wrapped to
  * 16 bits and sign-extended; ACCU2 unchanged. /I truncates toward zero and MOD takes
  * the sign of the dividend (both are C99's / and %); a divisor of 0 gives 0 and sets
  * the sticky arithmetic-error flag, which is also written to BYTE_FLAGS.
@@ -28,8 +29,43 @@ int32_t bb_arith16(unsigned op, int32_t accu2, int32_t accu1, int *div0) {
   return bb_int16((uint32_t)r);
 }
 
+/* +D -D *D /D MODD: ACCU1 := ACCU2 op ACCU1 over all 32 bits, wrapped (S7's DINT
+ * arithmetic; -2^31 / -1 wraps to -2^31 as in awlsim). The operations run on uint32_t,
+ * where wrapping is defined; / and % on magnitudes, the signs put back: truncation
+ * toward zero, the remainder with the dividend's sign. A divisor of 0 gives 0 and sets
+ * the sticky flag, as /I. */
+int32_t bb_arith32(unsigned op, int32_t accu2, int32_t accu1, int *div0) {
+  const uint32_t a = (uint32_t)accu2, b = (uint32_t)accu1;
+  const uint32_t amag = accu2 < 0 ? 0u - a : a, bmag = accu1 < 0 ? 0u - b : b;
+  uint32_t r = 0;
+  *div0 = 0;
+  switch (op) {
+    case BB_OP_ADD_D: r = a + b; break;
+    case BB_OP_SUB_D: r = a - b; break;
+    case BB_OP_MUL_D: r = a * b; break;
+    case BB_OP_DIV_D:
+      if (b == 0u) { *div0 = 1; break; }
+      r = amag / bmag;
+      if ((accu2 < 0) != (accu1 < 0)) r = 0u - r;
+      break;
+    case BB_OP_MOD_D:
+      if (b == 0u) { *div0 = 1; break; }
+      r = amag % bmag;
+      if (accu2 < 0) r = 0u - r;
+      break;
+    default: break;
+  }
+  return bb_s32(r);
+}
+
+static int is_dint(unsigned op) {
+  return op == BB_OP_ADD_D || op == BB_OP_SUB_D || op == BB_OP_MUL_D
+      || op == BB_OP_DIV_D || op == BB_OP_MOD_D;
+}
+
 void bb_proc_arith(bb_state *s, unsigned op) {
   int div0;
-  s->accu1 = bb_arith16(op, s->accu2, s->accu1, &div0);
+  s->accu1 = is_dint(op) ? bb_arith32(op, s->accu2, s->accu1, &div0)
+                         : bb_arith16(op, s->accu2, s->accu1, &div0);
   if (div0) bb_raise_flag(s, BB_FLAG_ARITH);
 }

@@ -31,10 +31,12 @@ static inline int32_t  bb_imm24(uint32_t instr) {
 
 /* arith.c — ACCU1 := INT(ACCU2) op INT(ACCU1), wrapped; *div0 set for /I, MOD by 0. */
 int32_t bb_arith16(unsigned op, int32_t accu2, int32_t accu1, int *div0);
+int32_t bb_arith32(unsigned op, int32_t accu2, int32_t accu1, int *div0);
 void    bb_proc_arith(bb_state *s, unsigned op);          /* BYTE_FLAGS write on div0 */
 
 /* compare.c — c 0..5; the RLO after a plain / A / O compare. */
 int bb_cmp16(unsigned c, int32_t accu2, int32_t accu1);
+int bb_cmp32(unsigned c, int32_t accu2, int32_t accu1);
 int bb_proc_compare(const bb_state *s, unsigned op, int rlo);
 
 /* timers.c — the pure state update, and the procedure (update + TC_BIT write). */

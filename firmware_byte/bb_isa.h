@@ -45,11 +45,16 @@
 #define BB_OP_L_POOL            0x81u  /* L#POOL */
 #define BB_OP_L_WORD            0x82u  /* L */
 #define BB_OP_T_WORD            0x83u  /* T */
+#define BB_OP_ADD_D             0x84u  /* +D */
+#define BB_OP_SUB_D             0x85u  /* -D */
+#define BB_OP_MUL_D             0x86u  /* *D */
+#define BB_OP_DIV_D             0x87u  /* /D */
 #define BB_OP_ADD               0x88u  /* +I */
 #define BB_OP_SUB               0x89u  /* -I */
 #define BB_OP_MUL               0x8Au  /* *I */
 #define BB_OP_DIV               0x8Bu  /* /I */
 #define BB_OP_MOD               0x8Cu  /* MOD */
+#define BB_OP_MOD_D             0x8Du  /* MODD */
 #define BB_OP_SD                0xB0u  /* SD */
 #define BB_OP_SS                0xB1u  /* SS */
 #define BB_OP_SP                0xB2u  /* SP */
@@ -68,6 +73,9 @@
 #define BB_OP_CMP               0x90u  /* + c: RLO := cmp */
 #define BB_OP_A_CMP             0x98u  /* + c: RLO := RLO AND cmp */
 #define BB_OP_O_CMP             0xA0u  /* + c: RLO := RLO OR  cmp */
+#define BB_OP_CMP_D             0xD0u  /* + c: RLO := cmp (DINT) */
+#define BB_OP_A_CMP_D           0xD8u  /* + c: RLO := RLO AND cmp (DINT) */
+#define BB_OP_O_CMP_D           0xE0u  /* + c: RLO := RLO OR  cmp (DINT) */
 
 /* Compare codes c. */
 #define BB_CMP_EQ               0      /* ==I */
@@ -84,6 +92,7 @@
 #define BB_AREA_IW              10u    /* IW */
 #define BB_AREA_QW              11u    /* QW */
 #define BB_AREA_MW              12u    /* MW */
+#define BB_AREA_MD              15u    /* MD */
 
 /* Sticky flags (bb_flags(), mirrored to the bus register BYTE_FLAGS). */
 #define BB_FLAG_ARITH           0x1u   /* /I or MOD by 0 */
@@ -112,11 +121,11 @@ typedef enum {
 
 /* Cost classes: every instruction falls in one; a cost table gives each its clocks. */
 typedef enum {
-  BB_CL_LOAD = 0,     /* L constant / word / T / C */
-  BB_CL_TRANSFER,     /* T MW / QW */
-  BB_CL_ARITH,        /* +I -I */
-  BB_CL_MULDIV,       /* *I /I MOD */
-  BB_CL_COMPARE,      /* ==I ... , A cmp, O cmp */
+  BB_CL_LOAD = 0,     /* L constant / word / MD / T / C */
+  BB_CL_TRANSFER,     /* T MW / QW / MD */
+  BB_CL_ARITH,        /* +I -I +D -D */
+  BB_CL_MULDIV,       /* *I /I MOD *D /D MODD */
+  BB_CL_COMPARE,      /* ==I ... , ==D ..., A cmp, O cmp */
   BB_CL_TIMER,        /* SD SS SP SF, R T n */
   BB_CL_COUNTER,      /* CU CD, S C n, R C n */
   BB_CL_BINARY,       /* READ FBY k, WRITE FBI k, JU_B JC_B JCN_B (taken or not) */
@@ -132,11 +141,16 @@ typedef enum {
   X(BB_OP_L_POOL, BB_CL_LOAD) \
   X(BB_OP_L_WORD, BB_CL_LOAD) \
   X(BB_OP_T_WORD, BB_CL_TRANSFER) \
+  X(BB_OP_ADD_D, BB_CL_ARITH) \
+  X(BB_OP_SUB_D, BB_CL_ARITH) \
+  X(BB_OP_MUL_D, BB_CL_MULDIV) \
+  X(BB_OP_DIV_D, BB_CL_MULDIV) \
   X(BB_OP_ADD, BB_CL_ARITH) \
   X(BB_OP_SUB, BB_CL_ARITH) \
   X(BB_OP_MUL, BB_CL_MULDIV) \
   X(BB_OP_DIV, BB_CL_MULDIV) \
   X(BB_OP_MOD, BB_CL_MULDIV) \
+  X(BB_OP_MOD_D, BB_CL_MULDIV) \
   X(BB_OP_SD, BB_CL_TIMER) \
   X(BB_OP_SS, BB_CL_TIMER) \
   X(BB_OP_SP, BB_CL_TIMER) \

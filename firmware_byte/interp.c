@@ -66,6 +66,7 @@ static int word_operand_ok(unsigned area, unsigned n, int for_load) {
     case BB_AREA_IW: return for_load && n < BB_NUM_IW;
     case BB_AREA_QW: return n < BB_NUM_QW;
     case BB_AREA_MW: return n < BB_NUM_MW;
+    case BB_AREA_MD: return n + 2u < BB_NUM_MW;   /* MW n and MW n+2 */
     case BB_AREA_T:  return for_load && n < BB_NUM_TIMERS;
     case BB_AREA_C:  return for_load && n < BB_NUM_COUNTERS;
     default:         return 0;
@@ -82,9 +83,10 @@ int bb_classify(uint32_t instr) {
       return word_operand_ok(area, n, 1) ? BB_CL_LOAD : BB_CL_ILLEGAL;
     case BB_OP_T_WORD:
       return word_operand_ok(area, n, 0) ? BB_CL_TRANSFER : BB_CL_ILLEGAL;
-    case BB_OP_ADD: case BB_OP_SUB:
+    case BB_OP_ADD: case BB_OP_SUB: case BB_OP_ADD_D: case BB_OP_SUB_D:
       return BB_CL_ARITH;
     case BB_OP_MUL: case BB_OP_DIV: case BB_OP_MOD:
+    case BB_OP_MUL_D: case BB_OP_DIV_D: case BB_OP_MOD_D:
       return BB_CL_MULDIV;
     case BB_OP_SD: case BB_OP_SS: case BB_OP_SP: case BB_OP_SF: case BB_OP_RT:
       return (area == BB_AREA_T && n < BB_NUM_TIMERS) ? BB_CL_TIMER : BB_CL_ILLEGAL;
@@ -99,7 +101,9 @@ int bb_classify(uint32_t instr) {
     default:
       break;
   }
-  if ((op & ~7u) == BB_OP_CMP || (op & ~7u) == BB_OP_A_CMP || (op & ~7u) == BB_OP_O_CMP)
+  if ((op & ~7u) == BB_OP_CMP || (op & ~7u) == BB_OP_A_CMP || (op & ~7u) == BB_OP_O_CMP
+      || (op & ~7u) == BB_OP_CMP_D || (op & ~7u) == BB_OP_A_CMP_D
+      || (op & ~7u) == BB_OP_O_CMP_D)
     return (op & 7u) <= BB_CMP_LE ? BB_CL_COMPARE : BB_CL_ILLEGAL;
   return BB_CL_ILLEGAL;
 }
@@ -109,30 +113,52 @@ int bb_classify(uint32_t instr) {
 /* L x: the new ACCU1 (the caller shifts ACCU1 into ACCU2). One bus read for IW / QW.
  * Serial mode reads IW n from DISPATCH_IW, the port's copy of it taken in the
  * instruction's first clock: an instruction samples its inputs in its first clock. */
+/* Data word MW n, sign-extended (a plant core keeps MW in the FPGA, where its copy
+ * engine is). */
+static int32_t load_mw(const bb_state *s, unsigned n) {
+  return s->mw_on_bus ? bb_int16(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_MW(n)))
+                      : s->mw[n];
+}
+
 static int32_t load_word(const bb_state *s, unsigned area, unsigned n, int serial) {
   switch (area) {
+    case BB_AREA_MD: {  /* S7's MD n: MW n the high half, MW n+2 the low half */
+      const uint32_t hi = (uint32_t)load_mw(s, n) & 0xFFFFu;
+      const uint32_t lo = (uint32_t)load_mw(s, n + 2u) & 0xFFFFu;
+      return bb_s32(hi << 16 | lo);
+    }
     case BB_AREA_IW:
       return bb_int16(hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_IW
                                                       : (uint16_t)BB_BUS_IW(n)));
     case BB_AREA_QW:  /* no copy */
       return bb_int16(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_QW(n)));
-    case BB_AREA_MW:  /* a plant core keeps MW in the FPGA, where its copy engine is */
-      return s->mw_on_bus ? bb_int16(hal_bus_read(s->hal_ctx, (uint16_t)BB_BUS_MW(n)))
-                          : s->mw[n];
+    case BB_AREA_MW:  return load_mw(s, n);
     case BB_AREA_T:  return s->timer[n].elapsed;
     case BB_AREA_C:  return s->counter[n].value;
     default:         return 0;   /* excluded by bb_classify() */
   }
 }
 
-/* T w: the low 16 bits of ACCU1. One bus write for QW. */
-static void transfer_word(bb_state *s, unsigned area, unsigned n) {
-  if (area == BB_AREA_QW)
-    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_QW(n), (uint32_t)s->accu1 & 0xFFFFu);
-  else if (s->mw_on_bus)
-    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_MW(n), (uint32_t)s->accu1 & 0xFFFFu);
+/* One data word MW n := the low 16 bits of v. */
+static void store_mw(bb_state *s, unsigned n, uint32_t v) {
+  if (s->mw_on_bus)
+    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_MW(n), v & 0xFFFFu);
   else
-    s->mw[n] = (int16_t)bb_int16((uint32_t)s->accu1);
+    s->mw[n] = (int16_t)bb_int16(v);
+}
+
+/* T w: the low 16 bits of ACCU1 (T MD n: all 32, the high half to MW n). One bus
+ * write for QW. */
+static void transfer_word(bb_state *s, unsigned area, unsigned n) {
+  const uint32_t v = (uint32_t)s->accu1;
+  if (area == BB_AREA_QW) {
+    hal_bus_write(s->hal_ctx, (uint16_t)BB_BUS_QW(n), v & 0xFFFFu);
+  } else if (area == BB_AREA_MD) {
+    store_mw(s, n, v >> 16);
+    store_mw(s, n + 2u, v);
+  } else {
+    store_mw(s, n, v);
+  }
 }
 
 /* ------------------------------------------------------------------- execute */

@@ -167,9 +167,11 @@ def random_watch(seed: int) -> list[str]:
 # counters, between the bit blocks above. Run at 0.1 MHz (100 clocks per ms) a scan
 # lasts a few ms, so timers with presets of 0..25 ms start, run out and stop.
 
-WORD_SOURCES = ["MW", "MW", "IW", "QW", "T", "C"]
-ARITH = ["+I", "-I", "*I", "/I", "MOD"]
-COMPARES = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
+WORD_SOURCES = ["MW", "MW", "IW", "QW", "T", "C", "MD"]
+ARITH = ["+I", "-I", "*I", "/I", "MOD", "+I", "-I", "*I", "/I", "MOD",
+         "+D", "-D", "*D", "/D", "MODD"]
+COMPARES = ["==I", "<>I", ">I", "<I", ">=I", "<=I", "==I", "<>I", ">I", "<I", ">=I", "<=I",
+            "==D", "<>D", ">D", "<D", ">=D", "<=D"]
 TIMERS = ["SD", "SS", "SP", "SF"]
 
 
@@ -185,8 +187,12 @@ class MixedGen(Gen):
             return f"  L 16#{rng.randrange(0x10000):X}"
         if r < 0.5:
             return f"  L T#{rng.randrange(0, 26)}ms"
+        if r < 0.55:                     # DINT constants, S7's form
+            value = rng.choice([65536, -65536, 100000, 2**31 - 1, -2**31,
+                                rng.randrange(-2**31, 2**31)])
+            return f"  L L#{value}"
         area = rng.choice(WORD_SOURCES)
-        n = rng.randrange(4 if area in ("IW", "QW") else 8)
+        n = rng.randrange(4 if area in ("IW", "QW") else 6 if area == "MD" else 8)
         return f"  L {area}{n}"
 
     def word_block(self) -> None:
@@ -194,7 +200,7 @@ class MixedGen(Gen):
         r = rng.random()
         if r < 0.3:                      # arithmetic into a word
             self.lines += [self.load(), self.load(), f"  {rng.choice(ARITH)}",
-                           f"  T {rng.choice(['MW', 'MW', 'QW'])}{rng.randrange(4)}"]
+                           f"  T {rng.choice(['MW', 'MW', 'QW', 'MD'])}{rng.randrange(4)}"]
         elif r < 0.5:                    # compare into the RLO, combined or not
             if rng.random() < 0.5:
                 self.lines += [self.load(), self.load(), f"  {rng.choice(COMPARES)}"]

@@ -85,7 +85,7 @@ def test_unknown_mnemonic(text, line, col):
     ("LD IF0.9", 4), ("= Q16.0", 3), ("= PQ16.0", 3), ("S M256.0", 3),
     ("LD T64", 4), ("LD C 64", 4), ("LD FBI4", 4), ("= FBY 4", 3), ("L IW16", 3),
     ("T QW16", 3), ("T MW256", 3), ("LD I99999999999999999999999999999999.0", 4),
-    ("LD QR16.0", 4), ("A QF0.8", 3),
+    ("LD QR16.0", 4), ("A QF0.8", 3), ("L MD254", 3), ("T MD 254", 3),
 ])
 def test_operand_out_of_range(text, col):
     check("NOP\n" + text + "\n", 2, col, "operand out of range")
@@ -107,7 +107,7 @@ def test_out_of_range_in_a_declaration():
 
 @pytest.mark.parametrize("text", [
     "32768", "-32769", "16#10000", "16#FFFFF", "T#2147483648ms", "T#596h31m23s648ms",
-    "T#24856h1m", "99999999999999999999999999999999999",
+    "T#24856h1m", "99999999999999999999999999999999999", "L#2147483648", "L#-2147483649",
 ])
 def test_constant_out_of_range(text):
     check(f"NOP\n  L {text}\n", 2, 5, "constant out of range")
@@ -118,6 +118,21 @@ def test_constants_at_their_limits_are_accepted():
                             "L T#596h31m23s647ms\nL T#0ms\nL +5\n")
     values = [i.operand.value for i in program.instrs[:-1]]
     assert values == [-32768, 32767, -1, -32768, 32767, 2 ** 31 - 1, 0, 5]
+    program = parse("t.il", "L L#2147483647\nL L#-2147483648\nL L#+7\nL MD253\nT MD 0\n")
+    assert [i.operand.value for i in program.instrs[:3]] == [2 ** 31 - 1, -2 ** 31, 7]
+    assert [i.operand.address() for i in program.instrs[:5]] == [
+        "L#2147483647", "L#-2147483648", "L#7", "MD253", "MD0"]
+
+
+@pytest.mark.parametrize("text", ["L#", "L#x", "L#1.5", "L#--1"])
+def test_malformed_dint_constant(text):
+    check(f"NOP\n  L {text}\n", 2, 5, "malformed constant")
+
+
+def test_double_words_are_word_operands_only():
+    check("NOP\n  LD MD0\n", 2, 6, "not the double word `MD0`")
+    check("NOP\n  = MD0\n", 2, 5, "not the double word `MD0`")
+    check("NOP\n  L MD 0.1\n", 2, 5, "malformed address `MD 0.1`")
 
 
 @pytest.mark.parametrize("text, line, col", [

@@ -183,6 +183,52 @@ def test_arithmetic(src, expected):
     assert sim.arith_error is False
 
 
+# DINT (docs/isa.md): S7's results, worked by hand (awlsim's insn_pl_d ... insn_mod)
+@pytest.mark.parametrize("src, hi, lo", [
+    ("L L#100000\nL L#-70000\n+D", 0, 30000),            # 0x00007530
+    ("L L#2147483647\nL 1\n+D", -32768, 0),               # wraps to 0x80000000
+    ("L 3\nL L#100000\n-D", -2, 31075),                  # -99997 = 0xFFFE7963
+    ("L 1000\nL -3000\n*D", -46, 14656),                  # -3000000 = 0xFFD23940
+    ("L L#65536\nL L#65536\n*D", 0, 0),                   # 2^32 wraps to 0
+    ("L L#-2147483648\nL -1\n/D", -32768, 0),             # 2^31 wraps
+    ("L L#-100001\nL 7\n/D", -1, -14285),                # toward zero
+    ("L L#-100001\nL 7\nMODD", -1, -6),                  # sign of the dividend
+    ("L L#100001\nL -7\nMODD", 0, 6),
+    ("L 300\nL 300\n*I", 0, 24464),                      # the INT forms unchanged
+])
+def test_dint_arithmetic_through_a_double_word(src, hi, lo):
+    sim = RefSim(program(src + "\nT MD0\nL MD0\nT MD4"), Config())
+    sim.run(scans=1)
+    assert (sim.mw[0], sim.mw[2]) == (hi, lo)
+    assert (sim.mw[4], sim.mw[6]) == (hi, lo)          # L MD reads what T MD wrote
+    assert sim.mw.get(1, 0) == 0 and sim.arith_error is False
+
+
+@pytest.mark.parametrize("src, rlo", [
+    ("L L#65536\nL 0\n==I", 1),            # INT(65536) = 0
+    ("L L#65536\nL 0\n==D", 0),
+    ("L L#65536\nL 0\n>D", 1),
+    ("L L#-70000\nL L#-69999\n<D", 1),
+    ("L L#65536\nL 1\n<I", 1),             # INT: 0 < 1
+    ("L L#65536\nL 1\n<D", 0),
+    ("SET\nL 1\nL 2\nA >=D", 0),
+    ("CLR\nL 1\nL 2\nO <=D", 1),
+])
+def test_dint_compares(src, rlo):
+    sim = RefSim(program(src + "\n= Q0.0"), Config())
+    sim.run(scans=1)
+    assert sim.pio & 1 == rlo
+
+
+def test_division_by_zero_dint():
+    sim = RefSim(program("L 1\nT MW0\nL L#65536\nL L#0\nMODD\nT MW0"), Config())
+    sim.run(scans=1)
+    assert sim.mw[0] == 0 and sim.arith_error is True
+    sim = RefSim(program("L 5\nL L#65536\n/D\nT MW0"), Config())   # 65536 is not 0
+    sim.run(scans=1)
+    assert sim.mw[0] == 0 and sim.arith_error is False
+
+
 @pytest.mark.parametrize("src", [
     "L 5\nL 0\n/I",
     "L -7\nL 0\nMOD",

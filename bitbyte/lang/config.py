@@ -37,6 +37,7 @@ class Config:
             "M": self.marker_bytes, "T": self.timers, "C": self.counters,
             "FBI": self.channels, "FBY": self.channels, "IW": self.in_words,
             "QW": self.out_words, "MW": self.data_words,
+            "MD": max(self.data_words - 2, 0),      # MD n is MW n and MW n+2
         }[area]
 
     @classmethod

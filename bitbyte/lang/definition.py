@@ -54,6 +54,7 @@ class ByteOpcode:
     byte_program: bool = False
     operand: str = "—"
     doc: str | None = None
+    dint: bool = False           # reads the accumulators' full 32 bits (+D ... MODD)
 
 
 class Definition:
@@ -100,11 +101,16 @@ class Definition:
         self.compare_c: tuple[str, ...] = tuple(cmp["c"])
         self.compare_bases = {"": cmp["plain_base"], "A ": cmp["and_base"],
                               "O ": cmp["or_base"]}
+        # DINT compares: the same codes c over 32 bits, bases of their own
+        self.dint_compares: tuple[str, ...] = tuple(cmp["dint_codes"])
+        self.dint_compare_bases = {"": cmp["dint_plain_base"], "A ": cmp["dint_and_base"],
+                                   "O ": cmp["dint_or_base"]}
         self.byte_opcode_rows: tuple[ByteOpcode, ...] = tuple(
             ByteOpcode(mnemonic=r["mnemonic"], kind=r.get("kind", r["mnemonic"]),
                        value=r["value"], cls=r["class"], c=r.get("c"), rtl=r.get("rtl"),
                        byte_program=r.get("byte_program", False),
-                       operand=r.get("operand", "—"), doc=r.get("doc"))
+                       operand=r.get("operand", "—"), doc=r.get("doc"),
+                       dint=r.get("dint", False))
             for r in raw["byte_opcode"])
         self.byte_opcodes: dict[str, int] = {}
         self.byte_kinds: dict[str, str] = {}
@@ -116,6 +122,15 @@ class Definition:
                 self._add_compares(cmp["class"])    # in opcode order
             self.byte_opcodes[op.mnemonic] = op.value
             self.byte_kinds.setdefault(op.kind, op.cls)
+        self._add_compares(cmp["class"], self.dint_compares, self.dint_compare_bases)
+        # every compare mnemonic (INT, then DINT) and the arithmetic (+I ... MODD)
+        self.all_compares: tuple[str, ...] = self.compares + self.dint_compares
+        self.arithmetic: tuple[str, ...] = tuple(
+            op.mnemonic for op in self.byte_opcode_rows if op.cls in ("arith", "muldiv"))
+        # the instructions that read ACCU1/ACCU2 as DINT (the rest of them read INT(.))
+        self.dint_mnemonics: frozenset[str] = frozenset(
+            [op.mnemonic for op in self.byte_opcode_rows if op.dint]
+            + [p + c for p in self.dint_compare_bases for c in self.dint_compares])
         self.byte_program_opcodes: dict[str, int] = {
             op.mnemonic: op.value for op in self.byte_opcode_rows if op.byte_program}
 
@@ -176,9 +191,9 @@ class Definition:
                 if name != "LD":
                     yield name + suffix + "(", self.open_base | f << 1 | n
 
-    def _add_compares(self, cls: str) -> None:
-        for prefix, base in self.compare_bases.items():
-            for c, cmp in enumerate(self.compares):
+    def _add_compares(self, cls: str, codes=None, bases=None) -> None:
+        for prefix, base in (bases or self.compare_bases).items():
+            for c, cmp in enumerate(codes or self.compares):
                 self.byte_opcodes[prefix + cmp] = base + c
                 self.byte_kinds[prefix + cmp] = cls
 
@@ -222,6 +237,8 @@ class Definition:
         values = list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) \
             + list(self.byte_program_opcodes.values())
         need(len(values) == len(set(values)), "an opcode is defined twice")
+        need(len(self.dint_compares) == len(self.compares),
+             "[compare] dint_codes must pair with codes (one compare code c each)")
         need(all(v < 0x80 for v in self.bit_opcodes.values()),
              "a bit opcode has bit 7 set")
         need(all(0x80 <= v <= 0xFF for v in values if v not in self.bit_opcodes.values()),

@@ -18,12 +18,13 @@ Hand-partitioned programs (`BIT:`/`BYTE:` sections) are not checked.
 """
 from __future__ import annotations
 
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import COMBINES, JUMPS, Program
 
-KEEPS_RLO = frozenset(("NOP", "REFRESH", "REFRESH Q", "=", "S", "R", "END", "L", "T",
-                       "+I", "-I", "*I", "/I", "MOD", "SD", "SS", "SP", "SF", "CU", "CD", "WRITE")
-                      + JUMPS)
+KEEPS_RLO = frozenset(("NOP", "REFRESH", "REFRESH Q", "=", "S", "R", "END", "L", "T")
+                      + DEF.arithmetic
+                      + ("SD", "SS", "SP", "SF", "CU", "CD", "WRITE") + JUMPS)
 WARNED = tuple(m for m, (func, _) in COMBINES.items() if func is not None)
 
 

@@ -188,6 +188,11 @@ def c_isa(d: Definition) -> str:
     b += [_cdef("BB_OP_CMP", _h(d.compare_bases[""]), "+ c: RLO := cmp"),
           _cdef("BB_OP_A_CMP", _h(d.compare_bases["A "]), "+ c: RLO := RLO AND cmp"),
           _cdef("BB_OP_O_CMP", _h(d.compare_bases["O "]), "+ c: RLO := RLO OR  cmp"),
+          _cdef("BB_OP_CMP_D", _h(d.dint_compare_bases[""]), "+ c: RLO := cmp (DINT)"),
+          _cdef("BB_OP_A_CMP_D", _h(d.dint_compare_bases["A "]),
+                "+ c: RLO := RLO AND cmp (DINT)"),
+          _cdef("BB_OP_O_CMP_D", _h(d.dint_compare_bases["O "]),
+                "+ c: RLO := RLO OR  cmp (DINT)"),
           "", "/* Compare codes c. */"]
     for c, (cmp, name) in enumerate(zip(d.compares, d.compare_c)):
         b.append(_cdef(name, str(c), cmp))
@@ -273,15 +278,19 @@ def doc_areas(d: Definition) -> str:
     return _md_table(["area code", "source", "index"], rows)
 
 
+def _compare_rows(codes: tuple[str, ...], bases: dict[str, int]) -> list[list[str]]:
+    rows, c = [], len(codes) - 1
+    for prefix, base in bases.items():
+        names = " ".join(codes) if not prefix else f"{prefix}{codes[0]}` … `{prefix}{codes[-1]}"
+        rows.append([f"`0x{base:02X}`+c", f"`{names}` (c = 0…{c})", "—", "compare"])
+    return rows
+
+
 def doc_byte_opcodes(d: Definition) -> str:
     rows = []
-    cmps = " ".join(d.compares)
     for op in d.byte_opcode_rows:
         if op.value == d.byte_opcodes.get("SD"):
-            c = len(d.compares) - 1
-            for prefix, base in d.compare_bases.items():
-                names = cmps if not prefix else f"{prefix}{d.compares[0]}` … `{prefix}{d.compares[-1]}"
-                rows.append([f"`0x{base:02X}`+c", f"`{names}` (c = 0…{c})", "—", "compare"])
+            rows += _compare_rows(d.compares, d.compare_bases)
         name = op.doc or f"`{op.mnemonic}`"
         if op.byte_program:
             name += " (byte program only)"
@@ -289,6 +298,7 @@ def doc_byte_opcodes(d: Definition) -> str:
         if op.byte_program and op.cls == "binary":
             cost = "binary, taken or not"
         rows.append([f"`0x{op.value:02X}`", name, op.operand, cost])
+    rows += _compare_rows(d.dint_compares, d.dint_compare_bases)
     return _md_table(["opcode", "mnemonic", "operand", "cost class"], rows)
 
 

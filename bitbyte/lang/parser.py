@@ -76,11 +76,12 @@ from bitbyte.lang.suggest import did_you_mean
 # --------------------------------------------------------------------------------------
 
 BIT_ADDR_AREAS = BIT_AREAS                                    # byte.bit
-INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW")      # number
+INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW", "MD")  # number
 AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 
 PAREN_OPENERS = ("A", "AN", "O", "ON", "X", "XN")             # + "(" -> "A(" ...
-COMPARES = DEF.compares
+COMPARES = DEF.all_compares                                   # ==I ... <=D
+ARITHMETIC = DEF.arithmetic                                   # +D ... MODD
 KEYWORDS = ("VAR", "END_VAR", "VAR_GLOBAL", "AT", "BIT", "BYTE")
 ACCESS_WORDS = ("READ", "WRITE")                              # VAR_GLOBAL attribute
 GLOBAL_AREAS = {"M": "bit", "MW": "word"}                     # local copy -> kind
@@ -111,9 +112,9 @@ RESET = Sig(("Q", "PQ", "M", "FBY", "T", "C"),
             "a target Q, PQ, M, FBY or a timer T n or counter C n")
 EDGE = Sig(("M", "Q"), "an edge memory M or Q")
 JUMP = Sig(("LABEL",), "a label")
-LOAD = Sig(("IW", "QW", "MW", "T", "C", "INT", "TIME"),
-           "a word (IW, QW, MW), a timer, a counter or a constant")
-TRANSFER = Sig(("MW", "QW"), "a target MW or QW")
+LOAD = Sig(("IW", "QW", "MW", "MD", "T", "C", "INT", "TIME", "DINT"),
+           "a word (IW, QW, MW), a double word MD, a timer, a counter or a constant")
+TRANSFER = Sig(("MW", "QW", "MD"), "a target MW, QW or MD")
 TIMER = Sig(("T",), "a timer T n")
 COUNTER = Sig(("C",), "a counter C n")
 
@@ -126,7 +127,7 @@ SIGNATURES: dict[str, Sig] = {
     "JU": JUMP, "JC": JUMP, "JCN": JUMP,
     # byte instructions
     "L": LOAD, "T": TRANSFER,
-    **{m: NO_OPERAND for m in ("+I", "-I", "*I", "/I", "MOD")},
+    **{m: NO_OPERAND for m in ARITHMETIC},
     **{m: NO_OPERAND for m in COMPARES},
     **{f"{f} {c}": NO_OPERAND for f in ("A", "O") for c in COMPARES},
     **{m: TIMER for m in ("SD", "SS", "SP", "SF")},
@@ -749,6 +750,8 @@ class Parser:
             return self.parse_number(tok)
         if text.upper().startswith("T#"):
             return self.parse_duration(tok)
+        if text.upper().startswith("L#"):
+            return self.parse_dint(tok)
         if looks_like_address(text) or "." in text:
             return self.parse_address(tok, declaring=False)
         if is_identifier(text):
@@ -830,6 +833,18 @@ class Parser:
                                   "-32768..32767)")
         return Operand("const", area="INT", value=value, text=text)
 
+    def parse_dint(self, tok: Token) -> Operand:
+        """L#n: a DINT constant, -2147483648..2147483647 (S7's form)."""
+        text = tok.text[2:]
+        sign, digits = (text[0], text[1:]) if text[:1] in ("+", "-") else ("", text)
+        if not is_decimal(digits):
+            raise self.error(tok, f"malformed constant `{tok.text}`: L#<decimal>")
+        value = -to_int(digits) if sign == "-" else to_int(digits)
+        if not -2 ** 31 <= value < 2 ** 31:
+            raise self.error(tok, f"constant out of range: `{tok.text}` (DINT is "
+                                  "-2147483648..2147483647)")
+        return Operand("const", area="DINT", value=value, text=tok.text)
+
     def parse_duration(self, tok: Token) -> Operand:
         """T#1h2m3s4ms: parts largest unit first, each at most once -> ms."""
         body = tok.text[2:]
@@ -904,8 +919,8 @@ class Parser:
 # --------------------------------------------------------------------------------------
 
 BYTE_MNEMONICS = frozenset(
-    ("L", "T", "+I", "-I", "*I", "/I", "MOD", "SD", "SS", "SP", "SF", "CU", "CD", "READ",
-     "WRITE") + COMPARES + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
+    ("L", "T") + ARITHMETIC + ("SD", "SS", "SP", "SF", "CU", "CD", "READ",
+                               "WRITE") + COMPARES + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
 
 
 def is_byte_mnemonic(mnemonic: str, op: Operand | None) -> bool:
@@ -952,7 +967,7 @@ def describe(op: Operand) -> str:
     if op.kind == "const":
         return f"the {'duration' if op.area == 'TIME' else 'constant'} `{op.text}`"
     kinds = {"T": "timer", "C": "counter", "FBI": "channel", "FBY": "channel",
-             "IW": "word", "QW": "word", "MW": "word"}
+             "IW": "word", "QW": "word", "MW": "word", "MD": "double word"}
     kind = kinds.get(op.area, "bit")
     if op.text.upper().replace(" ", "") == op.address():
         return f"the {kind} `{op.text}`"

@@ -38,7 +38,8 @@ class Operand:
     kind is one of:
       "bit"    area in BIT_AREAS, byte and bit set
       "index"  area in INDEXED_BIT_AREAS (T, C, FBI, FBY) or WORD_AREAS, index set
-      "const"  value set (an INT, a 16#.. pattern or a T# duration in ms); area is
+      "const"  value set (an INT, a 16#.. pattern, an L#.. DINT or a T# duration in
+               ms); area is "INT", "DINT" or "TIME"
                "INT" or "TIME"
       "label"  label set (upper-case label name); a jump target
     text is the operand as written in the source (symbol name or address).
@@ -65,7 +66,7 @@ class Operand:
         if self.kind == "index":
             return f"{self.area}{self.index}"
         if self.kind == "const":
-            return str(self.value)
+            return f"L#{self.value}" if self.area == "DINT" else str(self.value)
         return self.label
 
 

@@ -32,7 +32,7 @@ that a parallel-mode interpreter overrides.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Iterable, Mapping
 
 from bitbyte.lang.config import DEFAULT, Config
@@ -44,8 +44,8 @@ from bitbyte.lang.trace import Column, ScanRecord, mhz, trace_columns
 
 # --- byte instructions ------------------------------------------------------------------
 
-ARITHMETIC = ("+I", "-I", "*I", "/I", "MOD")
-COMPARES = DEF.compares
+ARITHMETIC = DEF.arithmetic                 # +I ... MOD, +D ... MODD
+COMPARES = DEF.all_compares                 # ==I ... <=I, ==D ... <=D
 TIMERS = ("SD", "SS", "SP", "SF")
 COUNTER_MAX = DEF.firmware["counter_max"]
 
@@ -73,26 +73,38 @@ def _div_trunc(a: int, b: int) -> int:
 
 
 def arithmetic(m: str, a: int, b: int) -> tuple[int, bool]:
-    """(INT result of a op b, division by zero?) for a = INT(ACCU2), b = INT(ACCU1)."""
-    if m == "+I":
+    """(result of a op b, division by zero?).  INT forms (+I ... MOD): a = INT(ACCU2),
+    b = INT(ACCU1), the result wrapped to 16 bits; DINT forms (+D ... MODD): the
+    accumulators, wrapped to 32 bits as S7's are (accu_operands gives both)."""
+    wrap = to_int32 if m in DEF.dint_mnemonics else to_int16
+    op = m[:-1] if m[0] in "+-*/" else "MOD"            # "+I" / "+D" -> "+"
+    if op == "+":
         r = a + b
-    elif m == "-I":
+    elif op == "-":
         r = a - b
-    elif m == "*I":
+    elif op == "*":
         r = a * b
-    elif b == 0:                          # /I, MOD by zero: 0 and the sticky flag
+    elif b == 0:                          # /, MOD by zero: 0 and the sticky flag
         return 0, True
-    elif m == "/I":
+    elif op == "/":
         r = _div_trunc(a, b)
-    else:                                 # MOD: sign of the dividend
+    else:                                 # MOD, MODD: sign of the dividend
         r = a - b * _div_trunc(a, b)
-    return to_int16(r), False
+    return wrap(r), False
+
+
+def accu_operands(c: str, accu2: int, accu1: int) -> tuple[int, int]:
+    """What a compare or an arithmetic instruction `c` reads of the accumulators: all
+    32 bits for the DINT ones (+D, ==D, A ==D, MODD ...), INT(.) otherwise."""
+    if c in DEF.dint_mnemonics:
+        return accu2, accu1
+    return to_int16(accu2), to_int16(accu1)
 
 
 def compare(c: str, a: int, b: int) -> int:
-    """a c b as 0/1, c one of COMPARES."""
-    return int({"==I": a == b, "<>I": a != b, ">I": a > b, "<I": a < b,
-                ">=I": a >= b, "<=I": a <= b}[c])
+    """a c b as 0/1, c one of COMPARES (I or D: the caller passes the operands)."""
+    return int({"==": a == b, "<>": a != b, ">": a > b, "<": a < b,
+                ">=": a >= b, "<=": a <= b}[c[:-1]])     # "==I" / "==D" -> "=="
 
 
 @dataclass
@@ -383,16 +395,19 @@ class RefSim:
         op = ins.operand
         if kind == "L":
             self.accu2, self.accu1 = self.accu1, to_int32(self._load(op, clock))
+        elif kind == "T" and op.area == "MD":
+            self._store(replace(op, area="MW"), to_int16(self.accu1 >> 16))
+            self._store(replace(op, area="MW", index=op.index + 2), to_int16(self.accu1))
         elif kind == "T":
             self._store(op, to_int16(self.accu1))
         elif kind in ARITHMETIC:
-            result, by_zero = arithmetic(kind, to_int16(self.accu2), to_int16(self.accu1))
+            result, by_zero = arithmetic(kind, *accu_operands(kind, self.accu2, self.accu1))
             self.accu1 = result
             self.arith_error |= by_zero
         elif kind in COMPARES:
-            self.rlo = compare(kind, to_int16(self.accu2), to_int16(self.accu1))
-        elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=I"
-            bit = compare(kind[2:], to_int16(self.accu2), to_int16(self.accu1))
+            self.rlo = compare(kind, *accu_operands(kind, self.accu2, self.accu1))
+        elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=D"
+            bit = compare(kind[2:], *accu_operands(kind, self.accu2, self.accu1))
             self.rlo = combine(kind[0], self.rlo, bit)
         elif kind in TIMERS:
             self._timer(kind, self.timers[op.index], clock)
@@ -479,6 +494,9 @@ class RefSim:
             return self.qw.get(op.index, 0)
         if area == "MW":
             return self.mw.get(op.index, 0)
+        if area == "MD":                                # MW n high, MW n+2 low
+            hi, lo = self.mw.get(op.index, 0), self.mw.get(op.index + 2, 0)
+            return to_int32((hi & 0xFFFF) << 16 | (lo & 0xFFFF))
         if area == "T":
             return self.timers[op.index].elapsed
         if area == "C":

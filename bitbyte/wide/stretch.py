@@ -354,7 +354,7 @@ def _rlo_read_next(instrs: list[Instr], i: int) -> bool:
     if i >= len(instrs):
         return False
     m = instrs[i].mnemonic
-    return not (m in RLO_SETTERS or m == "END" or m in DEF.compares or m == "READ")
+    return not (m in RLO_SETTERS or m == "END" or m in DEF.all_compares or m == "READ")
 
 
 def split_program(program: Program, max_inputs: int = 16,

@@ -219,6 +219,76 @@ static void test_worked_examples(void) {
   CHECK_EQ(S.flags, 0);
 }
 
+/* ACCU2 := a; ACCU1 := b (any 32-bit values: the pool's job, set directly); then op. */
+static int32_t arith32(int32_t a, unsigned op, int32_t b) {
+  S.accu2 = a;
+  S.accu1 = b;
+  ex(i_op(op));
+  return S.accu1;
+}
+
+/* DINT (docs/isa.md): +D -D *D /D MODD over 32 bits, wrapped; the expected values
+ * are S7's (awlsim's insn_pl_d ... insn_mod), worked by hand. */
+static void test_dint_arith(void) {
+  setup();
+  CHECK_EQ(arith(100000, BB_OP_ADD_D, 70000), 170000);        /* no 16-bit wrap */
+  CHECK_EQ(arith32(INT32_MAX, BB_OP_ADD_D, 1), INT32_MIN);      /* 32-bit wrap */
+  CHECK_EQ(arith32(INT32_MIN, BB_OP_SUB_D, 1), INT32_MAX);
+  CHECK_EQ(arith(3, BB_OP_SUB_D, 100000), -99997);
+  CHECK_EQ(arith(1000, BB_OP_MUL_D, -3000), -3000000);
+  CHECK_EQ(arith(65536, BB_OP_MUL_D, 65536), 0);              /* 2^32 wraps to 0 */
+  CHECK_EQ(arith(-100001, BB_OP_DIV_D, 7), -14285);           /* toward zero */
+  CHECK_EQ(arith(100001, BB_OP_DIV_D, -7), -14285);
+  CHECK_EQ(arith32(INT32_MIN, BB_OP_DIV_D, -1), INT32_MIN);     /* 2^31 wraps */
+  CHECK_EQ(arith(-100001, BB_OP_MOD_D, 7), -6);               /* sign of the dividend */
+  CHECK_EQ(arith(100001, BB_OP_MOD_D, -7), 6);
+  CHECK_EQ(arith32(INT32_MIN, BB_OP_MOD_D, -1), 0);
+  CHECK_EQ(S.flags, 0);
+  CHECK_EQ(arith(5, BB_OP_DIV_D, 65536), 0);                  /* not INT(ACCU1) = 0 */
+  CHECK_EQ(S.flags, 0);
+  CHECK_EQ(arith(5, BB_OP_MOD_D, 0), 0);
+  CHECK_EQ(S.flags, BB_FLAG_ARITH);
+  /* DINT compares read all 32 bits: 65536 == 0 as INT, not as DINT */
+  setup();
+  L(65536); L(0);
+  ex(i_cmp(BB_OP_CMP, BB_CMP_EQ));
+  CHECK_EQ(RLO, 1);
+  ex(i_cmp(BB_OP_CMP_D, BB_CMP_EQ));
+  CHECK_EQ(RLO, 0);
+  ex(i_cmp(BB_OP_CMP_D, BB_CMP_GT));
+  CHECK_EQ(RLO, 1);
+  L(-70000); L(-69999);
+  ex(i_cmp(BB_OP_CMP_D, BB_CMP_LT));
+  CHECK_EQ(RLO, 1);
+  ex(i_cmp(BB_OP_A_CMP_D, BB_CMP_GE));                        /* 1 AND 0 */
+  CHECK_EQ(RLO, 0);
+  ex(i_cmp(BB_OP_O_CMP_D, BB_CMP_LE));                        /* 0 OR 1 */
+  CHECK_EQ(RLO, 1);
+}
+
+/* MD n: MW n the high half, MW n+2 the low half; MW n+1 untouched */
+static void test_double_words(void) {
+  setup();
+  L(7); ex(i_T(BB_AREA_MW, 11));
+  L(-100000);                      /* 0xFFFE7960 */
+  ex(i_T(BB_AREA_MD, 10));
+  CHECK_EQ(bb_mw(&S, 10), -2);     /* 0xFFFE */
+  CHECK_EQ(bb_mw(&S, 12), 0x7960);
+  CHECK_EQ(bb_mw(&S, 11), 7);
+  L(0);
+  ex(i_L(BB_AREA_MD, 10));
+  CHECK_EQ(S.accu1, -100000);
+  L(-1); ex(i_T(BB_AREA_MW, 20)); L(-32768); ex(i_T(BB_AREA_MW, 22));
+  ex(i_L(BB_AREA_MD, 20));         /* 0xFFFF8000: the low half not sign-extended */
+  CHECK_EQ(S.accu1, -32768);
+  L(0); ex(i_T(BB_AREA_MW, 20));
+  ex(i_L(BB_AREA_MD, 20));         /* 0x00008000 */
+  CHECK_EQ(S.accu1, 32768);
+  CHECK_EQ(ex(i_L(BB_AREA_MD, 253)), BB_CL_LOAD);
+  CHECK_EQ(ex(i_L(BB_AREA_MD, 254)), BB_CL_ILLEGAL);           /* MW 256 is not there */
+  CHECK_EQ(ex(i_T(BB_AREA_MD, 254)), BB_CL_ILLEGAL);
+}
+
 static void test_int16(void) {
   CHECK_EQ(bb_int16(0x7FFFu), 32767);
   CHECK_EQ(bb_int16(0x8000u), -32768);
@@ -241,5 +311,7 @@ void suite_arith(void) {
   RUN(test_div_mod);
   RUN(test_div_by_zero);
   RUN(test_worked_examples);
+  RUN(test_dint_arith);
+  RUN(test_double_words);
   RUN(test_int16);
 }

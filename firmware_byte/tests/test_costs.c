@@ -50,13 +50,24 @@ static void test_classify(void) {
   CHECK_EQ(bb_classify(0x89000000u), BB_CL_ARITH);
   CHECK_EQ(bb_classify(0x8A000000u), BB_CL_MULDIV);
   CHECK_EQ(bb_classify(0x8C000000u), BB_CL_MULDIV);
-  CHECK_EQ(bb_classify(0x8D000000u), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(0x84000000u), BB_CL_ARITH);      /* +D */
+  CHECK_EQ(bb_classify(0x85000000u), BB_CL_ARITH);      /* -D */
+  CHECK_EQ(bb_classify(0x86000000u), BB_CL_MULDIV);     /* *D */
+  CHECK_EQ(bb_classify(0x87000000u), BB_CL_MULDIV);     /* /D */
+  CHECK_EQ(bb_classify(0x8D000000u), BB_CL_MULDIV);     /* MODD */
+  CHECK_EQ(bb_classify(0x8E000000u), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_L_WORD, BB_AREA_MD, 253)), BB_CL_LOAD);
+  CHECK_EQ(bb_classify(BB_INSTR(BB_OP_T_WORD, BB_AREA_MD, 254)), BB_CL_ILLEGAL);
   for (unsigned c = 0; c < 8; c++) {
     int want = c < 6 ? BB_CL_COMPARE : BB_CL_ILLEGAL;
     CHECK_EQ(bb_classify((0x90u + c) << 24), want);
     CHECK_EQ(bb_classify((0x98u + c) << 24), want);
     CHECK_EQ(bb_classify((0xA0u + c) << 24), want);
+    CHECK_EQ(bb_classify((0xD0u + c) << 24), want);     /* ==D ... */
+    CHECK_EQ(bb_classify((0xD8u + c) << 24), want);
+    CHECK_EQ(bb_classify((0xE0u + c) << 24), want);
   }
+  CHECK_EQ(bb_classify(0xE8000000u), BB_CL_ILLEGAL);
   CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RT, BB_AREA_T, 0)), BB_CL_TIMER);
   CHECK_EQ(bb_classify(BB_INSTR(0xB5, BB_AREA_T, 0)), BB_CL_ILLEGAL);
   CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RC, BB_AREA_C, 0)), BB_CL_COUNTER);
