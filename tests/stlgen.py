@@ -48,6 +48,11 @@ COUNTER = {"de": "Z", "en": "C"}
 UP_DOWN = {"de": ("ZV", "ZR"), "en": ("CU", "CD")}
 ARITH = ["+I", "-I", "*I", "/I"]
 COMPARE = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
+# DINT (docs/s7.md, DINT): S7's MOD is the DINT remainder; MD 10 / MD 12 are the
+# watched words MW10+MW12 / MW12+MW14
+ARITH_D = ["+D", "-D", "*D", "/D", "MOD"]
+COMPARE_D = ["==D", "<>D", ">D", "<D", ">=D", "<=D"]
+DOUBLES = (10, 12)
 
 
 class Gen:
@@ -134,9 +139,45 @@ class Gen:
             if r.random() < 0.5:
                 self.emit(f"L\t{self.value()}")
 
+    def dint_value(self) -> None:
+        """A DINT into ACCU1: a word or an INT made one by ITD, a DINT constant of
+        one of the S7 forms, or a double word."""
+        r = self.r
+        x = r.random()
+        if x < 0.4:
+            self.emit(f"L\t{self.value()}")
+            self.emit("ITD")
+        elif x < 0.55:
+            n = r.choice((0, 1, -1, 65536, 100000, -100000, 2**31 - 1, -2**31,
+                          r.randrange(-2**31, 2**31)))
+            self.emit(f"L\tL#{n}")
+        elif x < 0.6:
+            self.emit(f"L\tDW#16#{r.randrange(2**32):08X}")
+        else:
+            self.emit(f"L\tMD {r.choice(DOUBLES)}")
+
+    def dint_network(self) -> None:
+        """DINT arithmetic into a double word, or a DINT compare into bits."""
+        r = self.r
+        self.dint_value()
+        self.dint_value()
+        if r.random() < 0.5:
+            self.emit(r.choice(ARITH_D))
+            for _ in range(r.randrange(0, 3)):   # ITD after a DINT: not a no-op
+                self.emit(r.choice(("NEGD", "INVD", "ITD",
+                                    f"+\tL#{r.randrange(-70000, 70000)}")))
+            self.emit(f"T\tMD {r.choice(DOUBLES)}")
+            return
+        self.emit(r.choice(COMPARE_D))
+        for _ in range(r.randrange(1, 3)):
+            self.emit(f"{r.choice(('=', '=', 'S', 'R'))}\t{self.addr('QM')}")
+
     def word_network(self) -> None:
         r = self.r
         x = r.random()
+        if 0.03 <= x < 0.25 and not self.local_words:
+            self.dint_network()
+            return
         if x < 0.03:
             self.emit(f"L\t{self.value()}")        # ACCU2 not loaded in this scan:
             self.emit(r.choice(ARITH + COMPARE))  # rejected

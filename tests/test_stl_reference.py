@@ -252,7 +252,7 @@ def test_a_wrong_row_is_reported(tmp_path):
     text = copy.read_text()
     rows = read_table(text)
     sup = next(r for r in rows if r.en == "+I")
-    uns = next(r for r in rows if r.en == "MOD")
+    uns = next(r for r in rows if r.en == "BTD")
     lines = text.splitlines()
     for row, old, new in ((sup, "| supported |", "| unsupported |"),
                           (uns, "| unsupported |", "| supported |")):
@@ -260,13 +260,13 @@ def test_a_wrong_row_is_reported(tmp_path):
         lines[row.line - 1] = lines[row.line - 1].replace(old, new)
     copy.write_text("\n".join(lines) + "\n")
     flipped = {r.en: r for r in read_table(copy.read_text())}
-    assert (flipped["+I"].status, flipped["MOD"].status) == ("unsupported", "supported")
+    assert (flipped["+I"].status, flipped["BTD"].status) == ("unsupported", "supported")
     assert check_table([sup, uns], tmp_path) == []
-    problems = check_table([flipped["+I"], flipped["MOD"]], tmp_path)
+    problems = check_table([flipped["+I"], flipped["BTD"]], tmp_path)
     assert any(f":{sup.line}: `+I` (de, unsupported): exit 0" in p for p in problems)
     assert any(f":{sup.line}: `+I` (en, unsupported): exit 0" in p for p in problems)
-    assert any(f":{uns.line}: `MOD` (de, supported): exit 1" in p for p in problems)
-    assert any(f":{uns.line}: `MOD` (en, supported): exit 1" in p for p in problems)
+    assert any(f":{uns.line}: `BTD` (de, supported): exit 1" in p for p in problems)
+    assert any(f":{uns.line}: `BTD` (en, supported): exit 1" in p for p in problems)
 
 
 def test_names_it():

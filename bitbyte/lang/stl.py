@@ -96,14 +96,22 @@ BIT_AREAS = ("I", "Q", "M")
 # target starting with one of them may be reached with any /FC)
 COMPARES = ("==I", "<>I", ">I", "<I", ">=I", "<=I")
 ARITHMETIC = ("+I", "-I", "*I", "/I")
+# DINT (docs/s7.md, DINT): the same over all 32 bits of the accumulators; S7's MOD is
+# the DINT remainder, the IL's MODD
+COMPARES_D = ("==D", "<>D", ">D", "<D", ">=D", "<=D")
+ARITHMETIC_D = ("+D", "-D", "*D", "/D", "MOD")
+IL_DINT = {"MOD": "MODD"}
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
+    + COMPARES_D \
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
 # instructions that neither read nor change /FC, the OR bit or the RLO: a jump
 # target starting with them is judged by the first statement after them
 # ACCU1-L changed in place, ACCU2 left alone in S7 (here: IL steps that change
 # ACCU2 too, a constant or an IL arithmetic instruction each; `+ n` reads its n)
-IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I")}
-FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE") + tuple(IN_PLACE) + ARITHMETIC
+IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I"),
+            "NEGD": (-1, "*D"), "INVD": (-1, "*D", -1, "+D")}
+FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE", "ITD") + tuple(IN_PLACE) \
+    + ARITHMETIC + ARITHMETIC_D
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
@@ -118,8 +126,7 @@ REGISTER_OPERANDS = {
 # why the instructions this front end rejects by name have no translation (canonical
 # English mnemonics; docs/s7.md's instruction reference has the same, row by row)
 _WHY = {
-    "DINT: the byte processor's accumulators hold 16 bits":
-        "==D <>D >D <D >=D <=D +D -D *D /D MOD ITD BTD DTB NEGD INVD",
+    "BCD conversion of a DINT: no such word instruction": "BTD DTB",
     "REAL: no floating point in the byte processor":
         "==R <>R >R <R >=R <=R +R -R *R /R ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS "
         "ATAN DTR NEGR RND RND+ RND- TRUNC",
@@ -347,7 +354,10 @@ class Known:
                                     # timer's preset in ms, a counter's binary count)
 
 
-ANY = "defined"         # an accumulator loaded in this scan, value not known
+ANY = "defined"         # an accumulator loaded in this scan, value not known; the IL
+                        # holds INT(S7's value) sign-extended (S7's high word may differ)
+DINT = "dint"           # loaded, the IL's 32 bits are S7's (L#, MD, +D ..., ITD)
+WIDE = "wide"           # loaded, the IL's 32 bits neither S7's nor a sign-extended INT
 CLOBBERED = "clobbered"  # changed by this translation where S7 leaves it alone
 TOP = "top"             # not known yet (a label reached only by a later jump)
 
@@ -370,6 +380,8 @@ def _meet(a, b):
     if CLOBBERED in (a, b) or any(isinstance(v, Known) and v.il_value is not None
                                   or isinstance(v, ChangedBy) for v in (a, b)):
         return CLOBBERED
+    if DINT in (a, b) or WIDE in (a, b):       # one path may hold more than an INT
+        return WIDE
     return ANY
 
 
@@ -1999,8 +2011,10 @@ class StlFrontEnd:
             self.load_count_bcd(stmt, st)
         elif m == "LOOP":
             return self.loop(stmt, st, edges)
-        elif m in ("L", "T") + ARITHMETIC + COMPARES:
+        elif m in ("L", "T") + ARITHMETIC + COMPARES + ARITHMETIC_D + COMPARES_D:
             self.word_statement(stmt, st, m)
+        elif m == "ITD":
+            self.int_to_dint(stmt, st)
         elif m in IN_PLACE:
             self.in_place(stmt, st, m)
         elif m in COMBINE:
@@ -2219,29 +2233,65 @@ class StlFrontEnd:
                                    "counter instruction, block call, jump list, "
                                    "`LOOP` or `+ n` changed (S7 leaves it alone)")
 
+    def read_dint(self, stmt: Stmt, st: _State, which: int) -> None:
+        """`stmt` reads ACCU<which> as a DINT: the IL's 32 bits must be S7's (a DINT
+        loaded or computed, ITD, or an INT constant >= 0).  S7's `L` of a word or of a
+        negative INT constant zero-extends it where the IL sign-extends, and S7's INT
+        arithmetic leaves ACCU1-H as it was (`+I`) or holds the product / remainder
+        there (`*I`, `/I`), which the IL does not keep."""
+        self.read_acc(stmt, st, which)
+        value = st.acc[which - 1]
+        if value == DINT or isinstance(value, Known) and value.il_value is None \
+                and value.value >= 0:
+            return
+        raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` reads ACCU{which} as a "
+                               "DINT, but its high word here need not be S7's (S7's `L` "
+                               "of a word or of a negative INT constant zero-extends it, "
+                               "its INT arithmetic leaves or sets the high word in ways "
+                               "the IL does not keep): make it a DINT first (`ITD`, "
+                               "`L L#n`, `L MD n`)")
+
     def word_statement(self, stmt: Stmt, st: _State, m: str) -> None:
         if m == "L":
             op, known = self.load_operand(stmt)
             self.emit("L", op)
             self.last_load = self.out[-1]
-            st.acc = (known if known is not None else ANY, st.acc[0])
+            dint = op.area in ("DINT", "MD")
+            st.acc = (known if known is not None else DINT if dint else ANY, st.acc[0])
         elif m == "T":
-            op = self.word_operand(stmt, ("QW", "MW"))
+            op = self.word_operand(stmt, ("QW", "MW", "MD"))
+            if op.area == "MD":
+                self.read_dint(stmt, st, 1)
             self.read_acc(stmt, st, 1)
             self.emit("T", op)
-        elif m in ARITHMETIC:
+        elif m in ARITHMETIC + ARITHMETIC_D:
             self.no_operand(stmt)
-            self.read_acc(stmt, st, 1)
-            self.read_acc(stmt, st, 2)
-            self.emit(m)
-            st.acc = (ANY, st.acc[1])
+            dint = m in ARITHMETIC_D
+            for which in (1, 2):
+                (self.read_dint if dint else self.read_acc)(stmt, st, which)
+            self.emit(IL_DINT.get(m, m))
+            st.acc = (DINT if dint else ANY, st.acc[1])
         else:                                   # a compare: RLO := result, OR := 0
             self.no_operand(stmt)
-            self.read_acc(stmt, st, 1)
-            self.read_acc(stmt, st, 2)
+            for which in (1, 2):
+                (self.read_dint if m in COMPARES_D else self.read_acc)(stmt, st, which)
             self.close_term(st)
             self.emit(m)
             st.ner = 1
+
+    def int_to_dint(self, stmt: Stmt, st: _State) -> None:
+        """`ITD`: S7 sign-extends ACCU1-L into ACCU1 and leaves ACCU2 alone (awlsim's
+        insn_itd.py).  The IL's ACCU1 already holds INT(S7's ACCU1) sign-extended
+        after every INT instruction: nothing to do.  After a DINT one it may hold
+        more: `L 0`, `+I` (INT(x) + 0, sign-extended), which changes ACCU2."""
+        self.no_operand(stmt)
+        self.read_acc(stmt, st, 1)
+        if st.acc[0] in (DINT, WIDE):
+            self.emit("L", Operand("const", area="INT", value=0, text="0"))
+            self.emit("+I")
+            st.acc = (DINT, ChangedBy(f"`{stmt.mnemonic.text}` (line {stmt.line})"))
+        else:
+            st.acc = (DINT, st.acc[1])
 
     def scratch_word(self, stmt: Stmt, name: str) -> Operand:
         """A word of the block-local region the translation keeps for itself
@@ -2288,6 +2338,7 @@ class StlFrontEnd:
         -x-1 is the ones' complement), which give the same ACCU1-L but change
         ACCU2 (an instruction that reads it before the next load is rejected)."""
         steps = IN_PLACE[m]
+        dint = m in ("NEGD", "INVD")
         if m != "+":
             self.no_operand(stmt)
         else:
@@ -2300,20 +2351,24 @@ class StlFrontEnd:
             if not re.match(r"[+-]?\d|[A-Z0-9#]*#|'", ops[0].text, re.I):
                 raise self.error(stmt.line, ops[0].col, f"malformed operand "
                                  f"`{ops[0].text}`: `+` takes a constant")
-            if not re.fullmatch(r"[+-]?\d+", ops[0].text):
-                raise self.unsupported(stmt, f"`+ {ops[0].text}` (`+` adds INT constants "
-                                       "here; DINT and other constants are not "
-                                       "supported)", ops[0].col)
-            n = self.constant(stmt, ops[0]).value          # DINT: unsupported
-            steps = tuple(n if s == "n" else s for s in steps)
-        self.read_acc(stmt, st, 1)
+            n = self.dint_constant(stmt, ops[0])
+            if n is not None:                               # + L#n: S7 adds a DINT
+                dint, steps = True, (n, "+D")
+            elif not re.fullmatch(r"[+-]?\d+", ops[0].text):
+                raise self.unsupported(stmt, f"`+ {ops[0].text}` (`+` adds INT and DINT "
+                                       "constants; others are not supported)", ops[0].col)
+            else:
+                n = self.constant(stmt, ops[0]).value
+                steps = tuple(n if s == "n" else s for s in steps)
+        (self.read_dint if dint else self.read_acc)(stmt, st, 1)
         for s in steps:
             if isinstance(s, int):
-                self.emit("L", Operand("const", area="INT", value=s, text=str(s)))
+                area = "DINT" if not -32768 <= s <= 32767 else "INT"
+                self.emit("L", Operand("const", area=area, value=s, text=str(s)))
             else:
                 self.emit(s)
         written = " ".join([stmt.mnemonic.text] + [w.text for w in stmt.operands])
-        st.acc = (ANY, ChangedBy(f"`{written}` (line {stmt.line})"))
+        st.acc = (DINT if dint else ANY, ChangedBy(f"`{written}` (line {stmt.line})"))
 
     def load_operand(self, stmt: Stmt) -> tuple[Operand, Known | None]:
         """The operand of `L`: a constant (with what the compiler knows of it) or a
@@ -2334,9 +2389,48 @@ class StlFrontEnd:
         if text[0].isdigit() or text[0] in "+-" or "#" in text or text[0] == "'":
             if len(ops) > 1:
                 raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+            value = self.dint_constant(stmt, ops[0])
+            if value is not None:
+                return Operand("const", area="DINT", value=value, text=text), None
             known = self.constant(stmt, ops[0])
             return Operand("const", area="INT", value=known.value, text=text), known
-        return self.word_operand(stmt, ("IW", "QW", "MW", "C")), None
+        return self.word_operand(stmt, ("IW", "QW", "MW", "MD", "C")), None
+
+    def dint_constant(self, stmt: Stmt, word: Word) -> int | None:
+        """An S7 32-bit constant as the DINT it loads (`L#n`, `DW#16#…`, `2#` of 17..32
+        digits, `B#(b1, b2, b3, b4)`), or None for any other text."""
+        up = word.text.upper()
+
+        def bad(what: str) -> SourceError:
+            return self.error(stmt.line, word.col, what)
+
+        def signed(value: int) -> int:
+            return value - (1 << 32) if value & 0x80000000 else value
+
+        if up.startswith("L#"):
+            m = re.fullmatch(r"L#([+-]?)(\d+)", up)
+            if not m:
+                raise bad(f"malformed constant `{word.text}`: L#<decimal>")
+            value = -int(m.group(2)) if m.group(1) == "-" else int(m.group(2))
+            if not -2 ** 31 <= value < 2 ** 31:
+                raise bad(f"constant out of range: `{word.text}` (DINT is "
+                          "-2147483648..2147483647)")
+            return value
+        if up.startswith("DW#16#"):
+            if not re.fullmatch(r"DW#16#[0-9A-F]+(_[0-9A-F]+)*", up) \
+                    or int(up[6:].replace("_", ""), 16) > 0xFFFFFFFF:
+                raise bad(f"malformed constant `{word.text}`: DW#16#0..DW#16#FFFFFFFF")
+            return signed(int(up[6:].replace("_", ""), 16))
+        m = re.fullmatch(r"2#([01]+(?:_[01]+)*)", up)
+        if m and 0xFFFF < int(m.group(1).replace("_", ""), 2) <= 0xFFFFFFFF:
+            return signed(int(m.group(1).replace("_", ""), 2))
+        m = re.fullmatch(r"B#\((\d{1,3}),(\d{1,3}),(\d{1,3}),(\d{1,3})\)", up)
+        if m and all(int(b) <= 255 for b in m.groups()):
+            value = 0
+            for b in m.groups():
+                value = value << 8 | int(b)
+            return signed(value)
+        return None
 
     def constant(self, stmt: Stmt, word: Word) -> Known:
         """An S7 constant as the 16-bit pattern S7 loads (INT, W#16#, B#16#, 16#, 2#,
@@ -2365,8 +2459,8 @@ class StlFrontEnd:
                 raise bad(f"malformed constant `{text}`")
             value = -int(body) if sign == "-" else int(body)
             if not -32768 <= value <= 32767:
-                raise bad(f"unsupported: DINT constant `{text}` (INT is "
-                          "-32768..32767; DINT comes in a later slice)")
+                raise bad(f"unsupported: constant `{text}` beyond INT (-32768..32767; "
+                          f"awlsim, too, rejects it): write the DINT as `L#{value}`")
             return Known(value)
         if up.startswith("B#("):
             m = re.fullmatch(r"B#\((\d{1,3})((?:,\d{1,3})*)\)", up)
@@ -2374,8 +2468,8 @@ class StlFrontEnd:
             if not parts or any(int(b) > 255 for b in parts) or len(parts) not in (2, 4):
                 raise bad(f"malformed constant `{text}`: B#(b1, b2), bytes 0..255")
             if len(parts) == 4:
-                raise bad(f"unsupported: 32-bit constant `{text}` (the byte "
-                          "processor's accumulators hold 16 bits)")
+                raise bad(f"unsupported: 32-bit constant `{text}` where a 16-bit "
+                          "value is needed (`L` loads it as a DINT)")
             return Known(pattern(int(parts[0]) << 8 | int(parts[1])))
         if prefix == "16":
             raise bad(f"malformed constant `{text}`: STL writes a hexadecimal constant "
@@ -2389,8 +2483,8 @@ class StlFrontEnd:
                           f"{'0, 1' if base == 2 else '0..9, A..F'} expected")
             value = int(digits.replace("_", ""), base)
             if prefix == "2" and limit < value <= 0xFFFFFFFF:
-                raise bad(f"unsupported: 32-bit constant `{text}` (the byte processor's "
-                          "accumulators hold 16 bits)")
+                raise bad(f"unsupported: 32-bit constant `{text}` where a 16-bit "
+                          "value is needed (`L` loads it as a DINT)")
             if value > limit:
                 raise bad(f"constant out of range: `{text}`")
             return Known(pattern(value))
@@ -2428,6 +2522,9 @@ class StlFrontEnd:
         op = self.numbered(stmt, first, canon, rest, written)
         if canon in WORD_AREAS:
             self.word_uses.append((canon, op.index, stmt, Word(written, first.col)))
+        elif canon == "MD":                     # bytes n..n+3: the words n and n+2
+            for n in (op.index, op.index + 2):
+                self.word_uses.append(("MW", n, stmt, Word(written, first.col)))
         return op
 
     def check_overlaps(self) -> None:
@@ -2455,7 +2552,8 @@ class StlFrontEnd:
                 if ins is not None:
                     raise self.unsupported(stmt, f"word `{word.text}` overlaps the bit "
                                            f"`{ins.operand.text}` (line {ins.line}): "
-                                           f"S7's `{word.text}` is bytes {n} and {n + 1}, "
+                                           f"S7's `{word.text}` covers bytes {n} and "
+                                           f"{n + 1}, "
                                            "here words and bits are apart", word.col)
 
     def combine(self, stmt: Stmt, st: _State, m: str) -> None:
