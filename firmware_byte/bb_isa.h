@@ -39,6 +39,7 @@
 #define BB_IMM_MASK             0xFFFFFFu
 #define BB_FROM_STATUS          0x20000u /* T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n */
 #define BB_STATUS_WAIT          0x40000u /* with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first */
+#define BB_COUNT_FROM_ACCU2     0x800u /* shifts: the count is ACCU2's low byte, not index n */
 
 /* Byte-instruction opcodes (docs/isa.md, "Byte instructions"). */
 #define BB_OP_L_IMM             0x80u  /* L# */
@@ -70,6 +71,20 @@
 #define BB_OP_JC_B              0xC9u  /* JC_B (byte program only) */
 #define BB_OP_JCN_B             0xCAu  /* JCN_B (byte program only) */
 #define BB_OP_END_B             0xCFu  /* END_B (byte program only) */
+#define BB_OP_AW                0xE8u  /* AW */
+#define BB_OP_OW                0xE9u  /* OW */
+#define BB_OP_XOW               0xEAu  /* XOW */
+#define BB_OP_AD                0xEBu  /* AD */
+#define BB_OP_OD                0xECu  /* OD */
+#define BB_OP_XOD               0xEDu  /* XOD */
+#define BB_OP_SLW               0xF0u  /* SLW */
+#define BB_OP_SRW               0xF1u  /* SRW */
+#define BB_OP_SSI               0xF2u  /* SSI */
+#define BB_OP_SLD               0xF3u  /* SLD */
+#define BB_OP_SRD               0xF4u  /* SRD */
+#define BB_OP_SSD               0xF5u  /* SSD */
+#define BB_OP_RLD               0xF6u  /* RLD */
+#define BB_OP_RRD               0xF7u  /* RRD */
 #define BB_OP_CMP               0x90u  /* + c: RLO := cmp */
 #define BB_OP_A_CMP             0x98u  /* + c: RLO := RLO AND cmp */
 #define BB_OP_O_CMP             0xA0u  /* + c: RLO := RLO OR  cmp */
@@ -123,7 +138,7 @@ typedef enum {
 typedef enum {
   BB_CL_LOAD = 0,     /* L constant / word / MD / T / C */
   BB_CL_TRANSFER,     /* T MW / QW / MD */
-  BB_CL_ARITH,        /* +I -I +D -D */
+  BB_CL_ARITH,        /* +I -I +D -D, word logic AW ... XOD, shifts SLW ... RRD */
   BB_CL_MULDIV,       /* *I /I MOD *D /D MODD */
   BB_CL_COMPARE,      /* ==I ... , ==D ..., A cmp, O cmp */
   BB_CL_TIMER,        /* SD SS SP SF, R T n */
@@ -165,6 +180,20 @@ typedef enum {
   X(BB_OP_JU_B, BB_CL_BINARY) \
   X(BB_OP_JC_B, BB_CL_BINARY) \
   X(BB_OP_JCN_B, BB_CL_BINARY) \
-  X(BB_OP_END_B, BB_CL_END)
+  X(BB_OP_END_B, BB_CL_END) \
+  X(BB_OP_AW, BB_CL_ARITH) \
+  X(BB_OP_OW, BB_CL_ARITH) \
+  X(BB_OP_XOW, BB_CL_ARITH) \
+  X(BB_OP_AD, BB_CL_ARITH) \
+  X(BB_OP_OD, BB_CL_ARITH) \
+  X(BB_OP_XOD, BB_CL_ARITH) \
+  X(BB_OP_SLW, BB_CL_ARITH) \
+  X(BB_OP_SRW, BB_CL_ARITH) \
+  X(BB_OP_SSI, BB_CL_ARITH) \
+  X(BB_OP_SLD, BB_CL_ARITH) \
+  X(BB_OP_SRD, BB_CL_ARITH) \
+  X(BB_OP_SSD, BB_CL_ARITH) \
+  X(BB_OP_RLD, BB_CL_ARITH) \
+  X(BB_OP_RRD, BB_CL_ARITH)
 
 #endif /* BB_BB_ISA_H */

@@ -88,6 +88,12 @@ int bb_classify(uint32_t instr) {
     case BB_OP_MUL: case BB_OP_DIV: case BB_OP_MOD:
     case BB_OP_MUL_D: case BB_OP_DIV_D: case BB_OP_MOD_D:
       return BB_CL_MULDIV;
+    case BB_OP_AW: case BB_OP_OW: case BB_OP_XOW: case BB_OP_AD: case BB_OP_OD:
+    case BB_OP_XOD:
+      return BB_CL_ARITH;
+    case BB_OP_SLW: case BB_OP_SRW: case BB_OP_SSI: case BB_OP_SLD: case BB_OP_SRD:
+    case BB_OP_SSD: case BB_OP_RLD: case BB_OP_RRD:   /* a count 0..255, or from ACCU2 */
+      return (n & ~(BB_COUNT_FROM_ACCU2 | 0xFFu)) == 0u ? BB_CL_ARITH : BB_CL_ILLEGAL;
     case BB_OP_SD: case BB_OP_SS: case BB_OP_SP: case BB_OP_SF: case BB_OP_RT:
       return (area == BB_AREA_T && n < BB_NUM_TIMERS) ? BB_CL_TIMER : BB_CL_ILLEGAL;
     case BB_OP_CU: case BB_OP_CD: case BB_OP_SC: case BB_OP_RC:
@@ -229,7 +235,10 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       break;
     case BB_CL_ARITH:
     case BB_CL_MULDIV:
-      bb_proc_arith(s, op);
+      if (bb_is_logic(op) || bb_is_shift(op))
+        bb_proc_logic(s, instr);
+      else
+        bb_proc_arith(s, op);
       break;
     case BB_CL_COMPARE:
       r = bb_proc_compare(s, op, r);

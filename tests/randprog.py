@@ -169,7 +169,9 @@ def random_watch(seed: int) -> list[str]:
 
 WORD_SOURCES = ["MW", "MW", "IW", "QW", "T", "C", "MD"]
 ARITH = ["+I", "-I", "*I", "/I", "MOD", "+I", "-I", "*I", "/I", "MOD",
-         "+D", "-D", "*D", "/D", "MODD"]
+         "+D", "-D", "*D", "/D", "MODD", "AW", "OW", "XOW", "AD", "OD", "XOD"]
+SHIFTS = ["SLW", "SRW", "SSI", "SLD", "SRD", "SSD", "RLD", "RRD"]
+SHIFT_COUNTS = [0, 1, 3, 15, 16, 17, 31, 32, 40, 255]
 COMPARES = ["==I", "<>I", ">I", "<I", ">=I", "<=I", "==I", "<>I", ">I", "<I", ">=I", "<=I",
             "==D", "<>D", ">D", "<D", ">=D", "<=D"]
 TIMERS = ["SD", "SS", "SP", "SF"]
@@ -199,8 +201,11 @@ class MixedGen(Gen):
         rng = self.rng
         r = rng.random()
         if r < 0.3:                      # arithmetic into a word
-            self.lines += [self.load(), self.load(), f"  {rng.choice(ARITH)}",
-                           f"  T {rng.choice(['MW', 'MW', 'QW', 'MD'])}{rng.randrange(4)}"]
+            self.lines += [self.load(), self.load(), f"  {rng.choice(ARITH)}"]
+            if rng.random() < 0.3:       # a shift by a count, or by ACCU2's low byte
+                count = f" {rng.choice(SHIFT_COUNTS)}" if rng.random() < 0.7 else ""
+                self.lines.append(f"  {rng.choice(SHIFTS)}{count}")
+            self.lines.append(f"  T {rng.choice(['MW', 'MW', 'QW', 'MD'])}{rng.randrange(4)}")
         elif r < 0.5:                    # compare into the RLO, combined or not
             if rng.random() < 0.5:
                 self.lines += [self.load(), self.load(), f"  {rng.choice(COMPARES)}"]

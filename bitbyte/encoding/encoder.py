@@ -92,6 +92,9 @@ def _encode_byte_side(program: Program, instr: Instr, mode: str, pool: list[int]
         raise _error(program, instr, f"{what} {PARALLEL}")
     if m in isa.EXCHANGE_OPS or (op is not None and op.area in isa.EXCHANGE_AREAS):
         raise _error(program, instr, f"{what} {SERIAL_EXCHANGE}")
+    if m in isa.SHIFTS:             # the count in the index, or ACCU2's low byte
+        return isa.plain_word(isa.BYTE_OPCODES[m]) | (
+            op.value if op is not None else isa.COUNT_FROM_ACCU2)
     if op is None:
         return isa.plain_word(isa.BYTE_OPCODES[m])
     if op.kind == "const":

@@ -79,6 +79,8 @@ BYTE_OPCODES: dict[str, int] = DEF.byte_opcodes
 WORD_AREA_CODES = DEF.word_area_codes
 IMM_BITS = DEF.fields["imm"].width        # L constant immediate field
 EXCHANGE_OPS = ("READ", "WRITE")
+SHIFTS = DEF.shifts                       # SLW ... RRD: a count in the index field
+COUNT_FROM_ACCU2 = 1 << DEF.count_from_accu2_bit
 
 
 def byte_key(mnemonic: str, area: str) -> str:

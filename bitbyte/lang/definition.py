@@ -55,6 +55,7 @@ class ByteOpcode:
     operand: str = "—"
     doc: str | None = None
     dint: bool = False           # reads the accumulators' full 32 bits (+D ... MODD)
+    group: str | None = None     # "logic" (AW ... XOD) or "shift" (SLW ... RRD)
 
 
 class Definition:
@@ -69,6 +70,7 @@ class Definition:
         self.from_status_bit: int = w["from_status"]
         self.status_wait_bit: int = w["status_wait"]
         self.byte_bit: int = w["byte_bit"]
+        self.count_from_accu2_bit: int = w["count_from_accu2"]
 
         tm = raw["timing"]
         self.bit_clocks: int = tm["bit_clocks"]
@@ -110,7 +112,7 @@ class Definition:
                        value=r["value"], cls=r["class"], c=r.get("c"), rtl=r.get("rtl"),
                        byte_program=r.get("byte_program", False),
                        operand=r.get("operand", "—"), doc=r.get("doc"),
-                       dint=r.get("dint", False))
+                       dint=r.get("dint", False), group=r.get("group"))
             for r in raw["byte_opcode"])
         self.byte_opcodes: dict[str, int] = {}
         self.byte_kinds: dict[str, str] = {}
@@ -126,7 +128,12 @@ class Definition:
         # every compare mnemonic (INT, then DINT) and the arithmetic (+I ... MODD)
         self.all_compares: tuple[str, ...] = self.compares + self.dint_compares
         self.arithmetic: tuple[str, ...] = tuple(
-            op.mnemonic for op in self.byte_opcode_rows if op.cls in ("arith", "muldiv"))
+            op.mnemonic for op in self.byte_opcode_rows
+            if op.cls in ("arith", "muldiv") and op.group is None)
+        self.word_logic: tuple[str, ...] = tuple(
+            op.mnemonic for op in self.byte_opcode_rows if op.group == "logic")
+        self.shifts: tuple[str, ...] = tuple(
+            op.mnemonic for op in self.byte_opcode_rows if op.group == "shift")
         # the instructions that read ACCU1/ACCU2 as DINT (the rest of them read INT(.))
         self.dint_mnemonics: frozenset[str] = frozenset(
             [op.mnemonic for op in self.byte_opcode_rows if op.dint]

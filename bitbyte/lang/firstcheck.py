@@ -23,7 +23,7 @@ from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import COMBINES, JUMPS, Program
 
 KEEPS_RLO = frozenset(("NOP", "REFRESH", "REFRESH Q", "=", "S", "R", "END", "L", "T")
-                      + DEF.arithmetic
+                      + DEF.arithmetic + DEF.word_logic + DEF.shifts
                       + ("SD", "SS", "SP", "SF", "CU", "CD", "WRITE") + JUMPS)
 WARNED = tuple(m for m, (func, _) in COMBINES.items() if func is not None)
 

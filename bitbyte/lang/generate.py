@@ -181,6 +181,8 @@ def c_isa(d: Definition) -> str:
                "T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n"),
          _cdef("BB_STATUS_WAIT", _h(1 << d.status_wait_bit, 5),
                "with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first"),
+         _cdef("BB_COUNT_FROM_ACCU2", _h(1 << d.count_from_accu2_bit, 3),
+               "shifts: the count is ACCU2's low byte, not index n"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]
     for op in d.byte_opcode_rows:
         b.append(_cdef(op.c, _h(op.value), op.mnemonic
@@ -299,6 +301,7 @@ def doc_byte_opcodes(d: Definition) -> str:
             cost = "binary, taken or not"
         rows.append([f"`0x{op.value:02X}`", name, op.operand, cost])
     rows += _compare_rows(d.dint_compares, d.dint_compare_bases)
+    rows.sort(key=lambda r: int(r[0].strip("`").split("`")[0], 16))     # by opcode
     return _md_table(["opcode", "mnemonic", "operand", "cost class"], rows)
 
 

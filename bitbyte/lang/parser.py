@@ -82,6 +82,9 @@ AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 PAREN_OPENERS = ("A", "AN", "O", "ON", "X", "XN")             # + "(" -> "A(" ...
 COMPARES = DEF.all_compares                                   # ==I ... <=D
 ARITHMETIC = DEF.arithmetic                                   # +D ... MODD
+WORD_LOGIC = DEF.word_logic                                   # AW ... XOD
+SHIFTS = DEF.shifts                                           # SLW ... RRD
+MAX_SHIFT = 255
 KEYWORDS = ("VAR", "END_VAR", "VAR_GLOBAL", "AT", "BIT", "BYTE")
 ACCESS_WORDS = ("READ", "WRITE")                              # VAR_GLOBAL attribute
 GLOBAL_AREAS = {"M": "bit", "MW": "word"}                     # local copy -> kind
@@ -101,6 +104,7 @@ class Sig:
 
     accepts: tuple[str, ...]
     need: str = ""
+    optional: bool = False      # the operand may be left out (shifts: count in ACCU2)
 
 
 NO_OPERAND = Sig(())
@@ -117,6 +121,8 @@ LOAD = Sig(("IW", "QW", "MW", "MD", "T", "C", "INT", "TIME", "DINT"),
 TRANSFER = Sig(("MW", "QW", "MD"), "a target MW, QW or MD")
 TIMER = Sig(("T",), "a timer T n")
 COUNTER = Sig(("C",), "a counter C n")
+SHIFT = Sig(("INT",), f"a shift count 0..{MAX_SHIFT} (or none: ACCU2's low byte)",
+            optional=True)
 
 SIGNATURES: dict[str, Sig] = {
     **{m: BIT_READ for m in ("LD", "LDN", "A", "AN", "O", "ON", "X", "XN")},
@@ -127,7 +133,8 @@ SIGNATURES: dict[str, Sig] = {
     "JU": JUMP, "JC": JUMP, "JCN": JUMP,
     # byte instructions
     "L": LOAD, "T": TRANSFER,
-    **{m: NO_OPERAND for m in ARITHMETIC},
+    **{m: NO_OPERAND for m in ARITHMETIC + WORD_LOGIC},
+    **{m: SHIFT for m in SHIFTS},
     **{m: NO_OPERAND for m in COMPARES},
     **{f"{f} {c}": NO_OPERAND for f in ("A", "O") for c in COMPARES},
     **{m: TIMER for m in ("SD", "SS", "SP", "SF")},
@@ -707,7 +714,7 @@ class Parser:
     # -- operands -------------------------------------------------------------------
 
     def parse_operand_for(self, instr: Instr, sig: Sig) -> Operand | None:
-        if not sig.accepts:
+        if not sig.accepts or sig.optional and self.peek().ends_statement:
             return None
         if self.peek().ends_statement:
             raise self.error_at(instr, f"missing operand: `{instr.mnemonic}` needs "
@@ -717,6 +724,9 @@ class Parser:
             return self.parse_label_ref(instr, tok)
         operand = self.parse_value(tok)
         self.check_kind(instr, sig, operand, tok)
+        if sig is SHIFT and not 0 <= operand.value <= MAX_SHIFT:
+            raise self.error(tok, f"constant out of range: `{operand.text}` (a shift "
+                                  f"count is 0..{MAX_SHIFT})")
         return operand
 
     def check_kind(self, instr: Instr, sig: Sig, op: Operand, tok: Token) -> None:
@@ -919,7 +929,7 @@ class Parser:
 # --------------------------------------------------------------------------------------
 
 BYTE_MNEMONICS = frozenset(
-    ("L", "T") + ARITHMETIC + ("SD", "SS", "SP", "SF", "CU", "CD", "READ",
+    ("L", "T") + ARITHMETIC + WORD_LOGIC + SHIFTS + ("SD", "SS", "SP", "SF", "CU", "CD", "READ",
                                "WRITE") + COMPARES + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
 
 

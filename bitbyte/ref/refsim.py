@@ -101,6 +101,36 @@ def accu_operands(c: str, accu2: int, accu1: int) -> tuple[int, int]:
     return to_int16(accu2), to_int16(accu1)
 
 
+def word_logic(m: str, accu2: int, accu1: int) -> int:
+    """AW OW XOW (on INT(.), sign-extended) and AD OD XOD (32 bits): ACCU1 op ACCU2."""
+    a, b = accu1 & 0xFFFFFFFF, accu2 & 0xFFFFFFFF
+    r = {"A": a & b, "O": a | b, "X": a ^ b}[m[0]]
+    return to_int32(r) if m in DEF.dint_mnemonics else to_int16(r)
+
+
+def shift(m: str, accu1: int, count: int) -> int:
+    """SLW SRW SSI on the low 16 bits (sign-extended result), SLD SRD SSD RLD RRD on
+    32: S7's (awlsim's) results; a count of 0 leaves ACCU1, a count past the width
+    acts as the width."""
+    if count == 0:
+        return accu1
+    if m in ("SLW", "SRW", "SSI"):
+        c, w = min(count, 16), accu1 & 0xFFFF
+        if m == "SLW":
+            return to_int16(w << c)
+        return to_int16(w >> c if m == "SRW" else to_int16(w) >> c)
+    c, d = min(count, 32), accu1 & 0xFFFFFFFF
+    if m == "SLD":
+        return to_int32(d << c)
+    if m == "SRD":
+        return to_int32(d >> c)
+    if m == "SSD":
+        return to_int32(to_int32(d) >> c)
+    if m == "RLD":
+        return to_int32(d << c | d >> (32 - c))
+    return to_int32(d >> c | d << (32 - c))                # RRD
+
+
 def compare(c: str, a: int, b: int) -> int:
     """a c b as 0/1, c one of COMPARES (I or D: the caller passes the operands)."""
     return int({"==": a == b, "<>": a != b, ">": a > b, "<": a < b,
@@ -404,6 +434,11 @@ class RefSim:
             result, by_zero = arithmetic(kind, *accu_operands(kind, self.accu2, self.accu1))
             self.accu1 = result
             self.arith_error |= by_zero
+        elif kind in DEF.word_logic:
+            self.accu1 = word_logic(kind, self.accu2, self.accu1)
+        elif kind in DEF.shifts:
+            count = self.accu2 & 0xFF if op is None else op.value
+            self.accu1 = shift(kind, self.accu1, count)
         elif kind in COMPARES:
             self.rlo = compare(kind, *accu_operands(kind, self.accu2, self.accu1))
         elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=D"

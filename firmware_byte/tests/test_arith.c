@@ -289,6 +289,58 @@ static void test_double_words(void) {
   CHECK_EQ(ex(i_T(BB_AREA_MD, 254)), BB_CL_ILLEGAL);
 }
 
+/* Word logic and shifts (docs/isa.md): S7's results as awlsim computes them
+ * (insn_uw.py ... insn_rrd.py), worked by hand. */
+static int32_t shift(int32_t a, unsigned op, unsigned n) {
+  S.accu1 = a;
+  S.accu2 = 77;
+  ex(BB_INSTR(op, 0, n));
+  CHECK_EQ(S.accu2, 77);                                     /* ACCU2 unchanged */
+  return S.accu1;
+}
+
+static void test_word_logic(void) {
+  setup();
+  CHECK_EQ(arith32(0x00F0, BB_OP_AW, 0x3C3C), 0x0030);
+  CHECK_EQ(arith32(0x00F0, BB_OP_OW, 0x3C3C), 0x3CFC);
+  CHECK_EQ(arith32(0x00F0, BB_OP_XOW, 0x3C3C), 0x3CCC);
+  CHECK_EQ(arith32(-1, BB_OP_AW, 0x12348000), -32768);        /* INT, sign-extended */
+  CHECK_EQ(arith32(0x0F0F0000, BB_OP_AD, 0x00FF00FF), 0x000F0000);
+  CHECK_EQ(arith32(0x0F0F0000, BB_OP_OD, 0x00FF00FF), 0x0FFF00FF);
+  CHECK_EQ(arith32(INT32_MIN, BB_OP_XOD, -1), INT32_MAX);
+  CHECK_EQ(S.flags, 0);
+}
+
+static void test_shifts(void) {
+  setup();
+  CHECK_EQ(shift(0x1234, BB_OP_SLW, 4), 0x2340);
+  CHECK_EQ(shift(0x1234, BB_OP_SLW, 3), -28256);             /* 0x91A0 */
+  CHECK_EQ(shift(0x1234, BB_OP_SLW, 16), 0);
+  CHECK_EQ(shift(0x1234, BB_OP_SLW, 255), 0);
+  CHECK_EQ(shift(0x71234, BB_OP_SLW, 0), 0x71234);           /* count 0: unchanged */
+  CHECK_EQ(shift(-32768, BB_OP_SRW, 1), 0x4000);              /* zeros in */
+  CHECK_EQ(shift(-32768, BB_OP_SSI, 1), -16384);              /* the sign in */
+  CHECK_EQ(shift(-32768, BB_OP_SSI, 16), -1);
+  CHECK_EQ(shift(-32768, BB_OP_SSI, 200), -1);
+  CHECK_EQ(shift(0x4000, BB_OP_SSI, 20), 0);
+  CHECK_EQ(shift(0x40000001, BB_OP_SLD, 1), INT32_MIN + 2);
+  CHECK_EQ(shift(-1, BB_OP_SLD, 32), 0);
+  CHECK_EQ(shift(INT32_MIN, BB_OP_SRD, 31), 1);
+  CHECK_EQ(shift(INT32_MIN, BB_OP_SSD, 31), -1);
+  CHECK_EQ(shift(INT32_MIN, BB_OP_SSD, 33), -1);
+  CHECK_EQ(shift(0x40000000, BB_OP_SSD, 40), 0);
+  CHECK_EQ(shift(INT32_MIN + 1, BB_OP_RLD, 1), 3);
+  CHECK_EQ(shift(3, BB_OP_RRD, 1), INT32_MIN + 1);
+  CHECK_EQ(shift(0x12345678, BB_OP_RLD, 32), 0x12345678);
+  CHECK_EQ(shift(0x12345678, BB_OP_RRD, 8), 0x78123456);
+  /* the count from ACCU2's low byte */
+  S.accu2 = 0x104;                                           /* low byte 4 */
+  S.accu1 = 0x1234;
+  ex(BB_INSTR(BB_OP_SLW, 0, 0) | BB_COUNT_FROM_ACCU2);
+  CHECK_EQ(S.accu1, 0x2340);
+  CHECK_EQ(S.flags, 0);
+}
+
 static void test_int16(void) {
   CHECK_EQ(bb_int16(0x7FFFu), 32767);
   CHECK_EQ(bb_int16(0x8000u), -32768);
@@ -313,5 +365,7 @@ void suite_arith(void) {
   RUN(test_worked_examples);
   RUN(test_dint_arith);
   RUN(test_double_words);
+  RUN(test_word_logic);
+  RUN(test_shifts);
   RUN(test_int16);
 }

@@ -67,7 +67,13 @@ static void test_classify(void) {
     CHECK_EQ(bb_classify((0xD8u + c) << 24), want);
     CHECK_EQ(bb_classify((0xE0u + c) << 24), want);
   }
-  CHECK_EQ(bb_classify(0xE8000000u), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(0xE8000000u), BB_CL_ARITH);      /* AW */
+  CHECK_EQ(bb_classify(0xED000000u), BB_CL_ARITH);      /* XOD */
+  CHECK_EQ(bb_classify(0xEE000000u), BB_CL_ILLEGAL);
+  CHECK_EQ(bb_classify(0xF00000FFu), BB_CL_ARITH);      /* SLW 255 */
+  CHECK_EQ(bb_classify(0xF7000800u), BB_CL_ARITH);      /* RRD, count from ACCU2 */
+  CHECK_EQ(bb_classify(0xF0000100u), BB_CL_ILLEGAL);    /* SLW 256 */
+  CHECK_EQ(bb_classify(0xF8000000u), BB_CL_ILLEGAL);
   CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RT, BB_AREA_T, 0)), BB_CL_TIMER);
   CHECK_EQ(bb_classify(BB_INSTR(0xB5, BB_AREA_T, 0)), BB_CL_ILLEGAL);
   CHECK_EQ(bb_classify(BB_INSTR(BB_OP_RC, BB_AREA_C, 0)), BB_CL_COUNTER);
