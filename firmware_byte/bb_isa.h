@@ -110,7 +110,7 @@
 #define BB_AREA_MD              15u    /* MD */
 
 /* Sticky flags (bb_flags(), mirrored to the bus register BYTE_FLAGS). */
-#define BB_FLAG_ARITH           0x1u   /* /I or MOD by 0 */
+#define BB_FLAG_ARITH           0x1u   /* /I, MOD, /D or MODD by 0 */
 #define BB_FLAG_ILLEGAL         0x2u   /* unknown opcode or operand */
 #define BB_FLAG_RUNAWAY         0x4u   /* a byte-program scan hit max_steps before END_B */
 

@@ -534,3 +534,16 @@ def test_examples_in_the_repository_parse_or_fail_cleanly():
         if name.endswith(".il"):
             with open(os.path.join(root, name), "rb") as f:
                 assert_only_source_errors(f.read())
+
+
+def test_constant_pool_overflow_is_program_too_large():
+    """Review finding: constants beyond imm24 go to the byte processor's pool of
+    DEF.firmware["pool_words"]; one more was written and dropped by the firmware."""
+    from bitbyte.lang.definition import DEF
+    n = DEF.firmware["pool_words"]
+    text = "".join(f"L L#{20_000_000 + i}\nT MD0\n" for i in range(n))
+    encode(parse("t.il", text + "L L#20000000\n"))     # a full pool, one used twice
+    with pytest.raises(SourceError) as info:
+        encode(parse("t.il", text + "L L#30000000\n"))
+    err = info.value
+    assert (err.line, err.col) == (2 * n + 1, 1) and "program too large" in err.message

@@ -171,3 +171,54 @@ def test_the_high_word_rule_is_needed(tmp_path, monkeypatch):
     got = bitbyte_scans(path, inputs, tmp_path, words=words, in_words=(2,))
     assert (expected[0]["MW10"], expected[0]["MW12"]) == (1, 0)   # 16#0000FFFB + 5
     assert first_difference(expected, got) is not None
+
+
+# Review findings (each a silent difference or a wrong rejection before its fix)
+
+def test_lc_keeps_accu2_as_an_int_of_the_old_accu1(tmp_path):
+    """`LC` moves the old ACCU1 into ACCU2 through a 16-bit scratch word: after a DINT
+    it is no longer S7's 32 bits, so `+D` on it is rejected, not computed wrongly."""
+    err = error_of(tmp_path, "L L#100000\nLC Z 1\nITD\n+D\nT MD 10")
+    assert err.line == 11 and "`+D` reads ACCU2 as a DINT" in err.message
+
+
+@pytest.mark.parametrize("body, needle", [
+    # MD 126 is bytes 126..129: its low half is the translation's scratch word MW 128
+    ("L L#65537\nT MD 126\nL 5\nLC Z 1\nT MW 10", "M 128"),
+])
+def test_double_words_in_the_local_region_are_rejected(tmp_path, body, needle):
+    err = error_of(tmp_path, body)
+    assert err.message.startswith("unsupported:") and needle in err.message, err.message
+
+
+def test_a_long_backward_jump_chain_settles(tmp_path):
+    """Five backward SPA hops into a label that one path reaches with a word: the
+    label's state settles to 'not a DINT' and `+D` is rejected (it was accepted with
+    the state of a pass that had not settled)."""
+    body = ("L -5\nT MW 0\nL L#1\nL L#2\nU E 0.0\nSPB STRT\nL6: +D\nT MD 10\nBEA\n"
+            "L5: SPA L6\nL4: SPA L5\nL3: SPA L4\nL2: SPA L3\nL1: SPA L2\n"
+            "STRT: L MW 0\nSPA L1")
+    err = error_of(tmp_path, body)
+    assert err.line == 14 and "`+D` reads ACCU1 as a DINT" in err.message, err.message
+
+
+def test_a_dint_read_at_a_label_reached_by_a_later_jump(tmp_path):
+    """The label's state is not known in the first pass: no rejection then."""
+    path = write(tmp_path, "back.awl", "L L#1\nL L#2\nSPA M2\nM1: +D\nT MD 10\nBEA\n"
+                 "M2: SPA M1")
+    rows = same_as_awlsim(path, "de", [{}] * 2, tmp_path, words=("MW10", "MW12"))
+    assert (rows[0]["MW10"], rows[0]["MW12"]) == (0, 3)
+
+
+@pytest.mark.parametrize("actual", ["MD 10", "L#100000", "DW#16#1"])
+def test_an_int_parameter_takes_no_32_bit_actual(tmp_path, actual):
+    text = ("FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : INT;\nEND_VAR\nBEGIN\nNETWORK\n"
+            "TITLE =\nL #x\nT MW 20\nEND_FUNCTION\n\n"
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\nNETWORK\nTITLE =\n"
+            f"CALL FC 1 (x := {actual});\nEND_ORGANIZATION_BLOCK\n")
+    path = tmp_path / "fc.awl"
+    path.write_text(text)
+    with pytest.raises(SourceError) as info:
+        parse_file(str(path), lang="stl")
+    assert info.value.line == 16 and "is INT (16 bits), not the 32-bit" in \
+        info.value.message, info.value.message

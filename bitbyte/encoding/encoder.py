@@ -17,6 +17,7 @@ from typing import NamedTuple
 
 from bitbyte.encoding import isa
 from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Instr, Program
 
@@ -31,6 +32,9 @@ MODES = ("serial", "parallel")
 class Encoded(NamedTuple):
     words: list[int]
     listing: str
+
+
+POOL_WORDS = DEF.firmware["pool_words"]
 
 
 def encode(program: Program, config: Config = DEFAULT, mode: str = "serial") -> Encoded:
@@ -52,12 +56,17 @@ def encode_words(program: Program, config: Config = DEFAULT,
 
 
 def constant_pool(program: Program) -> list[int]:
-    """32-bit constants of `L` too wide for the immediate, in first-use order."""
+    """32-bit constants of `L` too wide for the immediate, in first-use order; more
+    than the byte processor's pool holds is an error at the first one past it."""
     pool: list[int] = []
     for instr in program.instrs:
         op = instr.operand
         if instr.mnemonic == "L" and op is not None and op.kind == "const" \
                 and not isa.fits_immediate(op.value) and op.value not in pool:
+            if len(pool) == POOL_WORDS:
+                raise _error(program, instr, f"program too large: more than "
+                             f"{POOL_WORDS} different constants outside -8388608.."
+                             "8388607 (the byte processor's constant pool)")
             pool.append(op.value)
     return [v & 0xFFFFFFFF for v in pool]
 

@@ -74,7 +74,6 @@ def plain_word(opcode: int) -> int:
 # Byte instructions (docs/isa.md "Byte instructions"): opcodes 0x80..0xFF.
 # --------------------------------------------------------------------------------------
 
-COMPARES = DEF.compares                   # compare code c = index
 BYTE_OPCODES: dict[str, int] = DEF.byte_opcodes
 WORD_AREA_CODES = DEF.word_area_codes
 IMM_BITS = DEF.fields["imm"].width        # L constant immediate field

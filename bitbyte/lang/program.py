@@ -40,7 +40,6 @@ class Operand:
       "index"  area in INDEXED_BIT_AREAS (T, C, FBI, FBY) or WORD_AREAS, index set
       "const"  value set (an INT, a 16#.. pattern, an L#.. DINT or a T# duration in
                ms); area is "INT", "DINT" or "TIME"
-               "INT" or "TIME"
       "label"  label set (upper-case label name); a jump target
     text is the operand as written in the source (symbol name or address).
     """
