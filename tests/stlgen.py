@@ -53,6 +53,12 @@ COMPARE = ["==I", "<>I", ">I", "<I", ">=I", "<=I"]
 ARITH_D = ["+D", "-D", "*D", "/D", "MOD"]
 COMPARE_D = ["==D", "<>D", ">D", "<D", ">=D", "<=D"]
 DOUBLES = (10, 12)
+# word logic (German UW/UD are English AW/AD) and shifts; counts around the widths
+LOGIC_W = {"de": ["UW", "OW", "XOW"], "en": ["AW", "OW", "XOW"]}
+LOGIC_D = {"de": ["UD", "OD", "XOD"], "en": ["AD", "OD", "XOD"]}
+SHIFT_W = ["SLW", "SRW", "SSI"]
+SHIFT_D = ["SLD", "SRD", "SSD", "RLD", "RRD"]
+SHIFT_COUNTS = (0, 1, 3, 15, 16, 17, 31, 32, 40, 255)
 
 
 class Gen:
@@ -135,7 +141,15 @@ class Gen:
         self.emit(f"L\t{self.value()}")
         self.emit(f"L\t{self.value()}")
         for _ in range(r.randrange(0, 3)):
-            self.emit(r.choice(ARITH))
+            x = r.random()
+            if x < 0.7 or self.local_words:
+                self.emit(r.choice(ARITH))
+            elif x < 0.85:                      # word logic, with ACCU2 or a constant
+                self.emit(r.choice(LOGIC_W[self.lang])
+                          + (f"\tW#16#{r.randrange(0x10000):04X}" if r.random() < 0.4 else ""))
+            else:                               # a shift by a count or by ACCU2
+                self.emit(r.choice(SHIFT_W) + (f"\t{r.choice(SHIFT_COUNTS)}"
+                                               if r.random() < 0.7 else ""))
             if r.random() < 0.5:
                 self.emit(f"L\t{self.value()}")
 
@@ -162,7 +176,15 @@ class Gen:
         self.dint_value()
         self.dint_value()
         if r.random() < 0.5:
-            self.emit(r.choice(ARITH_D))
+            x = r.random()
+            if x < 0.6:
+                self.emit(r.choice(ARITH_D))
+            elif x < 0.8:
+                self.emit(r.choice(LOGIC_D[self.lang])
+                          + (f"\tDW#16#{r.randrange(2**32):08X}" if r.random() < 0.4 else ""))
+            else:
+                self.emit(r.choice(SHIFT_D) + (f"\t{r.choice(SHIFT_COUNTS)}"
+                                               if r.random() < 0.7 else ""))
             for _ in range(r.randrange(0, 3)):   # ITD after a DINT: not a no-op
                 self.emit(r.choice(("NEGD", "INVD", "ITD",
                                     f"+\tL#{r.randrange(-70000, 70000)}")))

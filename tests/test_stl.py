@@ -1124,7 +1124,8 @@ def test_random_programs_against_awlsim(tmp_path):
     need |= {"L", "T", "+I", "-I", "*I", "/I", "==I", "<>I", ">I", "<I", ">=I", "<=I"}
     need |= {"ZV", "ZR", "CU", "CD"}
     dint = {"+D", "-D", "*D", "/D", "MOD", "NEGD", "INVD", "+", "==D", "<>D", ">D", "<D",
-            ">=D", "<=D"}
+            ">=D", "<=D", "OW", "XOW", "OD", "XOD", "SLW", "SRW", "SSI", "SLD", "SRD",
+            "SSD", "RLD", "RRD", "UW", "AW", "UD", "AD"}
     need.add("ITD")
     if PROGRAMS >= 200:         # each DINT one in the soak's 1 000s, some in 200
         assert need <= seen, need - seen

@@ -657,8 +657,8 @@ def test_symbols_as_actual_parameters(tmp_path):
 def test_random_call_programs_catch_a_jump_list_without_the_low_byte(tmp_path,
                                                                      monkeypatch):
     """The random programs' jump lists (SPL/JL on constants and words, 257 and -255
-    among them) can catch a chain that compares all 16 bits of ACCU1 — rarely: 1 of
-    the first 300 programs of seed 0 (program 205) shows it, since the entries and
+    among them) can catch a chain that compares all 16 bits of ACCU1 — rarely: 3 of
+    the first 661 programs of seed 0 (programs 14, 623, 660) show it, since the entries and
     the default often lead to the same effect; test_stl_jumplist.py's program is
     the strong check."""
     original = stl.StlFrontEnd.jump_list
@@ -670,7 +670,7 @@ def test_random_call_programs_catch_a_jump_list_without_the_low_byte(tmp_path,
 
     monkeypatch.setattr(stl.StlFrontEnd, "jump_list", sixteen_bits)
     with pytest.raises(AssertionError, match="differs from awlsim"):
-        random_call_programs(tmp_path, 1, offset=205, base_seed=0)
+        random_call_programs(tmp_path, 1, offset=14, base_seed=0)
 
 
 # --------------------------------------------------------------------------------------

@@ -101,6 +101,11 @@ ARITHMETIC = ("+I", "-I", "*I", "/I")
 COMPARES_D = ("==D", "<>D", ">D", "<D", ">=D", "<=D")
 ARITHMETIC_D = ("+D", "-D", "*D", "/D", "MOD")
 IL_DINT = {"MOD": "MODD"}
+# word logic and shifts (docs/s7.md, "Word logic and shifts"): canonical English
+LOGIC_W = ("AW", "OW", "XOW")           # on ACCU1-L (S7 keeps ACCU1-H)
+LOGIC_D = ("AD", "OD", "XOD")           # on 32 bits
+SHIFT_W = ("SLW", "SRW", "SSI")         # ACCU1-L
+SHIFT_D = ("SLD", "SRD", "SSD", "RLD", "RRD")
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
     + COMPARES_D \
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
@@ -111,7 +116,7 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I"),
             "NEGD": (-1, "*D"), "INVD": (-1, "*D", -1, "+D")}
 FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE", "ITD") + tuple(IN_PLACE) \
-    + ARITHMETIC + ARITHMETIC_D
+    + ARITHMETIC + ARITHMETIC_D + LOGIC_W + LOGIC_D + SHIFT_W + SHIFT_D
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
@@ -131,9 +136,7 @@ _WHY = {
         "==R <>R >R <R >=R <=R +R -R *R /R ABS SQR SQRT EXP LN SIN COS TAN ASIN ACOS "
         "ATAN DTR NEGR RND RND+ RND- TRUNC",
     "BCD conversion: no such word instruction": "BTI ITB",
-    "word logic: the byte processor has none": "AW OW XOW AD OD XOD",
-    "shifts and rotations: the byte processor has none":
-        "SSI SSD SLW SRW SLD SRD RLD RRD RLDA RRDA",
+    "rotations through CC 1: the byte processor keeps no condition codes": "RLDA RRDA",
     "byte access to the accumulator: the byte processor has none": "CAW CAD",
     "it changes the low byte of ACCU1 alone: the IL's words have no byte arithmetic":
         "INC DEC",
@@ -2038,6 +2041,10 @@ class StlFrontEnd:
             self.word_statement(stmt, st, m)
         elif m == "ITD":
             self.int_to_dint(stmt, st)
+        elif m in LOGIC_W + LOGIC_D:
+            self.word_logic(stmt, st, m)
+        elif m in SHIFT_W + SHIFT_D:
+            self.shift(stmt, st, m)
         elif m in IN_PLACE:
             self.in_place(stmt, st, m)
         elif m in COMBINE:
@@ -2301,6 +2308,75 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit(m)
             st.ner = 1
+
+    def word_logic(self, stmt: Stmt, st: _State, m: str) -> None:
+        """`UW`/`OW`/`XOW` (English `AW`/`OW`/`XOW`): S7 combines ACCU1-L with ACCU2-L
+        or with a constant and keeps ACCU1-H; `UD`/`OD`/`XOD` all 32 bits (awlsim's
+        insn_uw.py ... insn_xod.py).  ACCU2 is left alone.  Here the IL's `AW` ...
+        `XOD` combine with ACCU2; with a constant `L c` comes first, which changes
+        ACCU2 (an instruction that reads it before the next load is rejected)."""
+        dint = m in LOGIC_D
+        read = self.read_dint if dint else self.read_acc
+        ops = stmt.operands
+        if len(ops) > 1 and not ops[0].text.upper().startswith("B#"):
+            raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+        if ops:
+            word = Word("".join(w.text for w in ops), ops[0].col)
+            value = self.dint_constant(stmt, word)
+            if value is None:
+                if not re.match(r"[+-]?\d|[A-Z0-9#]*#", word.text, re.I):
+                    raise self.error(stmt.line, word.col, f"malformed operand "
+                                     f"`{word.text}`: `{stmt.mnemonic.text}` takes a "
+                                     "constant")
+                value = self.constant(stmt, word).value & 0xFFFF   # S7's immediate
+            elif not dint:
+                raise self.error(stmt.line, word.col, f"constant out of range: "
+                                 f"`{word.text}` (`{stmt.mnemonic.text}` takes 16 bits)")
+            read(stmt, st, 1)
+            area = "INT" if -32768 <= value <= 32767 else "DINT"
+            self.emit("L", Operand("const", area=area, value=value, text=word.text))
+            self.emit(m)
+            st.acc = (DINT if dint else ANY,
+                      ChangedBy(f"`{stmt.mnemonic.text} {word.text}` (line {stmt.line})"))
+            return
+        read(stmt, st, 1)
+        read(stmt, st, 2)
+        self.emit(m)
+        st.acc = (DINT if dint else ANY, st.acc[1])
+
+    def shift(self, stmt: Stmt, st: _State, m: str) -> None:
+        """`SLW`/`SRW`/`SSI n` shift ACCU1-L (S7 keeps ACCU1-H), `SLD`/`SRD`/`SSD`/
+        `RLD`/`RRD n` all of ACCU1 (awlsim's insn_slw.py ... insn_rrd.py); without n
+        the count is ACCU2's low byte.  The IL's instructions of the same names do
+        the same (a count of 0 leaves ACCU1 as it is, in both)."""
+        dint = m in SHIFT_D
+        ops = stmt.operands
+        count = None
+        if ops:
+            if len(ops) > 1:
+                raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+            if not ops[0].text.isdigit():
+                raise self.error(stmt.line, ops[0].col, f"malformed operand "
+                                 f"`{ops[0].text}`: a shift count 0..255")
+            count = int(ops[0].text)
+            if count > 255:
+                raise self.error(stmt.line, ops[0].col, f"constant out of range: "
+                                 f"`{ops[0].text}` (a shift count is 0..255)")
+        (self.read_dint if dint else self.read_acc)(stmt, st, 1)
+        if count is None:
+            self.read_acc(stmt, st, 2)
+        self.emit(m, None if count is None else
+                  Operand("const", area="INT", value=count, text=str(count)))
+        before = st.acc[0]
+        if dint:
+            after = DINT
+        elif count == 0:
+            after = before                      # nothing changes, in S7 and here
+        elif count is None and before in (DINT, WIDE):
+            after = WIDE                        # a count of 0 leaves the IL's 32 bits
+        else:
+            after = ANY
+        st.acc = (after, st.acc[1])
 
     def int_to_dint(self, stmt: Stmt, st: _State) -> None:
         """`ITD`: S7 sign-extends ACCU1-L into ACCU1 and leaves ACCU2 alone (awlsim's
