@@ -122,9 +122,12 @@ def test_oracle_catches_a_wrong_instruction(tmp_path, monkeypatch, wrong):
     ("L EW 2\nSLD 3\nT MD 20", 9, "`SLD` reads ACCU1 as a DINT"),
     ("L 1\nL 2\nUW W#16#FF\n+I\nT MW 10", 11, "which the translation of `UW W#16#FF`"),
     ("L 1\nUW W#16#10000", 9, "constant out of range"),
-    ("L 1\nUW L#1", 9, "takes 16 bits"),
+    ("L 1\nUW L#65536", 9, "takes 16 bits"),
     ("L 1\nSLW 256", 9, "a shift count is 0..255"),
-    ("L 1\nSLW -1", 9, "malformed operand"),
+    ("L 1\nSLW -1", 9, "a shift count is 0..255"),
+    # review findings: operands glued together, an S5TIME taken as a pattern
+    ("L 1\nOW B#16#1 0", 9, "extra operand `0`"),
+    ("L 1\nUW S5T#1S", 9, "invalid operand `S5T#1S`"),
     ("L 1\nRLDA", 9, "no condition codes"),
 ])
 def test_rejections(tmp_path, body, line, needle):

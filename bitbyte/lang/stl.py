@@ -2318,18 +2318,9 @@ class StlFrontEnd:
         dint = m in LOGIC_D
         read = self.read_dint if dint else self.read_acc
         ops = stmt.operands
-        if len(ops) > 1 and not ops[0].text.upper().startswith("B#"):
-            raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
         if ops:
-            word = Word("".join(w.text for w in ops), ops[0].col)
-            value = self.dint_constant(stmt, word)
-            if value is None:
-                if not re.match(r"[+-]?\d|[A-Z0-9#]*#", word.text, re.I):
-                    raise self.error(stmt.line, word.col, f"malformed operand "
-                                     f"`{word.text}`: `{stmt.mnemonic.text}` takes a "
-                                     "constant")
-                value = self.constant(stmt, word).value & 0xFFFF   # S7's immediate
-            elif not dint:
+            value, word = self.immediate(stmt)
+            if not dint and not 0 <= value <= 0xFFFF:
                 raise self.error(stmt.line, word.col, f"constant out of range: "
                                  f"`{word.text}` (`{stmt.mnemonic.text}` takes 16 bits)")
             read(stmt, st, 1)
@@ -2344,6 +2335,29 @@ class StlFrontEnd:
         self.emit(m)
         st.acc = (DINT if dint else ANY, st.acc[1])
 
+    def immediate(self, stmt: Stmt) -> tuple[int, Word]:
+        """The constant operand of a word logic or shift instruction as S7's immediate
+        (an INT or a 16-bit pattern zero-extended, a DINT form as its 32 bits; `C#n`
+        as its BCD pattern), and the word as written; `B#(…)` put together again.
+        S5TIME, TIME, REAL, characters and addresses are not immediates (awlsim
+        rejects them: an invalid operator type)."""
+        ops = stmt.operands
+        if len(ops) > 1 and ops[1].text == "(" and ops[0].text.upper() == "B#":
+            ops = [Word("".join(w.text for w in ops), ops[0].col)]
+        if len(ops) > 1:
+            raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
+        word = ops[0]
+        up = word.text.upper()
+        if not re.match(r"[+-]?\d|(W#|B#|DW#|L#|C#)?\d*#?|B#\(", up) or re.match(
+                r"(S5T|S5TIME|T|TIME|D|TOD|P|DATE)#|'", up) or not (
+                up[0].isdigit() or up[0] in "+-" or "#" in up):
+            raise self.error(stmt.line, word.col, f"invalid operand `{word.text}`: "
+                             f"`{stmt.mnemonic.text}` takes an integer constant")
+        value = self.dint_constant(stmt, word)
+        if value is None:
+            value = self.constant(stmt, word).value & 0xFFFF
+        return value, word
+
     def shift(self, stmt: Stmt, st: _State, m: str) -> None:
         """`SLW`/`SRW`/`SSI n` shift ACCU1-L (S7 keeps ACCU1-H), `SLD`/`SRD`/`SSD`/
         `RLD`/`RRD n` all of ACCU1 (awlsim's insn_slw.py ... insn_rrd.py); without n
@@ -2353,15 +2367,10 @@ class StlFrontEnd:
         ops = stmt.operands
         count = None
         if ops:
-            if len(ops) > 1:
-                raise self.error(stmt.line, ops[1].col, f"extra operand `{ops[1].text}`")
-            if not ops[0].text.isdigit():
-                raise self.error(stmt.line, ops[0].col, f"malformed operand "
-                                 f"`{ops[0].text}`: a shift count 0..255")
-            count = int(ops[0].text)
-            if count > 255:
-                raise self.error(stmt.line, ops[0].col, f"constant out of range: "
-                                 f"`{ops[0].text}` (a shift count is 0..255)")
+            count, word = self.immediate(stmt)
+            if not 0 <= count <= 255:
+                raise self.error(stmt.line, word.col, f"constant out of range: "
+                                 f"`{word.text}` (a shift count is 0..255)")
         (self.read_dint if dint else self.read_acc)(stmt, st, 1)
         if count is None:
             self.read_acc(stmt, st, 2)
