@@ -63,9 +63,30 @@ static int is_dint(unsigned op) {
       || op == BB_OP_DIV_D || op == BB_OP_MOD_D;
 }
 
+/* CC 1 CC 0 after an arithmetic instruction (awlsim): of the wrapped result for + and
+ * -, of the exact product / quotient / remainder for * / MOD (S7 keeps CC of the exact
+ * value and flags the overflow in OV), 11 (unordered) after a division by 0. */
+static unsigned arith_cc(unsigned op, int32_t accu2, int32_t accu1, int32_t result) {
+  const int dint = is_dint(op);
+  const int64_t a = dint ? accu2 : bb_int16((uint32_t)accu2);
+  const int64_t b = dint ? accu1 : bb_int16((uint32_t)accu1);
+  switch (op) {
+    case BB_OP_MUL: case BB_OP_MUL_D:
+      return bb_cc_of(a * b);
+    case BB_OP_DIV: case BB_OP_DIV_D:
+      return b == 0 ? 3u : bb_cc_of(a / b);
+    case BB_OP_MOD: case BB_OP_MOD_D:
+      return b == 0 ? 3u : bb_cc_of(a % b);
+    default:
+      return bb_cc_of(result);
+  }
+}
+
 void bb_proc_arith(bb_state *s, unsigned op) {
   int div0;
+  const int32_t a2 = s->accu2, a1 = s->accu1;
   s->accu1 = is_dint(op) ? bb_arith32(op, s->accu2, s->accu1, &div0)
                          : bb_arith16(op, s->accu2, s->accu1, &div0);
+  s->cc = arith_cc(op, a2, a1, s->accu1);
   if (div0) bb_raise_flag(s, BB_FLAG_ARITH);
 }

@@ -36,11 +36,14 @@ void    bb_proc_arith(bb_state *s, unsigned op);          /* BYTE_FLAGS write on
 
 /* compare.c — c 0..5; the RLO after a plain / A / O compare. */
 int32_t bb_logic(unsigned op, int32_t accu2, int32_t accu1);
-int32_t bb_shift(unsigned op, int32_t accu1, unsigned count);
+int32_t bb_shift(unsigned op, int32_t accu1, unsigned count, unsigned *cc);
 int bb_is_logic(unsigned op);
 int bb_is_shift(unsigned op);
 void bb_proc_logic(bb_state *s, uint32_t instr);
 int bb_cmp16(unsigned c, int32_t accu2, int32_t accu1);
+unsigned bb_cc_of(int64_t v);
+unsigned bb_compare_cc(const bb_state *s, unsigned op);
+int bb_proc_status_read(const bb_state *s, unsigned op, unsigned index, int rlo);
 int bb_cmp32(unsigned c, int32_t accu2, int32_t accu1);
 int bb_proc_compare(const bb_state *s, unsigned op, int rlo);
 

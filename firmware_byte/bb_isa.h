@@ -88,6 +88,15 @@
 #define BB_OP_CMP               0x90u  /* + c: RLO := cmp */
 #define BB_OP_A_CMP             0x98u  /* + c: RLO := RLO AND cmp */
 #define BB_OP_O_CMP             0xA0u  /* + c: RLO := RLO OR  cmp */
+#define BB_OP_STATUS            0xA8u  /* + f (0 LD, 1 A, 2 O, 3 X): a status condition into the RLO */
+#define BB_STATUS_NEGATE        8u     /* index bit: the condition negated */
+#define BB_CC_ZERO              0      /* ==0 */
+#define BB_CC_NONZERO           1      /* <>0 */
+#define BB_CC_POS               2      /* >0 */
+#define BB_CC_NEG               3      /* <0 */
+#define BB_CC_POSZ              4      /* >=0 */
+#define BB_CC_NEGZ              5      /* <=0 */
+#define BB_CC_UO                6      /* UO */
 #define BB_OP_CMP_D             0xD0u  /* + c: RLO := cmp (DINT) */
 #define BB_OP_A_CMP_D           0xD8u  /* + c: RLO := RLO AND cmp (DINT) */
 #define BB_OP_O_CMP_D           0xE0u  /* + c: RLO := RLO OR  cmp (DINT) */
@@ -140,7 +149,7 @@ typedef enum {
   BB_CL_TRANSFER,     /* T MW / QW / MD */
   BB_CL_ARITH,        /* +I -I +D -D, word logic AW ... XOD, shifts SLW ... RRD */
   BB_CL_MULDIV,       /* *I /I MOD *D /D MODD */
-  BB_CL_COMPARE,      /* ==I ... , ==D ..., A cmp, O cmp */
+  BB_CL_COMPARE,      /* ==I ... , ==D ..., A cmp, O cmp, status bits LD ==0 ... */
   BB_CL_TIMER,        /* SD SS SP SF, R T n */
   BB_CL_COUNTER,      /* CU CD, S C n, R C n */
   BB_CL_BINARY,       /* READ FBY k, WRITE FBI k, JU_B JC_B JCN_B (taken or not) */

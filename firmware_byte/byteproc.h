@@ -91,6 +91,10 @@ typedef struct bb_state {
   int        ret_rlo;        /* F_B after it */
   int32_t    ret_accu1, ret_accu2;
   void      *hal_ctx;        /* the first argument of every HAL call (bb_set_hal_ctx) */
+  /* S7's status bits CC 1 (bit 1) and CC 0 (bit 0) as the last instruction that sets
+   * them left them (arithmetic, compares, word logic, shifts; awlsim's rules), read by
+   * the status-bit instructions (BB_OP_STATUS); 0 at a scan's start */
+  unsigned   cc;
 } bb_state;
 
 

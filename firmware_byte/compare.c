@@ -23,9 +23,50 @@ int bb_cmp32(unsigned c, int32_t a, int32_t b) {
   }
 }
 
+/* S7's CC 1 CC 0 of a value (awlsim): 0 -> 00, negative -> 01, positive -> 10. */
+unsigned bb_cc_of(int64_t v) {
+  return v == 0 ? 0u : v < 0 ? 1u : 2u;
+}
+
+/* LD/A/O/X [N] cond: the condition of CC 1 (A1) and CC 0 (A0) as awlsim reads it
+ * (==0: 00; <>0: not 00; >0: 10; <0: 01; >=0: A0 = 0; <=0: A1 = 0; UO: 11), negated
+ * by index bit BB_STATUS_NEGATE, then loaded or combined as the opcode's f says. */
+int bb_proc_status_read(const bb_state *s, unsigned op, unsigned index, int rlo) {
+  const unsigned a1 = (s->cc >> 1) & 1u, a0 = s->cc & 1u;
+  unsigned cond;
+  switch (index & 7u) {
+    case BB_CC_ZERO:    cond = !a1 && !a0; break;
+    case BB_CC_NONZERO: cond = a1 || a0; break;
+    case BB_CC_POS:     cond = a1 && !a0; break;
+    case BB_CC_NEG:     cond = a0 && !a1; break;
+    case BB_CC_POSZ:    cond = !a0; break;
+    case BB_CC_NEGZ:    cond = !a1; break;
+    default:            cond = a1 && a0; break;     /* BB_CC_UO */
+  }
+  if (index & BB_STATUS_NEGATE) cond = !cond;
+  switch (op - BB_OP_STATUS) {
+    case 1u:  return (rlo != 0) && cond;
+    case 2u:  return (rlo != 0) || cond;
+    case 3u:  return (rlo != 0) != (cond != 0);
+    default:  return (int)cond;
+  }
+}
+
+static int is_dint_compare(unsigned op) {
+  const unsigned base = op & ~7u;
+  return base == BB_OP_CMP_D || base == BB_OP_A_CMP_D || base == BB_OP_O_CMP_D;
+}
+
+/* A compare's CC 1 CC 0 (awlsim): equal 00, ACCU1 > ACCU2 01, ACCU1 < ACCU2 10. */
+unsigned bb_compare_cc(const bb_state *s, unsigned op) {
+  const int32_t a1 = is_dint_compare(op) ? s->accu1 : bb_int16((uint32_t)s->accu1);
+  const int32_t a2 = is_dint_compare(op) ? s->accu2 : bb_int16((uint32_t)s->accu2);
+  return a1 == a2 ? 0u : a1 > a2 ? 1u : 2u;
+}
+
 int bb_proc_compare(const bb_state *s, unsigned op, int rlo) {
   const unsigned base = op & ~7u;
-  const int dint = base == BB_OP_CMP_D || base == BB_OP_A_CMP_D || base == BB_OP_O_CMP_D;
+  const int dint = is_dint_compare(op);
   int r = dint ? bb_cmp32(op & 7u, s->accu2, s->accu1) : bb_cmp16(op & 7u, s->accu2, s->accu1);
   switch (base) {
     case BB_OP_A_CMP: case BB_OP_A_CMP_D: return (rlo != 0) && r;

@@ -44,6 +44,7 @@ int bb_load_program(bb_state *s, const uint32_t *words, unsigned n) {
 void bb_scan_start(bb_state *s) {
   s->accu1 = 0;
   s->accu2 = 0;
+  s->cc = 0;
 }
 
 bb_state *bb_new(void) {
@@ -100,6 +101,10 @@ int bb_classify(uint32_t instr) {
       return (area == BB_AREA_C && n < BB_NUM_COUNTERS) ? BB_CL_COUNTER : BB_CL_ILLEGAL;
     case BB_OP_READ: case BB_OP_WRITE:
       return (area == BB_AREA_FB && n < BB_NUM_CELLS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
+    case BB_OP_STATUS: case BB_OP_STATUS + 1u: case BB_OP_STATUS + 2u:
+    case BB_OP_STATUS + 3u:   /* a condition c <= UO, maybe negated, nothing else */
+      return ((n & ~(BB_STATUS_NEGATE | 7u)) == 0u && (n & 7u) <= BB_CC_UO)
+             ? BB_CL_COMPARE : BB_CL_ILLEGAL;
     case BB_OP_JU_B: case BB_OP_JC_B: case BB_OP_JCN_B:
       return BB_CL_BINARY;     /* the target is checked by execution (program length) */
     case BB_OP_END_B:
@@ -241,7 +246,12 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
         bb_proc_arith(s, op);
       break;
     case BB_CL_COMPARE:
-      r = bb_proc_compare(s, op, r);
+      if ((op & ~3u) == BB_OP_STATUS) {       /* a status-bit read: CC unchanged */
+        r = bb_proc_status_read(s, op, n, r);
+      } else {
+        r = bb_proc_compare(s, op, r);
+        s->cc = bb_compare_cc(s, op);
+      }
       s->rlo_written = 1;
       break;
     case BB_CL_TIMER: {

@@ -172,6 +172,8 @@ ARITH = ["+I", "-I", "*I", "/I", "MOD", "+I", "-I", "*I", "/I", "MOD",
          "+D", "-D", "*D", "/D", "MODD", "AW", "OW", "XOW", "AD", "OD", "XOD"]
 SHIFTS = ["SLW", "SRW", "SSI", "SLD", "SRD", "SSD", "RLD", "RRD"]
 SHIFT_COUNTS = [0, 1, 3, 15, 16, 17, 31, 32, 40, 255]
+STATUS_READS = ["LD", "LDN", "A", "AN", "O", "ON", "X", "XN"]     # + a condition
+STATUS_CONDITIONS = ["==0", "<>0", ">0", "<0", ">=0", "<=0", "UO"]
 COMPARES = ["==I", "<>I", ">I", "<I", ">=I", "<=I", "==I", "<>I", ">I", "<I", ">=I", "<=I",
             "==D", "<>D", ">D", "<D", ">=D", "<=D"]
 TIMERS = ["SD", "SS", "SP", "SF"]
@@ -206,6 +208,9 @@ class MixedGen(Gen):
                 count = f" {rng.choice(SHIFT_COUNTS)}" if rng.random() < 0.7 else ""
                 self.lines.append(f"  {rng.choice(SHIFTS)}{count}")
             self.lines.append(f"  T {rng.choice(['MW', 'MW', 'QW', 'MD'])}{rng.randrange(4)}")
+            if rng.random() < 0.3:       # S7's status bits of the result
+                self.lines += [f"  {rng.choice(STATUS_READS)} {rng.choice(STATUS_CONDITIONS)}",
+                               f"  = {self.operand(WRITE_AREAS)}"]
         elif r < 0.5:                    # compare into the RLO, combined or not
             if rng.random() < 0.5:
                 self.lines += [self.load(), self.load(), f"  {rng.choice(COMPARES)}"]
@@ -214,6 +219,9 @@ class MixedGen(Gen):
                 self.lines += [self.load(), self.load(),
                                f"  {rng.choice('AO')} {rng.choice(COMPARES)}"]
             self.lines.append(f"  = {self.operand(WRITE_AREAS)}")
+            if rng.random() < 0.3:       # the compare's status bits
+                self.lines += [f"  {rng.choice(STATUS_READS)} {rng.choice(STATUS_CONDITIONS)}",
+                               f"  = {self.operand(WRITE_AREAS)}"]
         elif r < 0.75:                   # a timer, then its status
             t = rng.randrange(8)
             self.chain(0)

@@ -59,6 +59,10 @@ LOGIC_D = {"de": ["UD", "OD", "XOD"], "en": ["AD", "OD", "XOD"]}
 SHIFT_W = ["SLW", "SRW", "SSI"]
 SHIFT_D = ["SLD", "SRD", "SSD", "RLD", "RRD"]
 SHIFT_COUNTS = (0, 1, 3, 15, 16, 17, 31, 32, 40, 255)
+# S7's status bits CC 1 / CC 0 (docs/s7.md, Status bits)
+CC_CONDITIONS = ("==0", "<>0", ">0", "<0", ">=0", "<=0", "UO")
+CC_JUMPS = {"de": ["SPZ", "SPN", "SPP", "SPM", "SPPZ", "SPMZ", "SPU"],
+            "en": ["JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO"]}
 
 
 class Gen:
@@ -204,10 +208,28 @@ class Gen:
             self.emit(f"L\t{self.value()}")        # ACCU2 not loaded in this scan:
             self.emit(r.choice(ARITH + COMPARE))  # rejected
         elif x < 0.5:
-            self.loads()
+            if r.random() < 0.4:                # a result whose status bits are read
+                self.emit(f"L\t{self.value()}")
+                self.emit(f"L\t{self.value()}")
+                self.emit(r.choice(ARITH + COMPARE))
+            else:
+                self.loads()
+            last = self.lines[-1].split("\t")[1].split()[0]
             self.emit(f"T\t{self.word('QM')}")
             if r.random() < 0.3:
                 self.emit(f"T\t{self.word('QM')}")
+            if last in ARITH + COMPARE + LOGIC_W[self.lang] + SHIFT_W and r.random() < 0.7:
+                # the status bits of that result (T leaves them): a combine or a jump
+                if r.random() < 0.7:
+                    self.emit(f"{r.choice(COMBINES[self.lang])}\t{r.choice(CC_CONDITIONS)}")
+                    self.emit(f"=\t{self.addr('QM')}")
+                else:
+                    self.cc_labels = getattr(self, "cc_labels", 0) + 1
+                    label = f"K{self.cc_labels}"
+                    self.emit(f"{r.choice(CC_JUMPS[self.lang])}\t{label}")
+                    self.emit(f"=\t{self.addr('QM')}")
+                    self.label = f"{label}:"
+                    self.emit(f"=\t{self.addr('QM')}")
             return
         else:
             if r.random() < 0.3:

@@ -1125,7 +1125,8 @@ def test_random_programs_against_awlsim(tmp_path):
     need |= {"ZV", "ZR", "CU", "CD"}
     dint = {"+D", "-D", "*D", "/D", "MOD", "NEGD", "INVD", "+", "==D", "<>D", ">D", "<D",
             ">=D", "<=D", "OW", "XOW", "OD", "XOD", "SLW", "SRW", "SSI", "SLD", "SRD",
-            "SSD", "RLD", "RRD", "UW", "AW", "UD", "AD"}
+            "SSD", "RLD", "RRD", "UW", "AW", "UD", "AD", "SPZ", "SPN", "SPP", "SPM",
+            "SPPZ", "SPMZ", "SPU", "JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO"}
     need.add("ITD")
     if PROGRAMS >= 200:         # each DINT one in the soak's 1 000s, some in 200
         assert need <= seen, need - seen

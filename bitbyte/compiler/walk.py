@@ -7,6 +7,7 @@ from __future__ import annotations
 from bitbyte.compiler.common import _channel_operand, _error, _text
 from bitbyte.compiler.status import _Reach, _status_ops
 from bitbyte.lang.costs import byte_kind
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.parser import COMPARES
 from bitbyte.lang.parts import (BIT, BYTE, BYTE_JUMPS, PartInstr, Partition, Row,
                                 STATUS_UPDATES, TO_BIT, TO_BYTE, Transfer)
@@ -202,7 +203,21 @@ class _Builder:
 
     def byte_instruction(self, ins: Instr, kind: str) -> None:
         what = _text(ins.mnemonic, ins.operand)
-        if kind in COMPARES:
+        if kind in DEF.status_reads and not kind.startswith("LD"):
+            # A/AN/O/ON/X/XN ==0 ...: as a combined compare; off the byte side, the
+            # (negated) condition is read there and combined on the bit side
+            func, cond = kind.split()
+            if BYTE in self.loc:
+                self.row(BYTE, byte=self.copy(ins))
+                self.loc = {BYTE}
+            else:
+                plain = f"LD{'N' if func.endswith('N') else ''} {cond}"
+                self.row(BYTE, byte=self.synth(plain, None, f"status bits of `{what}`: "
+                                               f"the RLO is on the bit side, {func[0]} "
+                                               "there"))
+                self.to_bit(f"`{what}`: status bit to the bit side", func[0])
+            return
+        if kind in COMPARES or kind in DEF.status_reads:      # LD ==0: as a compare
             self.row(BYTE, byte=self.copy(ins))
             self.loc = {BYTE}
         elif kind[:2] in ("A ", "O "):                          # A ==I ... O <=I

@@ -101,6 +101,9 @@ def _encode_byte_side(program: Program, instr: Instr, mode: str, pool: list[int]
         raise _error(program, instr, f"{what} {PARALLEL}")
     if m in isa.EXCHANGE_OPS or (op is not None and op.area in isa.EXCHANGE_AREAS):
         raise _error(program, instr, f"{what} {SERIAL_EXCHANGE}")
+    if m in DEF.status_reads:       # LD ==0 ... XN UO: base + f, the condition
+        opcode, index = DEF.status_reads[m]
+        return isa.plain_word(opcode) | index
     if m in isa.SHIFTS:             # the count in the index, or ACCU2's low byte
         return isa.plain_word(isa.BYTE_OPCODES[m]) | (
             op.value if op is not None else isa.COUNT_FROM_ACCU2)

@@ -91,7 +91,7 @@ def byte_key(mnemonic: str, area: str) -> str:
 
 
 def is_byte_instruction(mnemonic: str, area: str | None) -> bool:
-    return byte_key(mnemonic, area or "") in BYTE_OPCODES
+    return byte_key(mnemonic, area or "") in BYTE_OPCODES or mnemonic in DEF.status_reads
 
 
 def fits_immediate(value: int) -> bool:

@@ -138,6 +138,21 @@ class Definition:
         self.dint_mnemonics: frozenset[str] = frozenset(
             [op.mnemonic for op in self.byte_opcode_rows if op.dint]
             + [p + c for p in self.dint_compare_bases for c in self.dint_compares])
+        # status-bit reads: mnemonic ("LD ==0", "AN UO", ...) -> (opcode, index)
+        sr = raw["status_read"]
+        self.status_base: int = sr["base"]
+        self.status_conditions: tuple[str, ...] = tuple(sr["conditions"])
+        self.status_c: tuple[str, ...] = tuple(sr["c"])
+        self.status_negate_bit: int = sr["negate_bit"]
+        self.status_reads: dict[str, tuple[int, int]] = {}
+        for f, (name, _) in enumerate(self.logic_functions):
+            for n, suffix in ((0, ""), (1, "N")):
+                for c, cond in enumerate(self.status_conditions):
+                    self.status_reads[f"{name}{suffix} {cond}"] = (
+                        self.status_base + f, c | n << self.status_negate_bit)
+        self.status_class: str = sr["class"]
+        for m in self.status_reads:
+            self.byte_kinds[m] = self.status_class
         self.byte_program_opcodes: dict[str, int] = {
             op.mnemonic: op.value for op in self.byte_opcode_rows if op.byte_program}
 
@@ -243,7 +258,10 @@ class Definition:
                      f"settings.{key}: a name is given twice")
         values = list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) \
             + list(self.byte_program_opcodes.values())
+        values += [self.status_base + f for f in range(len(self.logic_functions))]
         need(len(values) == len(set(values)), "an opcode is defined twice")
+        need(len(self.status_conditions) <= 1 << self.status_negate_bit,
+             "[status_read] more conditions than index bits below negate_bit")
         need(len(self.dint_compares) == len(self.compares),
              "[compare] dint_codes must pair with codes (one compare code c each)")
         need(all(v < 0x80 for v in self.bit_opcodes.values()),

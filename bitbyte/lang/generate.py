@@ -190,6 +190,12 @@ def c_isa(d: Definition) -> str:
     b += [_cdef("BB_OP_CMP", _h(d.compare_bases[""]), "+ c: RLO := cmp"),
           _cdef("BB_OP_A_CMP", _h(d.compare_bases["A "]), "+ c: RLO := RLO AND cmp"),
           _cdef("BB_OP_O_CMP", _h(d.compare_bases["O "]), "+ c: RLO := RLO OR  cmp"),
+          _cdef("BB_OP_STATUS", _h(d.status_base),
+                "+ f (0 LD, 1 A, 2 O, 3 X): a status condition into the RLO"),
+          _cdef("BB_STATUS_NEGATE", f"{1 << d.status_negate_bit}u",
+                "index bit: the condition negated"),
+          *(_cdef(name, str(c), cond) for c, (cond, name) in enumerate(
+              zip(d.status_conditions, d.status_c))),
           _cdef("BB_OP_CMP_D", _h(d.dint_compare_bases[""]), "+ c: RLO := cmp (DINT)"),
           _cdef("BB_OP_A_CMP_D", _h(d.dint_compare_bases["A "]),
                 "+ c: RLO := RLO AND cmp (DINT)"),
@@ -301,6 +307,11 @@ def doc_byte_opcodes(d: Definition) -> str:
             cost = "binary, taken or not"
         rows.append([f"`0x{op.value:02X}`", name, op.operand, cost])
     rows += _compare_rows(d.dint_compares, d.dint_compare_bases)
+    funcs = " ".join(f"{i} {m}" for i, (m, _) in enumerate(d.logic_functions))
+    rows.append([f"`0x{d.status_base:02X}`+f", f"status bit read ({funcs}): `LD ==0` … "
+                 f"`XN UO`", "index: condition c (" + ", ".join(
+                     f"{c} `{cond}`" for c, cond in enumerate(d.status_conditions))
+                 + f"), bit {d.status_negate_bit} negates", d.status_class])
     rows.sort(key=lambda r: int(r[0].strip("`").split("`")[0], 16))     # by opcode
     return _md_table(["opcode", "mnemonic", "operand", "cost class"], rows)
 

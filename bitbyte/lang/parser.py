@@ -80,6 +80,7 @@ INDEX_AREAS = ("T", "C", "FBI", "FBY", "IW", "QW", "MW", "MD")  # number
 AREAS = BIT_ADDR_AREAS + INDEX_AREAS
 
 PAREN_OPENERS = ("A", "AN", "O", "ON", "X", "XN")             # + "(" -> "A(" ...
+COMBINE_WORDS = ("LD", "LDN") + PAREN_OPENERS                 # + a status condition
 COMPARES = DEF.all_compares                                   # ==I ... <=D
 ARITHMETIC = DEF.arithmetic                                   # +D ... MODD
 WORD_LOGIC = DEF.word_logic                                   # AW ... XOD
@@ -137,6 +138,7 @@ SIGNATURES: dict[str, Sig] = {
     **{m: SHIFT for m in SHIFTS},
     **{m: NO_OPERAND for m in COMPARES},
     **{f"{f} {c}": NO_OPERAND for f in ("A", "O") for c in COMPARES},
+    **{m: NO_OPERAND for m in DEF.status_reads},          # LD ==0 ... XN UO
     **{m: TIMER for m in ("SD", "SS", "SP", "SF")},
     "CU": COUNTER, "CD": COUNTER,
     "READ": Sig(("FBY",), "a channel FBY k"),
@@ -693,6 +695,10 @@ class Parser:
                                       "compare combines with A or O only")
             self.next()
             return combined
+        if word in COMBINE_WORDS and nxt.kind == "WORD" \
+                and nxt.text.upper() in DEF.status_conditions:
+            self.next()                                   # a status bit: `A ==0`
+            return f"{word} {nxt.text.upper()}"
         if word == "REFRESH" and not nxt.ends_statement:
             return self.refresh_of(tok, nxt)
         if word not in MNEMONICS:
@@ -930,7 +936,7 @@ class Parser:
 
 BYTE_MNEMONICS = frozenset(
     ("L", "T") + ARITHMETIC + WORD_LOGIC + SHIFTS + ("SD", "SS", "SP", "SF", "CU", "CD", "READ",
-                               "WRITE") + COMPARES + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
+                               "WRITE") + COMPARES + tuple(DEF.status_reads) + tuple(f"{f} {c}" for f in ("A", "O") for c in COMPARES))
 
 
 def is_byte_mnemonic(mnemonic: str, op: Operand | None) -> bool:

@@ -32,6 +32,7 @@ import re
 from dataclasses import dataclass, field
 
 from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Instr, Operand, Program
 from bitbyte.lang.s7symbols import Symbol, read_symbol_table
@@ -106,6 +107,12 @@ LOGIC_W = ("AW", "OW", "XOW")           # on ACCU1-L (S7 keeps ACCU1-H)
 LOGIC_D = ("AD", "OD", "XOD")           # on 32 bits
 SHIFT_W = ("SLW", "SRW", "SSI")         # ACCU1-L
 SHIFT_D = ("SLD", "SRD", "SSD", "RLD", "RRD")
+# status bits CC 1 / CC 0 (docs/s7.md, "Status bits"): the conditions a combine reads
+# and the jumps on them (the conditions whose OR decides the jump; SPN/JN is A1 XOR
+# A0, which is >0 OR <0)
+CC_CONDITIONS = DEF.status_conditions
+CC_JUMPS = {"JZ": ("==0",), "JN": (">0", "<0"), "JP": (">0",), "JM": ("<0",),
+            "JPZ": (">=0",), "JMZ": ("<=0",), "JUO": ("UO",)}
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
     + COMPARES_D \
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
@@ -116,6 +123,7 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I"),
             "NEGD": (-1, "*D"), "INVD": (-1, "*D", -1, "+D")}
 FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE", "ITD") + tuple(IN_PLACE) \
+    + tuple(CC_JUMPS) \
     + ARITHMETIC + ARITHMETIC_D + LOGIC_W + LOGIC_D + SHIFT_W + SHIFT_D
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
@@ -148,8 +156,6 @@ _WHY = {
     "are inlined": "OPN CDB",
     "BR is not modelled (no ENO, no error state of instructions)": "JCB JNB JBI JNBI",
     "the byte processor keeps no overflow bits OV/OS": "JO JOS",
-    "the byte processor keeps no condition codes CC 1/CC 0":
-        "JZ JN JP JM JPZ JMZ JUO",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
     "enabling a timer or counter: the IL's have no enable edge memory": "FR",
     "a timer's remaining time as BCD: the IL's timers keep the elapsed ms, not S7's "
@@ -407,6 +413,9 @@ class _State:
         # ACCU1, ACCU2: None (S7: the previous scan's value; here: cleared), ANY,
         # CLOBBERED, TOP or a Known value
         self.acc: tuple = (None, None)
+        # the IL's CC 1 / CC 0 are S7's: right after an arithmetic, compare, word logic
+        # or shift instruction, until a label or a translation that changes them
+        self.cc_ok = False
 
     def key(self) -> tuple:
         return (self.ner, self.orm, len(self.parens))
@@ -1080,11 +1089,47 @@ class StlFrontEnd:
         self.emit("LD", rlo)
         edges[label].append((st.ner, stmt, "JU"))
         self.acc_edges[label].append(st.acc)
+        st.cc_ok = False                    # the compare chain changed them
+        self.cc_edges[label].append(st.cc_ok)
         fix = self.assumed.get(label, (0, ""))[1]
         if fix and st.ner == 0:
             self.emit(fix)
         self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
         return False
+
+    def cc_jump(self, stmt: Stmt, st: _State, m: str, edges) -> bool:
+        """SPZ SPN SPP SPM SPPZ SPMZ SPU (English JZ JN JP JM JPZ JMZ JUO) jump on
+        CC 1 / CC 0 and change no status bit (awlsim's insn_spz.py ...).  Here, as
+        `LOOP`: the RLO saved in a local bit, the condition read into the RLO (`LD
+        ==0`; SPN: `LD >0`, `O <0`), `JCN` past the jump, the RLO restored on both
+        paths; /FC and the accumulators pass unchanged."""
+        label = self.outside_label(stmt, st)
+        self.need_cc(stmt, st)
+        rlo = self.local_bit(stmt, ("@", "RLO"))
+        skip = f"CCJ.{self.stmts.index(stmt)}"
+        self.emit("=", rlo)
+        first, *more = CC_JUMPS[m]
+        self.emit(f"LD {first}")
+        for cond in more:
+            self.emit(f"O {cond}")
+        return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
+
+    def jump_and_restore(self, stmt: Stmt, st: _State, label: str, skip: str,
+                         rlo: Operand, edges) -> bool:
+        """The condition in the IL's RLO: `JCN skip`, then the saved RLO back and a
+        jump to `label`, and at `skip` the saved RLO back (LOOP, SPZ ...)."""
+        self.emit("JCN", Operand("label", label=skip, text=skip))
+        self.emit("LD", rlo)
+        edges[label].append((st.ner, stmt, "JU"))
+        self.acc_edges[label].append(st.acc)
+        self.cc_edges[label].append(st.cc_ok)
+        fix = self.assumed.get(label, (0, ""))[1]
+        if fix and st.ner == 0:
+            self.emit(fix)                  # this path arrives with /FC = 0
+        self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
+        self.pending.append(skip)
+        self.emit("LD", rlo)
+        return True
 
     def loop(self, stmt: Stmt, st: _State, edges) -> bool:
         """`LOOP l`: S7 decrements ACCU1-L (wrapping) and jumps to l while it is not
@@ -1102,19 +1147,10 @@ class StlFrontEnd:
         self.emit("L", Operand("const", area="INT", value=1, text="1"))
         self.emit("<>I")
         self.emit("-I")
-        self.emit("JCN", Operand("label", label=skip, text=skip))
-        self.emit("LD", rlo)
         written = f"`{stmt.mnemonic.text} {stmt.operands[0].text}` (line {stmt.line})"
         st.acc = (ANY, None if st.acc[1] is None else ChangedBy(written))
-        edges[label].append((st.ner, stmt, "JU"))
-        self.acc_edges[label].append(st.acc)
-        fix = self.assumed.get(label, (0, ""))[1]
-        if fix and st.ner == 0:
-            self.emit(fix)                  # this path arrives with /FC = 0
-        self.emit("JU", Operand("label", label=label, text=stmt.operands[0].text))
-        self.pending.append(skip)
-        self.emit("LD", rlo)
-        return True
+        st.cc_ok = False                    # <>I, -I changed them
+        return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
 
     def copy(self, stmt: Stmt, st: _State, pairs: list) -> None:
         """An FB call's parameters copied in or out: (kind, source words, target
@@ -1746,6 +1782,7 @@ class StlFrontEnd:
                              f"`{STARTUP_LABEL}` (the listing's name of the OB 100 part)")
         assumed: dict[str, tuple[int, str]] = {}
         assumed_acc: dict[str, tuple] = {}
+        self.assumed_cc: dict[str, bool] = {}
         # Kleene iteration: each label's states only move down their lattices, so the
         # passes settle; a bound in case they did not (never: an error, not a guess)
         for _ in range(6 + 4 * len(self.label_defs)):
@@ -1757,11 +1794,13 @@ class StlFrontEnd:
                 for a in states:
                     acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
                 wanted_acc[name] = acc
-            if wanted == assumed and wanted_acc == assumed_acc:
+            wanted_cc = {name: all(oks) for name, oks in self.cc_edges.items() if oks}
+            if wanted == assumed and wanted_acc == assumed_acc \
+                    and wanted_cc == self.assumed_cc:
                 self.check_overlaps()
                 self.check_local_region()
                 return program
-            assumed, assumed_acc = wanted, wanted_acc
+            assumed, assumed_acc, self.assumed_cc = wanted, wanted_acc, wanted_cc
         raise self.error(1, 1, "internal error: the states at the labels did not "
                          "settle (please report this program)")
 
@@ -1820,6 +1859,8 @@ class StlFrontEnd:
         self.pending: list[str] = []
         self.assumed = assumed
         self.acc_edges: dict[str, list[tuple]] = {n: [] for n in self.label_defs}
+        # CC 1 / CC 0 kept as S7's on each path into a label (docs/s7.md, Status bits)
+        self.cc_edges: dict[str, list[bool]] = {n: [] for n in self.label_defs}
         self.word_uses: list[tuple[str, int, Stmt, Word]] = []
         self.last_load: Instr | None = None
         self.presets: dict[int, int] = {}
@@ -1855,6 +1896,7 @@ class StlFrontEnd:
                 if reachable:
                     edges[name].append((st.ner, self.prev_stmt(i), "fall"))
                     self.acc_edges[name].append(st.acc)
+                    self.cc_edges[name].append(st.cc_ok)
                 st.ner = ner if ner is not None else (st.ner if reachable else 0)
                 acc = assumed_acc.get(name)
                 if acc is None:
@@ -1862,6 +1904,8 @@ class StlFrontEnd:
                     for a in self.acc_edges[name]:
                         acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
                 st.acc = acc
+                cc = self.assumed_cc.get(name)      # (not known yet: true, as TOP)
+                st.cc_ok = cc if cc is not None else all(self.cc_edges[name])
                 for w in stmt.labels:
                     self.pending.append(w.text)
                 reachable = True    # (a label nobody jumps to counts as reached)
@@ -1934,7 +1978,19 @@ class StlFrontEnd:
         st.orm = "none"
 
     def statement(self, stmt: Stmt, st: _State, edges) -> bool:
-        """Translate one statement; False when it never falls through."""
+        """Translate one statement; False when it never falls through.  Afterwards
+        the status bits count as changed where the translation emits word
+        instructions S7 does not have (docs/s7.md, "Status bits")."""
+        falls = self.translate_statement(stmt, st, edges)
+        m = stmt.canon
+        ops = stmt.operands
+        tc = bool(ops) and _split_area(ops[0].text)[0].upper() in ("T", "Z", "C")
+        if m.startswith("@") or m in tuple(IN_PLACE) + ("LC", "LOOP", "JL", "FR") \
+                + TIMER_STARTS + ("CU", "CD") or m in ("S", "R", "L") and tc:
+            st.cc_ok = False
+        return falls
+
+    def translate_statement(self, stmt: Stmt, st: _State, edges) -> bool:
         m = stmt.canon
         if m in ("@CALL", "@LEAVE", "@RET"):       # S7's CALL / block end: /FC, OR 0
             if st.parens:
@@ -1950,6 +2006,8 @@ class StlFrontEnd:
             elif m == "@RET":
                 edges[stmt.extra].append((0, stmt, "JU"))
                 self.acc_edges[stmt.extra].append(st.acc)
+                st.cc_ok = False            # a block end (its copies): not tracked
+                self.cc_edges[stmt.extra].append(st.cc_ok)
                 self.emit("JU", Operand("label", label=stmt.extra.upper(),
                                         text=stmt.mnemonic.text))
                 return False
@@ -2037,6 +2095,8 @@ class StlFrontEnd:
             self.load_count_bcd(stmt, st)
         elif m == "LOOP":
             return self.loop(stmt, st, edges)
+        elif m in CC_JUMPS:
+            return self.cc_jump(stmt, st, m, edges)
         elif m in ("L", "T") + ARITHMETIC + COMPARES + ARITHMETIC_D + COMPARES_D:
             self.word_statement(stmt, st, m)
         elif m == "ITD":
@@ -2301,6 +2361,7 @@ class StlFrontEnd:
                 (self.read_dint if dint else self.read_acc)(stmt, st, which)
             self.emit(IL_DINT.get(m, m))
             st.acc = (DINT if dint else ANY, st.acc[1])
+            st.cc_ok = True
         else:                                   # a compare: RLO := result, OR := 0
             self.no_operand(stmt)
             for which in (1, 2):
@@ -2308,6 +2369,7 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit(m)
             st.ner = 1
+            st.cc_ok = True
 
     def word_logic(self, stmt: Stmt, st: _State, m: str) -> None:
         """`UW`/`OW`/`XOW` (English `AW`/`OW`/`XOW`): S7 combines ACCU1-L with ACCU2-L
@@ -2329,11 +2391,13 @@ class StlFrontEnd:
             self.emit(m)
             st.acc = (DINT if dint else ANY,
                       ChangedBy(f"`{stmt.mnemonic.text} {word.text}` (line {stmt.line})"))
+            st.cc_ok = True
             return
         read(stmt, st, 1)
         read(stmt, st, 2)
         self.emit(m)
         st.acc = (DINT if dint else ANY, st.acc[1])
+        st.cc_ok = True
 
     def immediate(self, stmt: Stmt) -> tuple[int, Word]:
         """The constant operand of a word logic or shift instruction as S7's immediate
@@ -2386,6 +2450,8 @@ class StlFrontEnd:
         else:
             after = ANY
         st.acc = (after, st.acc[1])
+        if count:                               # a count of 0 changes no status bit
+            st.cc_ok = True                     # (from ACCU2: maybe 0, kept as it was)
 
     def int_to_dint(self, stmt: Stmt, st: _State) -> None:
         """`ITD`: S7 sign-extends ACCU1-L into ACCU1 and leaves ACCU2 alone (awlsim's
@@ -2398,6 +2464,7 @@ class StlFrontEnd:
             self.emit("L", Operand("const", area="INT", value=0, text="0"))
             self.emit("+I")
             st.acc = (DINT, ChangedBy(f"`{stmt.mnemonic.text}` (line {stmt.line})"))
+            st.cc_ok = False                    # S7's ITD changes no status bit
         else:
             st.acc = (DINT, st.acc[1])
 
@@ -2667,8 +2734,37 @@ class StlFrontEnd:
                                            f"{n + 1}, "
                                            "here words and bits are apart", word.col)
 
+    def need_cc(self, stmt: Stmt, st: _State) -> None:
+        if not st.cc_ok:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}"
+                                   f"{' ' + stmt.operands[0].text if stmt.operands else ''}"
+                                   "` reads the status bits CC 1/CC 0, which this "
+                                   "translation keeps as S7's only right after an "
+                                   "arithmetic, compare, word logic or shift instruction "
+                                   "in straight-line code (not across a label, a call, "
+                                   "`LOOP`, a jump list, a timer or counter, `LC`, `+ n`, "
+                                   "`NEGI`/`INVI`/`NEGD`/`INVD`, whose translations "
+                                   "change them)")
+
     def combine(self, stmt: Stmt, st: _State, m: str) -> None:
         func, neg = COMBINE[m]
+        cond = stmt.operands[0].text.upper() if len(stmt.operands) == 1 else ""
+        if cond in CC_CONDITIONS:               # U ==0 ...: a status condition
+            self.need_cc(stmt, st)
+            n = "N" if neg else ""
+            if st.ner == 0:
+                self.emit(f"LD{n} {cond}")
+            elif func == "A" and st.orm == "pending":
+                self.open_il("O(", st)
+                st.orm = "term"
+                self.emit(f"LD{n} {cond}")
+            elif func == "A":
+                self.emit(f"A{n} {cond}")
+            else:
+                self.close_term(st)
+                self.emit(f"{func}{n} {cond}")
+            st.ner = 1
+            return
         op = self.bit_operand(stmt, BIT_AREAS + STATUS_AREAS)
         if op.area == "T":                      # S7's status: the view bit
             view = self.scratch_bits.get(("view", op.index))
@@ -2750,6 +2846,7 @@ class StlFrontEnd:
             if label != END_LABEL:
                 edges[label].append((st.ner, stmt, "JU"))
                 self.acc_edges[label].append(st.acc)
+                self.cc_edges[label].append(st.cc_ok)
                 fix = self.assumed.get(label, (0, ""))[1]
                 if fix and st.ner == 0:
                     self.emit(fix)          # this path arrives with /FC = 0
@@ -2764,6 +2861,7 @@ class StlFrontEnd:
         if label != END_LABEL:
             edges[label].append((0, stmt, "JC"))
             self.acc_edges[label].append(st.acc)
+            self.cc_edges[label].append(st.cc_ok)
         return True
 
 

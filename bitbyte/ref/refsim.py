@@ -131,6 +131,48 @@ def shift(m: str, accu1: int, count: int) -> int:
     return to_int32(d >> c | d << (32 - c))                # RRD
 
 
+# S7's status bits CC 1 / CC 0 (docs/isa.md, "Status bits"), as (A1, A0): awlsim's
+# rules, written here independently of the firmware.
+def cc_of(v: int) -> tuple[int, int]:
+    """CC of a value: 0 -> 00, negative -> 01, positive -> 10."""
+    return (0, 0) if v == 0 else (0, 1) if v < 0 else (1, 0)
+
+
+def arith_cc(m: str, a: int, b: int, result: int) -> tuple[int, int]:
+    """After +I ... MODD with operands a (ACCU2), b (ACCU1) as the instruction reads
+    them: + and - by the wrapped result, * / MOD by the exact value, 11 after / by 0."""
+    op = m[:-1] if m[0] in "+-*/" else "MOD"
+    if op == "*":
+        return cc_of(a * b)
+    if op in ("/", "MOD"):
+        if b == 0:
+            return (1, 1)
+        q = _div_trunc(a, b)
+        return cc_of(q if op == "/" else a - b * q)
+    return cc_of(result)
+
+
+STATUS_CONDITIONS = {
+    "==0": lambda a1, a0: not a1 and not a0, "<>0": lambda a1, a0: a1 or a0,
+    ">0": lambda a1, a0: a1 and not a0, "<0": lambda a1, a0: a0 and not a1,
+    ">=0": lambda a1, a0: not a0, "<=0": lambda a1, a0: not a1,
+    "UO": lambda a1, a0: a1 and a0}
+
+
+def shifted_out(m: str, before: int, count: int, after: int) -> int:
+    """CC 1 after a shift by count >= 1: the bit moved out last (awlsim); after a
+    rotation the bit that came round (RLD: bit 0, RRD: bit 31 of the result)."""
+    if m in ("SLW", "SRW", "SSI"):
+        c, w = min(count, 16), before & 0xFFFF
+        return (w >> (16 - c)) & 1 if m == "SLW" else (w >> (c - 1)) & 1
+    c, d = min(count, 32), before & 0xFFFFFFFF
+    if m == "SLD":
+        return (d >> (32 - c)) & 1
+    if m in ("SRD", "SSD"):
+        return (d >> (c - 1)) & 1
+    return after & 1 if m == "RLD" else (after >> 31) & 1
+
+
 def compare(c: str, a: int, b: int) -> int:
     """a c b as 0/1, c one of COMPARES (I or D: the caller passes the operands)."""
     return int({"==": a == b, "<>": a != b, ">": a > b, "<": a < b,
@@ -215,6 +257,7 @@ class RefSim:
         # byte processor: accumulators, words (signed 16-bit), timers, counters
         self.costs = resolve_costs(costs)
         self.accu1 = self.accu2 = 0
+        self.cc = (0, 0)                # S7's CC 1, CC 0 (status-bit reads)
         self.mw: dict[int, int] = {}
         self.qw: dict[int, int] = {}
         self.timers = [TimerState() for _ in range(config.timers)]
@@ -319,6 +362,7 @@ class RefSim:
         start = self.clock
         self._latch(start)
         self.accu1 = self.accu2 = 0
+        self.cc = (0, 0)
         return start
 
     def _end_scan(self, end: int, cycles: int) -> ScanRecord:
@@ -431,18 +475,33 @@ class RefSim:
         elif kind == "T":
             self._store(op, to_int16(self.accu1))
         elif kind in ARITHMETIC:
-            result, by_zero = arithmetic(kind, *accu_operands(kind, self.accu2, self.accu1))
+            a, b = accu_operands(kind, self.accu2, self.accu1)
+            result, by_zero = arithmetic(kind, a, b)
             self.accu1 = result
             self.arith_error |= by_zero
+            self.cc = arith_cc(kind, a, b, result)
+        elif kind in DEF.status_reads:                  # LD ==0 ... XN UO
+            func, cond = kind.split()
+            bit = int(bool(STATUS_CONDITIONS[cond](*self.cc))) ^ func.endswith("N")
+            self.rlo = bit if func.startswith("LD") else combine(func[0], self.rlo, bit)
         elif kind in DEF.word_logic:
             self.accu1 = word_logic(kind, self.accu2, self.accu1)
+            wide = kind in DEF.dint_mnemonics
+            self.cc = (int((self.accu1 & (0xFFFFFFFF if wide else 0xFFFF)) != 0), 0)
         elif kind in DEF.shifts:
             count = self.accu2 & 0xFF if op is None else op.value
+            before = self.accu1
             self.accu1 = shift(kind, self.accu1, count)
+            if count:
+                self.cc = (shifted_out(kind, before, count, self.accu1), 0)
         elif kind in COMPARES:
-            self.rlo = compare(kind, *accu_operands(kind, self.accu2, self.accu1))
+            a2, a1 = accu_operands(kind, self.accu2, self.accu1)
+            self.rlo = compare(kind, a2, a1)
+            self.cc = (0, 0) if a1 == a2 else (0, 1) if a1 > a2 else (1, 0)
         elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=D"
-            bit = compare(kind[2:], *accu_operands(kind, self.accu2, self.accu1))
+            a2, a1 = accu_operands(kind, self.accu2, self.accu1)
+            self.cc = (0, 0) if a1 == a2 else (0, 1) if a1 > a2 else (1, 0)
+            bit = compare(kind[2:], a2, a1)
             self.rlo = combine(kind[0], self.rlo, bit)
         elif kind in TIMERS:
             self._timer(kind, self.timers[op.index], clock)

@@ -77,7 +77,77 @@ static void test_bad_codes(void) {
   }
 }
 
+/* S7's status bits (awlsim's rules, worked by hand): which CC 1 CC 0 each kind of
+ * instruction leaves, and the conditions read from them. */
+static int cc_read(unsigned f, unsigned c, int negate, int rlo) {
+  RLO = rlo;
+  ex(BB_INSTR(BB_OP_STATUS + f, 0, c | (negate ? BB_STATUS_NEGATE : 0u)));
+  return RLO;
+}
+
+static void test_status_bits(void) {
+  setup();
+  CHECK_EQ(S.cc, 0u);
+  S.accu2 = 5; S.accu1 = -5; ex(i_op(BB_OP_ADD));               /* 0 */
+  CHECK_EQ(S.cc, 0u);
+  CHECK_EQ(cc_read(0, BB_CC_ZERO, 0, 0), 1);
+  CHECK_EQ(cc_read(0, BB_CC_NONZERO, 0, 1), 0);
+  CHECK_EQ(cc_read(0, BB_CC_ZERO, 1, 1), 0);                    /* LDN ==0 */
+  S.accu2 = 32767; S.accu1 = 1; ex(i_op(BB_OP_ADD));            /* wraps: negative */
+  CHECK_EQ(S.cc, 1u);
+  CHECK_EQ(cc_read(0, BB_CC_NEG, 0, 0), 1);
+  CHECK_EQ(cc_read(1, BB_CC_POS, 0, 1), 0);                     /* A >0 */
+  CHECK_EQ(cc_read(2, BB_CC_POSZ, 0, 0), 0);                    /* O >=0 */
+  CHECK_EQ(cc_read(3, BB_CC_NEGZ, 0, 1), 0);                    /* X <=0: 1 ^ 1 */
+  S.accu2 = 256; S.accu1 = 256; ex(i_op(BB_OP_MUL));            /* 65536 -> 0, CC of */
+  CHECK_EQ(S.accu1, 0);                                          /* the exact product */
+  CHECK_EQ(S.cc, 2u);
+  S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_DIV));                /* unordered */
+  CHECK_EQ(S.cc, 3u);
+  CHECK_EQ(cc_read(0, BB_CC_UO, 0, 0), 1);
+  CHECK_EQ(cc_read(0, BB_CC_NONZERO, 0, 0), 1);
+  CHECK_EQ(cc_read(0, BB_CC_POS, 0, 0), 0);
+  S.accu2 = -32768; S.accu1 = -1; ex(i_op(BB_OP_DIV));          /* exact 32768 */
+  CHECK_EQ(S.cc, 2u);
+  S.accu2 = INT32_MIN; S.accu1 = -1; ex(i_op(BB_OP_DIV_D));
+  CHECK_EQ(S.cc, 2u);
+  S.accu2 = -7; S.accu1 = 2; ex(i_op(BB_OP_MOD_D));             /* remainder -1 */
+  CHECK_EQ(S.cc, 1u);
+  S.accu2 = 3; S.accu1 = 9; ex(i_cmp(BB_OP_CMP, BB_CMP_EQ));    /* ACCU1 > ACCU2 */
+  CHECK_EQ(S.cc, 1u);
+  S.accu2 = 9; S.accu1 = 3; ex(i_cmp(BB_OP_CMP_D, BB_CMP_LT));
+  CHECK_EQ(S.cc, 2u);
+  ex(i_cmp(BB_OP_CMP, BB_CMP_NE));
+  S.accu2 = 0x10000; S.accu1 = 0; ex(i_cmp(BB_OP_CMP, BB_CMP_EQ));   /* INT: equal */
+  CHECK_EQ(S.cc, 0u);
+  S.accu2 = 0x0F00; S.accu1 = 0x00F0; ex(i_op(BB_OP_AW));       /* 0: CC 1 = 0 */
+  CHECK_EQ(S.cc, 0u);
+  S.accu2 = 0x10000; S.accu1 = 0x10000; ex(i_op(BB_OP_AW));     /* the word is 0 */
+  CHECK_EQ(S.cc, 0u);
+  S.accu1 = 0x10000; ex(i_op(BB_OP_AD));                         /* the dword is not */
+  CHECK_EQ(S.cc, 2u);
+  S.accu1 = 0x8001; ex(BB_INSTR(BB_OP_SLW, 0, 1));              /* bit 15 out */
+  CHECK_EQ(S.cc, 2u);
+  ex(BB_INSTR(BB_OP_SLW, 0, 0));                                /* count 0: unchanged */
+  CHECK_EQ(S.cc, 2u);
+  S.accu1 = 0x8001; ex(BB_INSTR(BB_OP_SRW, 0, 2));              /* bit 1 out */
+  CHECK_EQ(S.cc, 0u);
+  S.accu1 = 1; ex(BB_INSTR(BB_OP_RRD, 0, 1));                   /* bit 31 of the result */
+  CHECK_EQ(S.cc, 2u);
+  /* L and T leave them; a new scan clears them */
+  L(5); ex(i_T(BB_AREA_MW, 0));
+  CHECK_EQ(S.cc, 2u);
+  bb_scan_start(&S);
+  CHECK_EQ(S.cc, 0u);
+  /* bad status reads are illegal */
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 7)), BB_CL_ILLEGAL);
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 16)), BB_CL_ILLEGAL);
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS + 4u, 0, 0)), BB_CL_ILLEGAL);
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS + 3u, 0, BB_CC_UO | BB_STATUS_NEGATE)), BB_CL_COMPARE);
+}
+
 void suite_compare(void) {
+  RUN(test_status_bits);
   RUN(test_plain);
   RUN(test_and_or);
   RUN(test_bad_codes);
