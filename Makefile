@@ -79,7 +79,7 @@ test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and 
 	@$(MAKE) --no-print-directory -C sim check
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
 	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \
-	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider
+	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider --durations=15
 
 # Every default task of every .sby (prove: k-induction, cover: the states are reachable;
 # tests/test_formal.py checks each tracked .sby has both). One failing file does not stop
