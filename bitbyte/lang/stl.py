@@ -122,13 +122,14 @@ FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMP
 # ACCU2 too, a constant or an IL arithmetic instruction each; `+ n` reads its n)
 IN_PLACE = {"NEGI": (-1, "*I"), "INVI": (-1, "*I", -1, "+I"), "+": ("n", "+I"),
             "NEGD": (-1, "*D"), "INVD": (-1, "*D", -1, "+D")}
+# (LOOP and the jumps on the status bits pass /FC on to their target too: see
+# check_edges)
 FC_PASS = ("L", "T", "LC", "LOOP", "NOP", "BLD", "SAVE", "ITD") + tuple(IN_PLACE) \
-    + tuple(CC_JUMPS) \
-    + ARITHMETIC + ARITHMETIC_D + LOGIC_W + LOGIC_D + SHIFT_W + SHIFT_D
+    + tuple(CC_JUMPS) + ARITHMETIC + ARITHMETIC_D + LOGIC_W + LOGIC_D + SHIFT_W + SHIFT_D
 WORD_AREAS = {"IW": "I", "QW": "Q", "MW": "M"}     # word area -> the bit area it overlaps
 # operands that name a register or a status word bit rather than an address: what
 # each is, and why this CPU has none (rejected as `unsupported:` by name)
-_NO_CC = "the byte processor keeps no condition codes CC 1/CC 0"
+_NO_CC = "a status condition is read by a combine (`U ==0`), not written"
 REGISTER_OPERANDS = {
     "BR": "status bit", "BIE": "status bit", "OV": "status bit", "OS": "status bit",
     "UO": "status bit", "==0": "status bit", "<>0": "status bit", ">0": "status bit",
@@ -1821,6 +1822,7 @@ class StlFrontEnd:
             if len(values) == 1:
                 states[name] = (values.pop(), "")
                 continue
+            self.no_fc_through_jumps(name, target)
             if target.canon in FC_BLIND:
                 states[name] = (0, "")
                 continue
@@ -1841,6 +1843,23 @@ class StlFrontEnd:
                              f"/FC = 1 (from line {sb.line}), and "
                              f"`{target.mnemonic.text}` depends on it")
         return states
+
+    def no_fc_through_jumps(self, name: str, reader: Stmt) -> None:
+        """Paths with /FC = 0 and 1 meet at label `name`: a `LOOP` or a jump on the
+        status bits between it and `reader` passes that /FC on to another label,
+        which the /FC chosen here (and its SET/CLR) does not describe: rejected."""
+        i = self.stmts.index(self.label_defs[name])
+        while self.stmts[i] is not reader:
+            stmt = self.stmts[i]
+            if stmt.canon in ("LOOP",) + tuple(CC_JUMPS) and stmt.operands \
+                    and stmt.operands[0].text.upper() != name:
+                label = self.label_defs[name]
+                raise self.error(label.line, label.labels[0].col,
+                                 f"unsupported: jump target `{label.labels[0].text}` is "
+                                 "reached with /FC = 0 and /FC = 1, which `"
+                                 f"{stmt.mnemonic.text} {stmt.operands[0].text}` (line "
+                                 f"{stmt.line}) passes on to its target")
+            i += 1
 
     def fc_reader(self, stmt: Stmt) -> Stmt:
         """The statement that decides what a jump target needs of /FC: the target
@@ -1984,7 +2003,9 @@ class StlFrontEnd:
         falls = self.translate_statement(stmt, st, edges)
         m = stmt.canon
         ops = stmt.operands
-        tc = bool(ops) and _split_area(ops[0].text)[0].upper() in ("T", "Z", "C")
+        area, rest = _split_area(ops[0].text) if ops else ("", "")
+        tc = area.upper() in ("T", "Z", "C") and (rest[:1].isdigit() or not rest
+                                                  and len(ops) > 1)   # not C#5
         if m.startswith("@") or m in tuple(IN_PLACE) + ("LC", "LOOP", "JL", "FR") \
                 + TIMER_STARTS + ("CU", "CD") or m in ("S", "R", "L") and tc:
             st.cc_ok = False
