@@ -193,7 +193,7 @@ def test_one_summary_for_every_simulator(tmp_path, mode, exchange, extra, stop):
     summary, trace = _summaries(tmp_path, SUMMARY_PROGRAM, *args, stop=stop)
     assert list(summary) == ["scans", "cycles/scan", "scan time [us]", "scan histogram",
                              "watchdog", "stalls", *extra, "byte flags", "simulated"]
-    assert summary["byte flags"] == "ARITH (/I or MOD by 0)"
+    assert summary["byte flags"] == "ARITH (/I, MOD, /D or MODD by 0)"
     assert summary["scans"] == str(len(trace) - 1)
     if mode == "free":
         # the program's own count: MW3 + 1 in each byte scan, before the scan's end

@@ -133,7 +133,7 @@ def test_did_you_mean():
 @pytest.mark.parametrize("text,message", [
     ("VAR Start AT I0.0; Stop AT I0.1; END_VAR\n  LD Strat\n  = Q0.0\n",
      ":2:6: undeclared symbol `Strat`; did you mean `Start`?"),
-    ("  LDD I0.0\n  = Q0.0\n", ":1:3: unknown mnemonic `LDD`; did you mean `LD` or `LDN`?"),
+    ("  LDD I0.0\n  = Q0.0\n", ":1:3: unknown mnemonic `LDD`; did you mean `LD`, `SLD` or `RLD`?"),  # shifts
     ("  LD I0.0\n  JC Loop\nLoops: = Q0.0\n",
      ":2:6: unknown label `Loop`; did you mean `Loops`?"),
 ])
