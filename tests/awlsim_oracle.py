@@ -125,6 +125,7 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
         for n in timers:
             row[f"@T{n}"] = cpu.getTimer(n).get()
             row[f"@T{n}<"] = at_latch[n]            # as the scan's first read sees it
+            row[f"@R{n}"] = cpu.getTimer(n).remaining   # s left (after get(): now)
         scans.append(row)
     return scans
 

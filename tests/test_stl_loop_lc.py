@@ -202,7 +202,7 @@ def test_oracle_catches_lc_as_the_binary_count(tmp_path, monkeypatch):
 @pytest.mark.parametrize("body,line,col,message", [
     ("LC    Z 1\n+I", 6, 1, "unsupported: `+I` reads ACCU2, which this OB has not "
      "loaded here"),
-    ("LC    T 1", 5, 1, "unsupported: `LC` (a timer's remaining time as BCD"),
+    ("LC    T 64", 5, 7, "operand out of range: `T 64`"),
     ("LC    Z 64", 5, 7, "operand out of range: `Z 64`"),
     ("LC    M 0.0", 5, 7, "operand of the wrong kind: `LC` needs a counter"),
     ("LC", 5, 1, "missing operand: `LC` needs a counter"),

@@ -159,8 +159,6 @@ _WHY = {
     "the byte processor keeps no overflow bits OV/OS": "JO JOS",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
     "enabling a timer or counter: the IL's have no enable edge memory": "FR",
-    "a timer's remaining time as BCD: the IL's timers keep the elapsed ms, not S7's "
-    "time value and time base": "LC",
 }
 UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
 REGISTER_REASONS = {
@@ -1269,6 +1267,33 @@ class StlFrontEnd:
         for n in up:
             for purpose in ("cu-enable", "cu-previous", "cu-pulse"):
                 self.scratch((purpose, n))
+        # timers whose time value the program loads (`L T n`, `LC T n`): the bit
+        # that says the IL timer's elapsed time means S7's remaining time (TIME_VALUE)
+        self.timer_reads: dict[int, set[str]] = {}
+        for stmt in self.stmts:
+            if stmt.canon in ("L", "LC") and stmt.operands:
+                area, rest = _split_area(stmt.operands[0].text)
+                if area == "T" and not rest.startswith("#"):
+                    n = self.timer_operand(stmt).index
+                    self.timer_reads.setdefault(n, set()).add(stmt.canon)
+        for n in sorted(self.timer_reads):
+            kind = self.timer_kinds.get(n, ("",))[0]
+            if kind in ("SS", "SE", "SF"):
+                self.scratch(("armed" if kind == "SF" else "run", n))
+        # the scan clock: an IL timer restarted at every scan start, whose elapsed ms
+        # at an S7 start is how far into its scan the timer started
+        self.scan_clock = self.config.timers - 1
+        if self.timer_reads:
+            for stmt in self.stmts:
+                area, rest = _split_area(stmt.operands[0].text) if stmt.operands \
+                    else ("", "")
+                if area == "T" and not rest.startswith("#") and \
+                        self.timer_operand(stmt).index == self.scan_clock:
+                    raise self.unsupported(stmt, f"`T {self.scan_clock}` in a program "
+                                           "that loads a time value (`L T n`, `LC T "
+                                           "n`): the translation keeps the last "
+                                           "timer for its scan clock",
+                                           stmt.operands[0].col)
         self.check_scratch()
 
     def read_blocks(self) -> None:
@@ -1883,6 +1908,8 @@ class StlFrontEnd:
         self.word_uses: list[tuple[str, int, Stmt, Word]] = []
         self.last_load: Instr | None = None
         self.presets: dict[int, int] = {}
+        self.timebases: dict[int, tuple[int, Stmt]] = {}  # S7's time base of a preset
+        self.value_labels = 0                   # internal labels of TIME_VALUE code
         edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
@@ -2065,6 +2092,12 @@ class StlFrontEnd:
                 else:                           # (the scan-start update: no edge)
                     self.emit("R", self.scratch(("pulse", op.index)))
                 self.emit("R", self.scratch(("view", op.index)))
+                if self.timer_kinds[op.index][0] in ("SS", "SE") and \
+                        op.index in self.timer_reads:
+                    self.emit("R", self.scratch(("run", op.index)))
+            if op.index in self.timer_reads:
+                self.emit_code(self.time_value_reset(op.index, stmt))
+                st.acc = tuple(None if a is None else CLOBBERED for a in st.acc)
             st.ner = 0
         elif m in ("CU", "CD") or m in ("S", "R") and stmt.operands and _split_area(
                 stmt.operands[0].text)[0] == AREA_NAME[self.lang]["C"]:
@@ -2111,8 +2144,11 @@ class StlFrontEnd:
                 self.pending.append(stmt.extra)
                 self.emit("LD", self.local_bit(stmt, ("@", "RLO")))
             return self.jump(stmt, st, m, edges)
-        elif m == "LC" and not (stmt.operands and _split_area(
-                stmt.operands[0].text)[0].upper() == "T"):     # LC T n: below
+        elif m in ("L", "LC") and stmt.operands and _split_area(
+                stmt.operands[0].text)[0] == "T" and not _split_area(
+                stmt.operands[0].text)[1].startswith("#"):
+            self.load_time_value(stmt, st, m)
+        elif m == "LC":
             self.load_count_bcd(stmt, st)
         elif m == "LOOP":
             return self.loop(stmt, st, edges)
@@ -2146,6 +2182,8 @@ class StlFrontEnd:
         reads (spec §9: one consistent view per scan; also for a timer whose
         instruction a jump skips)."""
         block: list[Instr] = []
+        inner: dict[str, int] = {}              # the time value updates' labels
+        values: list[tuple] = []
         for n in sorted(self.timer_kinds):
             kind, stmt = self.timer_kinds[n]
             ms = self.presets.get(n)
@@ -2166,17 +2204,39 @@ class StlFrontEnd:
             code += [("LD", view), ("AN", timer)] if kind in ("SP", "SE") else \
                 [("LD", timer)]
             code.append(("=", view))
+            if n in self.timer_reads:           # S7's time value at the latch time,
+                values += [(mnem, op, where) for mnem, op in self.timer_running(
+                    n, start=True) + self.time_value_update(n, stmt)]
+            if n in self.timer_reads:           # when this execution ran
+                code += [("SET", None)] + self.read_scan_clock(
+                    self.time_value_word(stmt, n, "at"))
             block += [Instr(mnem, op, *where) for mnem, op in code]
+        if values:                              # the scan clock from the latch on
+            clock = Operand("index", area="T", index=self.scan_clock,
+                            text=f"T {self.scan_clock}")
+            where = values[0][2]
+            block = [Instr(mnem, op, *where) for mnem, op in (
+                ("SET", None), ("R", clock), (
+                    "L", Operand("const", area="DINT", value=2 ** 31 - 1,
+                                 text="L#2147483647")), ("SS", clock))] + block
+        for mnem, op, where in values:          # after every timer's execution
+            if mnem == "@label":
+                inner[op.upper()] = len(block)
+                continue
+            block.append(Instr(mnem, op, *where))
+            block[-1].labels = [name for name, i in inner.items() if i == len(block) - 1]
         if not block:
             return
         last = block[-1]
         block.append(Instr("CLR", None, last.line, last.col, last.source))
+        block[-1].labels = [name for name, i in inner.items() if i == len(block) - 1]
         if len(self.out) + len(block) > self.config.prog_words:
             raise self.error(1, 1, f"program too large: more than "
                              f"{self.config.prog_words} words (prog_words) with the "
                              "timers' scan-start update")
         self.out = block + self.out
         self.labels = {name: i + len(block) for name, i in self.labels.items()}
+        self.labels.update(inner)
 
     # How each S7 timer instruction changes the status S7 shows, in the scan in
     # which it runs (awlsim's timers.py with cpu.now the latch time): E the enable,
@@ -2292,6 +2352,14 @@ class StlFrontEnd:
                                    f"than the first start of `{op.text}` "
                                    "(one preset per timer: the scan-start update "
                                    "needs it)")
+        if n in self.timer_reads:
+            base = (known.value >> 12) & 3
+            first = self.timebases.setdefault(n, (base, stmt))
+            if first[0] != base:
+                raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` with a preset in "
+                                       "another time base than its start at line "
+                                       f"{first[1].line} (`L`/`LC` of `{op.text}` "
+                                       "read the time value in one time base)")
         in_place = bool(self.out) and self.out[-1] is self.last_load
         self.close_term(st)
         bits = {"E": self.scratch(("enable", n)), "P": self.scratch(("previous", n)),
@@ -2319,9 +2387,144 @@ class StlFrontEnd:
             self.emit(mnem, bits[name] if name else None)
         if code:
             self.emit("=", bits["V"])
+        if n in self.timer_reads:
+            self.emit_code(self.timer_running(n, start=False) + self.time_value_update(
+                n, self.stmt, reload=st.acc[0], started=True))
+            st.acc = (st.acc[0], CLOBBERED)
         self.emit("LD", bits["E"])
         self.emit("=", bits["P"])
         st.ner = 0
+
+    # S7's time value of a timer that `L T n` / `LC T n` read (docs/s7.md, "Time
+    # values"): two words the translation keeps, updated after each execution of the
+    # IL timer while its elapsed time stands for S7's remaining time, left alone
+    # (frozen, as S7 leaves it) while it does not.
+    def timer_running(self, n: int, start: bool) -> list[tuple[str, Operand | None]]:
+        """IL code leaving in the RLO, start=True: whether, after the scan-start
+        update's execution of IL timer n, S7's remaining time is the preset minus
+        its elapsed time — SD and SP (S7's SE, SI) while the IL enable is 1 (a
+        run-out included: 0 left), SS and SV from a start until `R T n` (the `run`
+        bit), SA while its input is 0 after having been 1 (the `armed` bit);
+        start=False (at the timer's instruction): those bits kept, then whether this
+        execution starts S7's timer (an edge of its input: rising, SA's falling), the
+        only change of S7's time value within a scan."""
+        kind = self.timer_kinds[n][0]
+        enable, previous = self.scratch(("enable", n)), self.scratch(("previous", n))
+        blocked = [("AN", self.scratch(("blocked", n)))] if n in self.timer_resets \
+            and kind != "SE" else []
+        if kind in ("SD", "SP"):
+            return [("LD", previous)] + blocked if start else [
+                ("LD", enable), ("AN", previous)]
+        if kind == "SF":
+            armed = self.scratch(("armed", n))
+            return [("LDN", previous), ("A", armed)] if start else [
+                ("LD", enable), ("O", armed), ("=", armed), ("LDN", enable),
+                ("A", previous)]
+        run = self.scratch(("run", n))
+        if start:
+            return [("LD", run)]
+        on = [("LD", self.scratch(("pulse", n)))] if kind == "SE" else \
+            [("LD", enable)] + blocked
+        return on + [("O", run), ("=", run), ("LD", enable), ("AN", previous)]
+
+    def time_value_word(self, stmt: Stmt, n: int, form: str) -> Operand:
+        """The word holding timer n's time value as `L T n` (form "L": binary, in
+        its time base) or `LC T n` ("LC": BCD with the time base) load it."""
+        return self.scratch_word(stmt, f"T{n}.{form}")
+
+    def time_value_update(self, n: int, stmt: Stmt, reload=None, started=False
+                          ) -> list[tuple[str, Operand | None]]:
+        """With the RLO = timer_running: the words of time_value_word := S7's
+        remaining time in the preset's time base, rounded (awlsim rounds the
+        remaining seconds over the base), and as BCD with the time base in bits
+        13..12; jumped over otherwise.  The IL timer started when its instruction
+        ran, S7's at the latch of that scan: the remaining time is preset - elapsed
+        - that offset (the scan clock's elapsed then, kept in a word), at least 0.
+        `started`: the RLO says the timer has just started — its time value is the
+        preset's (constants) and the offset is taken.  `reload`: what the compiler
+        knows of ACCU1, loaded back afterwards (ACCU2 is then changed)."""
+        label = f"@TV{self.value_labels}"
+        self.value_labels += 1
+        ms, base = self.presets[n], self.timebases[n][0]
+        tb = (10, 100, 1000, 10_000)[base]
+        forms = self.timer_reads[n]
+
+        def const(value: int) -> Operand:
+            return Operand("const", area="INT" if -32768 <= value <= 32767 else "DINT",
+                           value=value, text=str(value))
+
+        def timer(k: int) -> Operand:
+            return Operand("index", area="T", index=k, text=f"T {k}")
+        binary = self.time_value_word(stmt, n, "L")
+        offset = self.time_value_word(stmt, n, "offset")
+        code = [("JCN", Operand("label", label=label, text=label))]
+        if started:                             # (RLO = 1: the clock runs on)
+            units = ms // tb                    # S5TIME: ms = units * tb
+            code += self.read_scan_clock(offset) + [("L", const(units)), ("T", binary)]
+            if "LC" in forms:
+                code += [("L", const(base << 12 | int(f"{units:03d}", 16))),
+                         ("T", self.time_value_word(stmt, n, "LC"))]
+        else:
+            zero, store = f"{label}.0", f"{label}.1"
+            code += [("L", const(ms)), ("L", timer(n)), ("-D", None), ("L", offset),
+                     ("-D", None), ("L", self.time_value_word(stmt, n, "at")),
+                     ("+D", None), ("L", const(0)), (">D", None),
+                     ("JCN", Operand("label", label=zero, text=zero)),
+                     ("+D", None), ("L", const(tb // 2)), ("+D", None),
+                     ("L", const(tb)), ("/D", None),
+                     ("JU", Operand("label", label=store, text=store)),
+                     ("@label", zero), ("L", const(0)), ("@label", store),
+                     ("T", binary)]
+            if "LC" in forms:                   # v + 6 (q + 16 h): load_count_bcd's
+                tens = self.scratch_word(stmt, "LC.TENS")
+                code += [("L", const(10)), ("/I", None), ("T", tens), ("L", const(10)),
+                         ("/I", None), ("L", const(16)), ("*I", None), ("L", tens),
+                         ("+I", None), ("L", const(6)), ("*I", None), ("L", binary),
+                         ("+I", None)] + ([("L", const(base << 12)), ("+I", None)]
+                                          if base else []) + [
+                         ("T", self.time_value_word(stmt, n, "LC"))]
+        if isinstance(reload, Known):
+            code.append(("L", Operand("const", area="TIME", value=reload.il_value,
+                                      text=f"{reload.il_value}ms")
+                         if reload.il_value is not None else const(reload.value)))
+        return code + [("@label", label)]
+
+    def read_scan_clock(self, word: Operand) -> list[tuple[str, Operand | None]]:
+        """With the RLO = 1: the scan clock's ms since this scan's start into `word`
+        (an IL timer's elapsed changes only when its instruction executes)."""
+        clock = Operand("index", area="T", index=self.scan_clock,
+                        text=f"T {self.scan_clock}")
+        return [("L", Operand("const", area="DINT", value=2 ** 31 - 1,
+                              text="L#2147483647")), ("SS", clock), ("L", clock),
+                ("T", word)]
+
+    def time_value_reset(self, n: int, stmt: Stmt) -> list[tuple[str, Operand | None]]:
+        """`R T n` with the RLO = 1: S7's time value 0, its time base kept."""
+        label = f"@TV{self.value_labels}"
+        self.value_labels += 1
+        code = [("JCN", Operand("label", label=label, text=label)),
+                ("L", Operand("const", area="INT", value=0, text="0")),
+                ("T", self.time_value_word(stmt, n, "L"))]
+        if "LC" in self.timer_reads[n]:
+            bcd = self.time_value_word(stmt, n, "LC")
+            code += [("L", bcd), ("L", Operand("const", area="INT", value=0x3000,
+                                               text="W#16#3000")),
+                     ("AW", None), ("T", bcd)]
+        return code + [("@label", label)]
+
+    def emit_code(self, code: list[tuple[str, Operand | None]]) -> None:
+        for mnem, op in code:
+            if mnem == "@label":
+                self.pending.append(op)
+            else:
+                self.emit(mnem, op)
+
+    def load_time_value(self, stmt: Stmt, st: _State, form: str) -> None:
+        """`L T n` / `LC T n`: S7 pushes ACCU1 into ACCU2 and loads the timer's
+        time value (binary / BCD with the time base), status bits unchanged."""
+        n = self.timer_operand(stmt).index
+        self.emit("L", self.time_value_word(stmt, n, form))
+        st.acc = (ANY, st.acc[0])
 
     # -- word instructions -----------------------------------------------------------
 

@@ -1,0 +1,168 @@
+"""S7's `L T n` / `LC T n` (the time value of a timer: binary in its time base, and
+BCD with the time base) against awlsim (docs/s7.md, "Time values"), spec §9.
+
+A time value changes with the time base, not at transitions, so the comparison is
+not "the same transitions": each scan's word must be a value awlsim's rounding gives
+for a remaining time within 2 ms of awlsim's own after that scan or a neighbouring
+one (the IL reads its time in whole ms, at the start and at the read, awlsim the
+latch time in s; a
+timer whose status comes a scan late shifts by a scan).  A word equal to awlsim's is
+always accepted.  The check is shown to fail on a broken translation."""
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+import pytest
+
+from asmcheck import assert_refused
+from awlsim_oracle import timer_scans
+from tracecmp import transition_difference, transitions
+
+from bitbyte.lang import stl
+
+# timer n: (kind, preset, time base in ms); German kinds (SI SV SE SS SA)
+TIMERS = {1: ("SI", "S5T#12S", 100), 2: ("SV", "S5T#15S", 100),
+          3: ("SE", "S5T#11S", 100), 4: ("SS", "S5T#20S", 100),
+          5: ("SA", "S5T#1S400MS", 10)}
+KIND_EN = {"SI": "SP", "SV": "SE", "SE": "SD", "SS": "SS", "SA": "SF"}
+
+
+def program(lang: str) -> str:
+    """Each kind started from input 0.0, reset (but SA) from input 0.1; every time
+    value loaded in both forms into MW 10 + 4 (n - 1) and the word after it."""
+    de = lang == "de"
+    a, i, q = ("U", "E", "A") if de else ("A", "I", "Q")
+    lines = ["ORGANIZATION_BLOCK OB 1", "BEGIN", "NETWORK", "TITLE = time values",
+             f"      {a}     {i} 0.0"]
+    for n, (kind, preset, _) in TIMERS.items():
+        lines += [f"      L     {preset}", f"      {kind if de else KIND_EN[kind]}    T {n}"]
+    lines.append(f"      {a}     {i} 0.1")
+    lines += [f"      R     T {n}" for n, (kind, _, _) in TIMERS.items() if kind != "SA"]
+    for n in TIMERS:
+        lines += [f"      L     T {n}", f"      T     MW {10 + 4 * (n - 1)}",
+                  f"      LC    T {n}", f"      T     MW {12 + 4 * (n - 1)}"]
+    for n in TIMERS:
+        lines += [f"      {a}     T {n}", f"      =     {q} 0.{n}"]
+    return "\n".join(lines + ["END_ORGANIZATION_BLOCK", ""])
+
+
+WORDS = tuple(f"MW{10 + 2 * k}" for k in range(2 * len(TIMERS)))
+
+
+def stimulus(seed: int, scans: int) -> list[dict[int, int]]:
+    """Input 0.0 toggling every few hundred scans (starts, stops mid-run, run-outs),
+    input 0.1 a rare one-scan reset."""
+    rng, level, rows = random.Random(seed), 0, []
+    for _ in range(scans):
+        if rng.random() < 0.006:
+            level ^= 1
+        rows.append({0: level | (2 if rng.random() < 0.003 else 0)})
+    return rows
+
+
+def bcd_units(word: int) -> tuple[int, int] | None:
+    """(time base code, units) of an S5TIME pattern, None if it is not one."""
+    digits = [(word >> k) & 0xF for k in (8, 4, 0)]
+    if word & 0xC000 or max(digits) > 9:
+        return None
+    return (word >> 12) & 3, digits[0] * 100 + digits[1] * 10 + digits[2]
+
+
+def time_value_difference(expected, got) -> tuple | None:
+    """None if every time value word of `got` is acceptable (module docstring),
+    else (scan, column, awlsim's word, ours)."""
+    for n, (_, _, tb) in TIMERS.items():
+        binary, bcd = f"MW{10 + 4 * (n - 1)}", f"MW{12 + 4 * (n - 1)}"
+        for k, row in enumerate(got):
+            near = [j for j in (k - 1, k, k + 1) if 0 <= j < len(expected)]
+            for column, units in ((binary, row[binary]), (bcd, None)):
+                if row[column] in {expected[j][column] for j in near}:
+                    continue
+                if units is None:               # BCD: its time base must be S7's
+                    ours = bcd_units(row[column])
+                    if ours is None or not any(
+                            bcd_units(expected[j][column]) is not None and
+                            bcd_units(expected[j][column])[0] == ours[0] for j in near):
+                        return k, column, expected[k][column], row[column]
+                    units = ours[1]
+                if not any(abs(units * tb / 1000 - expected[j][f"@R{n}"])
+                           <= tb / 2000 + 0.002 for j in near):
+                    return k, column, expected[k][column], row[column]
+    return None
+
+
+def run(tmp: Path, lang: str, seed: int, scans: int, **kw):
+    path = tmp / f"tv_{lang}.awl"
+    path.write_text(program(lang))
+    expected, got, _ = timer_scans(path, stimulus(seed, scans), tmp, mnemonics=lang,
+                                   timers=tuple(TIMERS), words=WORDS,
+                                   clock_mhz="0.02", **kw)
+    return expected, got
+
+
+def check(expected, got) -> None:
+    assert time_value_difference(expected, got) is None, \
+        time_value_difference(expected, got)
+    rest = [[{c: v for c, v in row.items() if c not in WORDS} for row in rows]
+            for rows in (expected, got)]
+    assert transition_difference(*rest) is None, transition_difference(*rest)
+
+
+@pytest.mark.parametrize("lang,seed", [("de", 0), ("en", 1), ("de", 2)])
+def test_time_values_against_awlsim(tmp_path, lang, seed):
+    """The five kinds, started, stopped, run out and reset: every time value word
+    as awlsim's (reference interpreter, serial)."""
+    expected, got = run(tmp_path, lang, seed, 900)
+    check(expected, got)
+    for column in WORDS:                        # the words do change, in both forms
+        assert len(transitions(expected, column)) >= 10, column
+    exact = sum(a[c] == b[c] for a, b in zip(expected, got) for c in WORDS)
+    assert exact >= 0.95 * len(got) * len(WORDS)     # mostly the very same word
+
+
+@pytest.mark.parametrize("mode", ["serial", "parallel"])
+def test_time_values_on_verilator(tmp_path, mode):
+    expected, got = run(tmp_path, "de", 3, 600, sim="verilator", mode=mode)
+    check(expected, got)
+
+
+def test_the_check_fails_on_broken_translations(tmp_path, monkeypatch):
+    """Never frozen (a stopped SI/SE timer's value from its stopped IL timer: the
+    preset), no start offset, and one unit added to every value: each is caught."""
+    expected, got = run(tmp_path, "de", 0, 900)
+    shifted = [dict(row) for row in got]
+    for row in shifted:
+        row["MW22"] += 1                        # T 4's binary value, one unit more
+    assert time_value_difference(expected, shifted) is not None
+
+    real = stl.StlFrontEnd.timer_running
+
+    def never_frozen(self, n, start):
+        code = real(self, n, start)
+        return [("SET", None)] if start else code
+    monkeypatch.setattr(stl.StlFrontEnd, "timer_running", never_frozen)
+    expected, got = run(tmp_path, "de", 0, 900)
+    assert time_value_difference(expected, got) is not None
+    monkeypatch.setattr(stl.StlFrontEnd, "timer_running", real)
+
+    real_word = stl.StlFrontEnd.time_value_word
+
+    def no_offset(self, stmt, n, form):        # the offset read from an unused word
+        return real_word(self, stmt, n, "unused" if form == "offset" and
+                         self.value_labels % 2 else form)
+    monkeypatch.setattr(stl.StlFrontEnd, "time_value_word", no_offset)
+    expected, got = run(tmp_path, "de", 0, 900)
+    assert time_value_difference(expected, got) is not None
+
+
+@pytest.mark.parametrize("text,where,message", [
+    ("      U E 0.0\n      L S5T#2S\n      SE T 1\n      L W#16#2002\n      SE T 1\n"
+     "      L T 1\n      T MW 10\n", "7:7:", "another time base"),
+    ("      U E 0.0\n      L S5T#2S\n      SE T 1\n      LC T 1\n      T MW 10\n"
+     "      U T 63\n      = A 0.0\n", "8:9:", "scan clock"),
+])
+def test_refusals(tmp_path, capsys, text, where, message):
+    body = "ORGANIZATION_BLOCK OB 1\nBEGIN\n" + text + "END_ORGANIZATION_BLOCK\n"
+    err = assert_refused(tmp_path, capsys, body, where)
+    assert "unsupported:" in err and message in err, err
