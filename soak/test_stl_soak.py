@@ -31,7 +31,7 @@ import pytest
 import test_stl
 import test_stl_calls as calls
 from awlsim_oracle import EVERY_RUN, equal_or_rejected, timer_equal_or_rejected
-from stlgen import IN_WORDS, WORDS, random_program, slow_inputs
+from stlgen import IN_WORDS, WORDS, random_program, slow_inputs, time_value_columns
 
 N = int(os.environ.get("BITBYTE_STL_SOAK_N", "1000"))
 CHUNK = 100
@@ -57,7 +57,8 @@ def timer_program(tmp: Path, index: int) -> tuple[int, bool]:
     path = tmp / f"tm{seed}.awl"
     path.write_text(text)
     return seed, timer_equal_or_rejected(seed, path, lang, slow_inputs(seed, 40), tmp,
-                                         timers=(1, 2, 3, 4, 5), runs=EVERY_RUN)
+                                         timers=(1, 2, 3, 4, 5), runs=EVERY_RUN,
+                                         values=time_value_columns(text))
 
 
 KINDS = {"calls": call_program, "plain": plain_program, "timers": timer_program}

@@ -215,21 +215,30 @@ def equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
 
 
 def timer_equal_or_rejected(seed: int, path: Path, lang: str, inputs, tmp: Path, *,
-                            timers: tuple[int, ...], runs=SERIAL_REF) -> bool:
+                            timers: tuple[int, ...], runs=SERIAL_REF,
+                            values: dict[str, tuple[int, int, bool]] | None = None
+                            ) -> bool:
     """equal_or_rejected for a timer program (timer_scans): every transition within
-    one scan of awlsim's (awlsim at each run's own latch times)."""
+    one scan of awlsim's (awlsim at each run's own latch times); `values`: the time
+    value words (`L T n`, `LC T n`), compared by tracecmp.time_value_difference."""
     from bitbyte.lang.errors import SourceError
-    from tracecmp import transition_difference
+    from tracecmp import time_value_difference, transition_difference
 
+    values = values or {}
     for n, (sim, mode, exchange) in enumerate(runs):
         try:
             expected, got, _ = timer_scans(path, inputs, tmp, mnemonics=lang,
                                            timers=timers, sim=sim, mode=mode,
-                                           exchange=exchange)
+                                           exchange=exchange, words=tuple(values))
         except SourceError as e:
             assert n == 0, (seed, sim, mode, str(e))
             assert e.message.startswith("unsupported:"), (seed, str(e))
             return False
+        diff = time_value_difference(expected, got, values)
+        assert diff is None, (f"seed {seed} ({path}) time value differs from awlsim "
+                              f"on {run_name(sim, mode, exchange)}: {diff}")
+        expected, got = ([{c: v for c, v in row.items() if c not in values}
+                          for row in rows] for rows in (expected, got))
         diff = transition_difference(expected, got)
         assert diff is None, (f"seed {seed} ({path}) differs from awlsim on "
                               f"{run_name(sim, mode, exchange)}: {diff}")

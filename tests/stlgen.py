@@ -69,6 +69,7 @@ class Gen:
     def __init__(self, seed: int, words: bool = True, timers: bool = False,
                  calls: bool = False):
         self.r = random.Random(seed)
+        self.seed = seed
         self.calls = calls
         self.jump_lists = calls         # (programs without calls stay as they were)
         self.local_bits: list[str] = []     # `#name`s a body in a block may read ...
@@ -416,8 +417,30 @@ class Gen:
         self.lines = ["ORGANIZATION_BLOCK OB 1", "TITLE = random", "VERSION : 0.1", "",
                       "BEGIN"]
         self.body(networks)
+        if self.timer_kind:
+            self.time_values()
         self.lines.append("END_ORGANIZATION_BLOCK")
         return "\n".join(blocks + self.lines) + "\n"
+
+    def time_values(self) -> None:
+        """Timer programs: now and then `L T n` / `LC T n` of some timers into MW 20
+        up, in a network before the first (the values at the latch) and after the
+        last (after the scan's starts).  From a random stream of its own, so that the
+        rest of a program stays what it was without them."""
+        r = random.Random(self.seed * 31 + 7)
+        if r.random() < 0.4:
+            return
+        word = iter(range(20, 60, 2))
+        where = [self.lines.index("BEGIN") + 1, len(self.lines)]
+        for at in reversed(where):
+            if r.random() < 0.4:
+                continue
+            lines = ["NETWORK", "TITLE = time values"]
+            for n in r.sample(sorted(self.timer_kind), r.randrange(
+                    1, len(self.timer_kind) + 1)):
+                for form in r.sample(("L", "LC"), r.randrange(1, 3)):
+                    lines += [f"\t{form}\tT {n}", f"\tT\tMW {next(word)}"]
+            self.lines[at:at] = lines
 
     # -- calls (calls=True) ---------------------------------------------------------
 
@@ -508,6 +531,13 @@ class Gen:
             self.emit(f"{r.choice(('UC', 'CC'))}\tFC 2")
         if r.random() < 0.4:
             self.emit(f"=\t{self.addr('QM')}")
+
+
+def time_value_columns(text: str) -> dict[str, tuple[int, int, bool]]:
+    """The time value words of a generated timer program (Gen.time_values): column
+    -> (timer, time base ms: every preset here is in the 10 ms base, BCD)."""
+    found = re.findall(r"^\t(LC?)\tT (\d+)\n\tT\tMW (\d+)$", text, re.M)
+    return {f"MW{w}": (int(n), 10, form == "LC") for form, n, w in found}
 
 
 def random_program(seed: int, words: bool = True, timers: bool = False,

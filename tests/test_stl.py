@@ -11,6 +11,7 @@ is n = 5000, see docs/s7.md); the seed is BITBYTE_SEED (pytest header).
 from __future__ import annotations
 
 import os
+import re
 import textwrap
 from pathlib import Path
 
@@ -23,7 +24,7 @@ from bitbyte.lang import stl
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.parser import parse_file
 from stlgen import (IN_WORDS, WORDS, random_inputs, random_program, slow_inputs,
-                    symbol_table, with_symbols)
+                    symbol_table, time_value_columns, with_symbols)
 from tracecmp import first_difference, transition_difference, transitions
 
 PROGRAMS = int(os.environ.get("BITBYTE_STL_PROGRAMS", "200"))
@@ -1150,15 +1151,18 @@ def test_random_timer_programs_against_awlsim(tmp_path):
         path = tmp_path / f"tm{seed}.awl"
         path.write_text(text)
         if not timer_equal_or_rejected(seed, path, lang, slow_inputs(seed, 40), tmp_path,
-                                       timers=(1, 2, 3, 4, 5)):
+                                       timers=(1, 2, 3, 4, 5),
+                                       values=time_value_columns(text)):
             rejected += 1
             continue
         compared += 1
         seen |= {line.split()[0] for line in text.splitlines() if line.startswith("\t")}
         seen |= {"R T" for line in text.splitlines() if line.startswith("\tR\tT")}
+        seen |= {f"{line.split()[0]} T" for line in text.splitlines()
+                 if re.match(r"\tLC?\tT ", line)}
     assert rejected <= TIMER_PROGRAMS * 0.2
     if TIMER_PROGRAMS >= 100:
-        need = {"SI", "SV", "SE", "SS", "SA", "SP", "SD", "SF", "R T"}
+        need = {"SI", "SV", "SE", "SS", "SA", "SP", "SD", "SF", "R T", "L T", "LC T"}
         assert need <= seen, need - seen
     print(f"{compared} random STL timer programs make awlsim's transitions, each "
           f"within one scan; {rejected} rejected as unsupported")

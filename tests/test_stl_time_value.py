@@ -1,13 +1,9 @@
 """S7's `L T n` / `LC T n` (the time value of a timer: binary in its time base, and
 BCD with the time base) against awlsim (docs/s7.md, "Time values"), spec §9.
 
-A time value changes with the time base, not at transitions, so the comparison is
-not "the same transitions": each scan's word must be a value awlsim's rounding gives
-for a remaining time within 2 ms of awlsim's own after that scan or a neighbouring
-one (the IL reads its time in whole ms, at the start and at the read, awlsim the
-latch time in s; a
-timer whose status comes a scan late shifts by a scan).  A word equal to awlsim's is
-always accepted.  The check is shown to fail on a broken translation."""
+A time value changes with the time base, not at transitions: tracecmp's
+time_value_difference says what is compared.  The check is shown to fail on a
+broken translation."""
 from __future__ import annotations
 
 import random
@@ -17,6 +13,7 @@ import pytest
 
 from asmcheck import assert_refused
 from awlsim_oracle import timer_scans
+import tracecmp
 from tracecmp import transition_difference, transitions
 
 from bitbyte.lang import stl
@@ -61,35 +58,14 @@ def stimulus(seed: int, scans: int) -> list[dict[int, int]]:
     return rows
 
 
-def bcd_units(word: int) -> tuple[int, int] | None:
-    """(time base code, units) of an S5TIME pattern, None if it is not one."""
-    digits = [(word >> k) & 0xF for k in (8, 4, 0)]
-    if word & 0xC000 or max(digits) > 9:
-        return None
-    return (word >> 12) & 3, digits[0] * 100 + digits[1] * 10 + digits[2]
+def time_values() -> dict[str, tuple[int, int, bool]]:
+    """The program's time value words: column -> (timer, time base ms, BCD)."""
+    return {f"MW{10 + 4 * (n - 1) + 2 * bcd}": (n, tb, bool(bcd))
+            for n, (_, _, tb) in TIMERS.items() for bcd in (0, 1)}
 
 
-def time_value_difference(expected, got) -> tuple | None:
-    """None if every time value word of `got` is acceptable (module docstring),
-    else (scan, column, awlsim's word, ours)."""
-    for n, (_, _, tb) in TIMERS.items():
-        binary, bcd = f"MW{10 + 4 * (n - 1)}", f"MW{12 + 4 * (n - 1)}"
-        for k, row in enumerate(got):
-            near = [j for j in (k - 1, k, k + 1) if 0 <= j < len(expected)]
-            for column, units in ((binary, row[binary]), (bcd, None)):
-                if row[column] in {expected[j][column] for j in near}:
-                    continue
-                if units is None:               # BCD: its time base must be S7's
-                    ours = bcd_units(row[column])
-                    if ours is None or not any(
-                            bcd_units(expected[j][column]) is not None and
-                            bcd_units(expected[j][column])[0] == ours[0] for j in near):
-                        return k, column, expected[k][column], row[column]
-                    units = ours[1]
-                if not any(abs(units * tb / 1000 - expected[j][f"@R{n}"])
-                           <= tb / 2000 + 0.002 for j in near):
-                    return k, column, expected[k][column], row[column]
-    return None
+def time_value_difference(expected, got):
+    return tracecmp.time_value_difference(expected, got, time_values())
 
 
 def run(tmp: Path, lang: str, seed: int, scans: int, **kw):

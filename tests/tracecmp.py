@@ -56,3 +56,41 @@ def first_difference(expected: list[dict[str, int]], got: list[dict[str, int]],
         if diff:
             return k, diff
     return None
+
+
+def bcd_units(word: int) -> tuple[int, int] | None:
+    """(time base code, units) of an S5TIME pattern, None if it is not one."""
+    digits = [(word >> k) & 0xF for k in (8, 4, 0)]
+    if word & 0xC000 or max(digits) > 9:
+        return None
+    return (word >> 12) & 3, digits[0] * 100 + digits[1] * 10 + digits[2]
+
+
+def time_value_difference(expected, got, values: dict[str, tuple[int, int, bool]]):
+    """None if every time value word of `got` is acceptable, else (scan, column,
+    awlsim's word, ours).  `values`: column -> (timer n, its time base in ms, BCD:
+    `LC T n` rather than `L T n`); `expected` has awlsim's remaining seconds of
+    timer n after each scan as "@R n".  A time value changes with the time base,
+    not at transitions (spec §9's "the same transitions, each within one scan"
+    does not fit it): a word is acceptable if it equals awlsim's at that scan or a
+    neighbouring one, or if it is awlsim's rounding of a remaining time within 2 ms
+    of awlsim's own after such a scan (bitbyte reads its time in whole ms, at the
+    start and at the read, awlsim the latch time in s) — as BCD, with awlsim's time
+    base there."""
+    for column, (n, tb, bcd) in values.items():
+        for k, row in enumerate(got):
+            near = [j for j in (k - 1, k, k + 1) if 0 <= j < len(expected)]
+            if row[column] in {expected[j][column] for j in near}:
+                continue
+            units = row[column]
+            if bcd:
+                ours = bcd_units(units)
+                if ours is None or not any(
+                        bcd_units(expected[j][column]) is not None and
+                        bcd_units(expected[j][column])[0] == ours[0] for j in near):
+                    return k, column, expected[k][column], row[column]
+                units = ours[1]
+            if not any(abs(units * tb / 1000 - expected[j][f"@R{n}"])
+                       <= tb / 2000 + 0.002 for j in near):
+                return k, column, expected[k][column], row[column]
+    return None
