@@ -155,14 +155,14 @@ _WHY = {
         "LAR1 LAR2 TAR1 TAR2 CAR +AR1 +AR2",
     "data block registers: known statically (`OPN DB n`), not kept; instance DBs "
     "are inlined": "OPN CDB",
-    "BR is not modelled (no ENO, no error state of instructions)": "JCB JNB JBI JNBI",
     "the byte processor keeps no overflow bits OV/OS": "JO JOS",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
     "enabling a timer or counter: the IL's have no enable edge memory": "FR",
 }
 UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
 REGISTER_REASONS = {
-    "BR": "BR is not modelled", "BIE": "BR is not modelled",
+    "BR": "BR is read by A/O/X and SPBI/SPBIN, written by SAVE, SPBB, SPBNB",
+    "BIE": "BR is read by U/O/X and SPBI/SPBIN, written by SAVE, SPBB, SPBNB",
     "OV": "the byte processor keeps no overflow bit",
     "OS": "the byte processor keeps no stored overflow bit",
     "STW": "only the RLO and /FC exist here, /FC known statically",
@@ -1113,6 +1113,22 @@ class StlFrontEnd:
             self.emit(f"O {cond}")
         return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
 
+    def br_jump(self, stmt: Stmt, st: _State, m: str, edges) -> bool:
+        """SPBI / SPBIN (JBI / JNBI) jump on BR = 1 / 0; S7 ends the logic string
+        (OR 0, /FC 0) and keeps the RLO (awlsim's insn_spbi.py): the RLO saved in a
+        local bit, BR read into the RLO, `JCN` past the jump, the RLO restored on
+        both paths (jump_and_restore)."""
+        if st.parens:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+        self.close_term(st)                     # (a term after `O` ends here)
+        label = self.outside_label(stmt, st)
+        st.ner = 0
+        rlo = self.local_bit(stmt, ("@", "RLO"))
+        self.emit("=", rlo)
+        self.emit("LD" if m == "JBI" else "LDN", self.scratch(("BR",)))
+        return self.jump_and_restore(stmt, st, label, f"BRJ.{self.stmts.index(stmt)}",
+                                     rlo, edges)
+
     def jump_and_restore(self, stmt: Stmt, st: _State, label: str, skip: str,
                          rlo: Operand, edges) -> bool:
         """The condition in the IL's RLO: `JCN skip`, then the saved RLO back and a
@@ -1280,6 +1296,11 @@ class StlFrontEnd:
             kind = self.timer_kinds.get(n, ("",))[0]
             if kind in ("SS", "SE", "SF"):
                 self.scratch(("armed" if kind == "SF" else "run", n))
+        # BR (docs/s7.md, "BR"): a marker bit the translation keeps, where it is read
+        if any(stmt.canon in ("JBI", "JNBI") or any(
+                w.text.upper() in ("BR", "BIE") for w in stmt.operands[:1])
+                for stmt in self.stmts):
+            self.scratch(("BR",))
         # the scan clock: an IL timer restarted at every scan start, whose elapsed ms
         # at an S7 start is how far into its scan the timer started
         self.scan_clock = self.config.timers - 1
@@ -1913,6 +1934,10 @@ class StlFrontEnd:
         edges: dict[str, list[tuple[int, Stmt, str]]] = {n: [] for n in self.label_defs}
         st = _State()
         reachable = True            # the previous statement runs and falls through
+        if ("BR",) in self.scratch_bits:    # S7 starts every OB with BR = 0
+            self.stmt = self.stmts[0]
+            for mnem, op in (("SET", None), ("R", self.scratch(("BR",))), ("CLR", None)):
+                self.emit(mnem, op)
         if self.startup:            # the guard: OB 100 in the first scan only
             self.stmt = next(s for s in self.stmts if s.canon == "@STARTUP")
             self.emit("LDN", self.scratch(("started",)))
@@ -2123,8 +2148,13 @@ class StlFrontEnd:
                 raise self.unsupported(stmt, "NOT after `O` in an AND-before-OR "
                                        "string (S7 keeps the OR bit)")
             self.emit("NOT")
-        elif m == "SAVE":                       # BR is never read in this slice
+        elif m == "SAVE":                       # BR := RLO (nothing if BR is not read)
             self.no_operand(stmt)
+            if ("BR",) in self.scratch_bits:
+                if st.orm != "none":
+                    raise self.unsupported(stmt, "`SAVE` after `O` in an AND-before-OR "
+                                           "string (the RLO there is not S7's yet)")
+                self.emit("=", self.scratch(("BR",)))
         elif m in ("NOP", "BLD"):               # NOP 0 / NOP 1 / BLD n: display hints
             top = 1 if m == "NOP" else 255
             if not stmt.operands:
@@ -2139,7 +2169,9 @@ class StlFrontEnd:
                                  f"`{stmt.mnemonic.text}` takes a number 0..{top}")
         elif m == "JL":
             return self.jump_list(stmt, st, edges)
-        elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC"):
+        elif m in ("JBI", "JNBI"):
+            return self.br_jump(stmt, st, m, edges)
+        elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC", "JCB", "JNB"):
             if m == "JU" and isinstance(stmt.extra, str):   # an entry of a jump list
                 self.pending.append(stmt.extra)
                 self.emit("LD", self.local_bit(stmt, ("@", "RLO")))
@@ -2989,7 +3021,10 @@ class StlFrontEnd:
                 self.emit(f"{func}{n} {cond}")
             st.ner = 1
             return
-        op = self.bit_operand(stmt, BIT_AREAS + STATUS_AREAS)
+        if cond in ("BR", "BIE"):              # U BIE (A BR): the translation's bit
+            op = self.scratch(("BR",))
+        else:
+            op = self.bit_operand(stmt, BIT_AREAS + STATUS_AREAS)
         if op.area == "T":                      # S7's status: the view bit
             view = self.scratch_bits.get(("view", op.index))
             if view is not None:
@@ -3077,7 +3112,9 @@ class StlFrontEnd:
             self.emit("JU", target)
             return False
         self.close_term(st)
-        if m == "JCN":                          # S7 sets RLO = 1 on both paths
+        if m in ("JCB", "JNB") and ("BR",) in self.scratch_bits:
+            self.emit("=", self.scratch(("BR",)))       # BR := the RLO, then as JC/JCN
+        if m in ("JCN", "JNB"):                 # S7 sets RLO = 1 on both paths
             self.emit("NOT")
         self.emit("JC", target)
         st.ner = 0
