@@ -107,6 +107,7 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
             cpu.storeInputByte(b, image.get(b, 0))
         cpu.now = clock["now"]
         at_latch = {n: cpu.getTimer(n).get() for n in timers}
+        left = {n: cpu.getTimer(n).remaining for n in timers}   # (get(): at the latch)
         sim.runCycle()
         markers = cpu.flags.getDataBytes()
         row = {}
@@ -126,6 +127,7 @@ def awlsim_scans(path: str | Path, inputs: list[dict[int, int]], *, mnemonics: s
             row[f"@T{n}"] = cpu.getTimer(n).get()
             row[f"@T{n}<"] = at_latch[n]            # as the scan's first read sees it
             row[f"@R{n}"] = cpu.getTimer(n).remaining   # s left (after get(): now)
+            row[f"@R{n}<"] = left[n]                    # ... as at the scan's latch
         scans.append(row)
     return scans
 

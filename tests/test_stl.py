@@ -975,7 +975,8 @@ ERRORS = [
      "unsupported: `M 255.7` uses M255.7, which the translation"),
     ("U     E 0.0\nL     S5T#1S\nSE    T 64", 10, 7, "operand out of range: `T 64`"),
     ("U     E 0.0\nL     S5T#3H", 9, 7, "malformed constant `S5T#3H`"),
-    ("U     E 0.0\nL     S5T#1S\nFR    T 1", 10, 1, "unsupported: `FR`"),
+    ("U     E 0.0\nL     S5T#1S\nSA    T 1\nFR    T 1", 11, 1,
+     "unsupported: `FR T 1` on an off-delay timer"),
     ("U     E 0.0\nL     MW 0\nS     Z 1", 10, 1, "unsupported: `S Z 1` with a value"),
     ("U     E 0.0\nL     W#16#00AB\nS     Z 1", 10, 1, "unsupported: `S Z 1` with a"),
     ("U     E 0.0\nZV    Z 1\nT     MW 0", 10, 1, "unsupported: `T` reads ACCU1, which "
@@ -983,7 +984,7 @@ ERRORS = [
     ("U     E 0.0\nZV    Z 64", 9, 7, "operand out of range: `Z 64`"),
     ("U     E 0.0\nZV    M 0.0", 9, 7, "operand of the wrong kind: `ZV` needs a counter"),
     ("LC    T 64", 8, 7, "operand out of range: `T 64`"),
-    ("U     E 0.0\nFR    Z 1", 9, 1, "unsupported: `FR`"),
+    ("U(\nU     E 0.0\nFR    Z 1", 10, 1, "unsupported: `FR` inside parentheses"),
     ("L     T 1\nT     MW 0\nU     T 63\n=     A 0.0", 10, 7,
      "unsupported: `T 63` in a program that loads a time value"),
     ("U(\nU     E 0.0\nL     S5T#1S\nSE    T 1\n)", 11, 1,

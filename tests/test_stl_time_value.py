@@ -25,21 +25,25 @@ TIMERS = {1: ("SI", "S5T#12S", 100), 2: ("SV", "S5T#15S", 100),
 KIND_EN = {"SI": "SP", "SV": "SE", "SE": "SD", "SS": "SS", "SA": "SF"}
 
 
-def program(lang: str) -> str:
+# the 1 s and 10 s time bases, whose S5TIME awlsim converts otherwise (truncated)
+COARSE = {6: ("SV", "S5T#150S", 1000), 7: ("SS", "S5T#2M", 10_000)}
+
+
+def program(lang: str, timers=TIMERS) -> str:
     """Each kind started from input 0.0, reset (but SA) from input 0.1; every time
     value loaded in both forms into MW 10 + 4 (n - 1) and the word after it."""
     de = lang == "de"
     a, i, q = ("U", "E", "A") if de else ("A", "I", "Q")
     lines = ["ORGANIZATION_BLOCK OB 1", "BEGIN", "NETWORK", "TITLE = time values",
              f"      {a}     {i} 0.0"]
-    for n, (kind, preset, _) in TIMERS.items():
+    for n, (kind, preset, _) in timers.items():
         lines += [f"      L     {preset}", f"      {kind if de else KIND_EN[kind]}    T {n}"]
     lines.append(f"      {a}     {i} 0.1")
-    lines += [f"      R     T {n}" for n, (kind, _, _) in TIMERS.items() if kind != "SA"]
-    for n in TIMERS:
+    lines += [f"      R     T {n}" for n, (kind, _, _) in timers.items() if kind != "SA"]
+    for n in timers:
         lines += [f"      L     T {n}", f"      T     MW {10 + 4 * (n - 1)}",
                   f"      LC    T {n}", f"      T     MW {12 + 4 * (n - 1)}"]
-    for n in TIMERS:
+    for n in timers:
         lines += [f"      {a}     T {n}", f"      =     {q} 0.{n}"]
     return "\n".join(lines + ["END_ORGANIZATION_BLOCK", ""])
 
@@ -58,29 +62,31 @@ def stimulus(seed: int, scans: int) -> list[dict[int, int]]:
     return rows
 
 
-def time_values() -> dict[str, tuple[int, int, bool]]:
+def time_values(timers=TIMERS) -> dict[str, tuple[int, int, bool]]:
     """The program's time value words: column -> (timer, time base ms, BCD)."""
     return {f"MW{10 + 4 * (n - 1) + 2 * bcd}": (n, tb, bool(bcd))
-            for n, (_, _, tb) in TIMERS.items() for bcd in (0, 1)}
+            for n, (_, _, tb) in timers.items() for bcd in (0, 1)}
 
 
-def time_value_difference(expected, got):
-    return tracecmp.time_value_difference(expected, got, time_values())
+def time_value_difference(expected, got, timers=TIMERS):
+    return tracecmp.time_value_difference(expected, got, time_values(timers))
 
 
-def run(tmp: Path, lang: str, seed: int, scans: int, **kw):
+def run(tmp: Path, lang: str, seed: int, scans: int, timers=TIMERS, clock="0.02",
+        **kw):
     path = tmp / f"tv_{lang}.awl"
-    path.write_text(program(lang))
+    path.write_text(program(lang, timers))
     expected, got, _ = timer_scans(path, stimulus(seed, scans), tmp, mnemonics=lang,
-                                   timers=tuple(TIMERS), words=WORDS,
-                                   clock_mhz="0.02", **kw)
+                                   timers=tuple(timers), words=tuple(time_values(timers)),
+                                   clock_mhz=clock, **kw)
     return expected, got
 
 
-def check(expected, got) -> None:
-    assert time_value_difference(expected, got) is None, \
-        time_value_difference(expected, got)
-    rest = [[{c: v for c, v in row.items() if c not in WORDS} for row in rows]
+def check(expected, got, timers=TIMERS) -> None:
+    assert time_value_difference(expected, got, timers) is None, \
+        time_value_difference(expected, got, timers)
+    words = time_values(timers)
+    rest = [[{c: v for c, v in row.items() if c not in words} for row in rows]
             for rows in (expected, got)]
     assert transition_difference(*rest) is None, transition_difference(*rest)
 
@@ -95,6 +101,14 @@ def test_time_values_against_awlsim(tmp_path, lang, seed):
         assert len(transitions(expected, column)) >= 10, column
     exact = sum(a[c] == b[c] for a, b in zip(expected, got) for c in WORDS)
     assert exact >= 0.95 * len(got) * len(WORDS)     # mostly the very same word
+
+
+def test_time_values_in_the_1s_and_10s_bases(tmp_path):
+    """awlsim's S5TIME truncates there (LC T n), its binary value rounds (L T n)."""
+    expected, got = run(tmp_path, "de", 4, 1500, timers=COARSE, clock="0.02")
+    check(expected, got, COARSE)
+    for column in time_values(COARSE):
+        assert len(transitions(expected, column)) >= 5, column
 
 
 @pytest.mark.parametrize("mode", ["serial", "parallel"])

@@ -70,27 +70,38 @@ def time_value_difference(expected, got, values: dict[str, tuple[int, int, bool]
     """None if every time value word of `got` is acceptable, else (scan, column,
     awlsim's word, ours).  `values`: column -> (timer n, its time base in ms, BCD:
     `LC T n` rather than `L T n`); `expected` has awlsim's remaining seconds of
-    timer n after each scan as "@R n".  A time value changes with the time base,
+    timer n after each scan as "@R n" and at its latch as "@R n<" (a read before
+    the timer's instruction in the scan sees that).  A time value changes with the time base,
     not at transitions (spec §9's "the same transitions, each within one scan"
     does not fit it): a word is acceptable if it equals awlsim's at that scan or a
-    neighbouring one, or if it is awlsim's rounding of a remaining time within 2 ms
-    of awlsim's own after such a scan (bitbyte reads its time in whole ms, at the
-    start and at the read, awlsim the latch time in s) — as BCD, with awlsim's time
-    base there."""
+    neighbouring one, or if it lies between what awlsim's own conversions
+    (timers.py: getTimevalBin, _seconds_to_s5t_tb*) give for awlsim's remaining
+    time there minus and plus 2 ms (bitbyte reads its time in whole ms, at the start
+    and at the read, awlsim the latch time in s)."""
+    from awlsim.core import timers as awl
+
+    s5t = {10: awl._seconds_to_s5t_tb10ms, 100: awl._seconds_to_s5t_tb100ms,
+           1000: awl._seconds_to_s5t_tb1s, 10_000: awl._seconds_to_s5t_tb10s}
+
+    def convert(seconds: float, tb: int, bcd: bool) -> int:
+        seconds = max(0.0, seconds)
+        return s5t[tb](seconds) if bcd else int(round(seconds / (tb / 1000)))
+
+    def units(word: int, bcd: bool) -> tuple[int, int]:
+        if not bcd:
+            return 0, word
+        found = bcd_units(word)
+        return found if found is not None else (-1, -1)
+
     for column, (n, tb, bcd) in values.items():
         for k, row in enumerate(got):
             near = [j for j in (k - 1, k, k + 1) if 0 <= j < len(expected)]
             if row[column] in {expected[j][column] for j in near}:
                 continue
-            units = row[column]
-            if bcd:
-                ours = bcd_units(units)
-                if ours is None or not any(
-                        bcd_units(expected[j][column]) is not None and
-                        bcd_units(expected[j][column])[0] == ours[0] for j in near):
-                    return k, column, expected[k][column], row[column]
-                units = ours[1]
-            if not any(abs(units * tb / 1000 - expected[j][f"@R{n}"])
-                       <= tb / 2000 + 0.002 for j in near):
+            base, ours = units(row[column], bcd)
+            left = [expected[j][key] for j in near for key in (f"@R{n}", f"@R{n}<")]
+            if not any(base == units(convert(r - 0.002, tb, bcd), bcd)[0] and
+                       units(convert(r - 0.002, tb, bcd), bcd)[1] <= ours <=
+                       units(convert(r + 0.002, tb, bcd), bcd)[1] for r in left):
                 return k, column, expected[k][column], row[column]
     return None

@@ -157,7 +157,6 @@ _WHY = {
     "are inlined": "OPN CDB",
     "the byte processor keeps no overflow bits OV/OS": "JO JOS",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
-    "enabling a timer or counter: the IL's have no enable edge memory": "FR",
 }
 UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
 REGISTER_REASONS = {
@@ -1296,6 +1295,35 @@ class StlFrontEnd:
             kind = self.timer_kinds.get(n, ("",))[0]
             if kind in ("SS", "SE", "SF"):
                 self.scratch(("armed" if kind == "SF" else "run", n))
+        # FR (docs/s7.md, "FR"): its own edge memory; a timer's `freed` bit says an
+        # FR rose since the timer's last instruction (S7's edge memory is then 0)
+        self.timer_frees: set[int] = set()
+        self.counter_frees: set[int] = set()
+        for stmt in self.stmts:
+            if stmt.canon != "FR" or not stmt.operands:
+                continue
+            area = _split_area(stmt.operands[0].text)[0]
+            if area == "T":
+                n = self.timer_operand(stmt).index
+                kind = self.timer_kinds.get(n, ("",))[0]
+                if kind == "SF":
+                    raise self.unsupported(stmt, f"`{stmt.mnemonic.text} "
+                                           f"{self.timer_operand(stmt).text}` on an "
+                                           "off-delay timer (S7 then skips the start "
+                                           "at the input's fall; the IL's off-delay "
+                                           "starts at every fall)")
+                self.timer_frees.add(n)
+                for purpose in ("fr-previous", "freed") + (
+                        ("held",) if kind == "SD" else ()):
+                    self.scratch((purpose, n))
+            else:
+                n = self.counter_operand(stmt).index
+                self.counter_frees.add(n)
+                self.scratch(("cfr-previous", n))
+        for n in sorted(self.counter_frees):    # S7's edges of ZR and S as CU's
+            for purpose in ("cd-enable", "cd-previous", "cd-pulse", "s-enable",
+                            "s-previous", "s-pulse"):
+                self.scratch((purpose, n))
         # BR (docs/s7.md, "BR"): a marker bit the translation keeps, where it is read
         if any(stmt.canon in ("JBI", "JNBI") or any(
                 w.text.upper() in ("BR", "BIE") for w in stmt.operands[:1])
@@ -2120,9 +2148,17 @@ class StlFrontEnd:
                 if self.timer_kinds[op.index][0] in ("SS", "SE") and \
                         op.index in self.timer_reads:
                     self.emit("R", self.scratch(("run", op.index)))
-            if op.index in self.timer_reads:
-                self.emit_code(self.time_value_reset(op.index, stmt))
-                st.acc = tuple(None if a is None else CLOBBERED for a in st.acc)
+                if ("held", op.index) in self.scratch_bits:
+                    self.emit("R", self.scratch(("held", op.index)))
+            if op.index in self.timer_reads:   # ACCU1's low word kept as LC Z's
+                keep = st.acc[0] is not None
+                old = self.scratch_word(stmt, "LC.ACCU1") if keep else None
+                self.emit_code(([("T", old)] if keep else []) + self.time_value_reset(
+                    op.index, stmt) + ([("L", old)] if keep else []))
+                if keep:
+                    st.acc = (ANY if st.acc[0] in (DINT, WIDE) else st.acc[0],
+                              ChangedBy(f"`{stmt.mnemonic.text} {op.text}` (line "
+                                        f"{stmt.line})"))
             st.ner = 0
         elif m in ("CU", "CD") or m in ("S", "R") and stmt.operands and _split_area(
                 stmt.operands[0].text)[0] == AREA_NAME[self.lang]["C"]:
@@ -2171,6 +2207,8 @@ class StlFrontEnd:
             return self.jump_list(stmt, st, edges)
         elif m in ("JBI", "JNBI"):
             return self.br_jump(stmt, st, m, edges)
+        elif m == "FR":
+            self.free(stmt, st)
         elif m in ("JU", "JC", "JCN", "BE", "BEU", "BEC", "JCB", "JNB"):
             if m == "JU" and isinstance(stmt.extra, str):   # an entry of a jump list
                 self.pending.append(stmt.extra)
@@ -2235,6 +2273,8 @@ class StlFrontEnd:
             # SI and SV run on the IL's on-delays: S7's pulse is on while that is not
             code += [("LD", view), ("AN", timer)] if kind in ("SP", "SE") else \
                 [("LD", timer)]
+            if ("held", n) in self.scratch_bits:
+                code.append(("O", self.scratch(("held", n))))
             code.append(("=", view))
             if n in self.timer_reads:           # S7's time value at the latch time,
                 values += [(mnem, op, where) for mnem, op in self.timer_running(
@@ -2302,7 +2342,13 @@ class StlFrontEnd:
                 "a C# constant (or a W#16# BCD)")
             in_place = bool(self.out) and self.out[-1] is self.last_load
             self.close_term(st)
+            if n in self.counter_frees:         # S7's edge, which FR clears
+                self.emit_code(self.edge_pulse(n, "s") + self.clear_il_edge("S", op) +
+                               [("LD", self.scratch(("s-pulse", n)))])
             self.with_acc1(st, known, count, in_place, "INT", ("S", op))
+            if n in self.counter_frees:
+                self.emit_code([("LD", self.scratch(("s-enable", n))),
+                                ("=", self.scratch(("s-previous", n)))])
         elif m == "CU":
             self.close_term(st)
             enable = self.scratch(("cu-enable", n))
@@ -2311,6 +2357,8 @@ class StlFrontEnd:
             self.emit("=", enable)
             self.emit("AN", previous)
             self.emit("=", pulse)
+            if n in self.counter_frees:
+                self.emit_code(self.clear_il_edge("CU", op))
             self.emit("L", op)
             self.emit("L", Operand("const", area="INT", value=999, text="999"))
             self.emit("<I")
@@ -2319,9 +2367,58 @@ class StlFrontEnd:
             self.emit("LD", enable)
             self.emit("=", previous)
             st.acc = (CLOBBERED, CLOBBERED)
+        elif m == "CD" and n in self.counter_frees:
+            self.close_term(st)
+            self.emit_code(self.edge_pulse(n, "cd") + self.clear_il_edge("CD", op) + [
+                ("LD", self.scratch(("cd-pulse", n))),
+                (m, op), ("LD", self.scratch(("cd-enable", n))),
+                ("=", self.scratch(("cd-previous", n)))])
         else:                                   # ZR (CD), R Z (R C)
             self.close_term(st)
             self.emit(m, op)
+        st.ner = 0
+
+    def edge_pulse(self, n: int, name: str) -> list[tuple[str, Operand | None]]:
+        """With the RLO = S7's input: its enable bit := RLO, the RLO := the pulse of
+        its rising edge against S7's edge memory (`<name>-previous`, which FR may
+        clear), also kept in `<name>-pulse`.  The IL instruction after it then sees
+        exactly S7's edges; the caller sets `<name>-previous` := enable after it."""
+        enable, previous, pulse = (self.scratch((f"{name}-{k}", n))
+                                   for k in ("enable", "previous", "pulse"))
+        return [("=", enable), ("AN", previous), ("=", pulse)]
+
+    @staticmethod
+    def clear_il_edge(mnem: str, op: Operand) -> list[tuple[str, Operand | None]]:
+        """The IL instruction once with RLO 0: its own edge memory 0, nothing else
+        (after an FR two pulses of S7's edges may follow each other)."""
+        return [("CLR", None), (mnem, op)]
+
+    def free(self, stmt: Stmt, st: _State) -> None:
+        """`FR T n` / `FR Z n` (English `FR C n`): on a rising RLO (against FR's own
+        edge memory) S7 clears the edge memories of the timer's start / of the
+        counter's ZV, ZR and S, so that the next of them with RLO 1 counts as an
+        edge (awlsim's timers.py / counters.py run_FR); the RLO stays, OR and /FC
+        become 0.  A counter's edge memories are the translation's bits: reset at
+        once.  A timer's is also the enable of the scan-start update, so its
+        `freed` bit is set and its next instruction takes it into account."""
+        if st.parens:
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}` inside parentheses")
+        area = _split_area(stmt.operands[0].text)[0] if stmt.operands else ""
+        timer = area == "T"
+        op = self.timer_operand(stmt) if timer else self.counter_operand(stmt)
+        n = op.index
+        self.close_term(st)
+        rlo = self.local_bit(stmt, ("@", "RLO"))
+        code = [("=", rlo), ("AN", self.scratch(("fr-previous" if timer else
+                                                 "cfr-previous", n)))]
+        if timer:
+            code.append(("S", self.scratch(("freed", n))))
+        else:
+            code += [("R", self.scratch((f"{k}-previous", n))) for k in ("cu", "cd", "s")
+                     if (f"{k}-previous", n) in self.scratch_bits]
+        code += [("LD", rlo), ("=", self.scratch(("fr-previous" if timer else
+                                                  "cfr-previous", n)))]
+        self.emit_code(code)
         st.ner = 0
 
     def known_acc1(self, stmt: Stmt, st: _State) -> Known | None:
@@ -2397,6 +2494,10 @@ class StlFrontEnd:
         bits = {"E": self.scratch(("enable", n)), "P": self.scratch(("previous", n)),
                 "V": self.scratch(("view", n))}
         self.emit("=", bits["E"])
+        freed = self.scratch(("freed", n)) if n in self.timer_frees else None
+        if freed:                               # after an FR S7's edge memory is 0
+            self.emit_code([("LD", bits["P"]), ("AN", freed), ("=", bits["P"]),
+                            ("LD", bits["E"])])
         if m == "SE":
             # SV (the extended pulse) on the IL's retentive on-delay: at S7's rising
             # edge R T n and a start, which runs out whatever the input does
@@ -2413,7 +2514,28 @@ class StlFrontEnd:
             self.emit("=", blocked)
             self.emit("LD", bits["E"])
             self.emit("AN", blocked)
+        if freed:
+            # the IL timer's own edge memory is its last enable: it first runs with
+            # the enable 0 where an FR freed it, so that an enable of 1 now is its
+            # rising edge too (SV restarts by its pulse and `R T n` already)
+            enable = [("LD", bits["E"])] + ([("AN", self.scratch(("blocked", n)))]
+                                           if n in self.timer_resets else [])
+            if m != "SE":
+                self.emit_code([("AN", freed), ("L", Operand(
+                    "const", area="TIME", value=ms, text=f"{ms}ms")), (IL_TIMER[m], op)]
+                    + enable)
+                known, in_place = Known(known.value, il_value=ms), True
+                st.acc = (known, CLOBBERED)
+            self.emit_code([("SET", None), ("R", freed)] + (
+                enable if m != "SE" else [("LD", bits["R"])]))
         self.with_acc1(st, known, ms, in_place, "TIME", (IL_TIMER[m], op))
+        if freed and m == "SD":
+            # S7's on-delay restarted by an FR keeps its status (awlsim's run_SE
+            # starts without clearing it), the IL's restart clears it: `held` keeps
+            # S7's status of 1 while the input stays 1, for the scan-start update
+            held = self.scratch(("held", n))
+            self.emit_code([("LD", bits["V"]), ("O", held), ("A", bits["E"]),
+                            ("=", held), ("LD", bits["E"])])
         code = self.VIEW_UPDATE[(m, ms == 0)]
         for mnem, name in code:
             self.emit(mnem, bits[name] if name else None)
@@ -2464,6 +2586,14 @@ class StlFrontEnd:
         its time base) or `LC T n` ("LC": BCD with the time base) load it."""
         return self.scratch_word(stmt, f"T{n}.{form}")
 
+    def time_value_dword(self, stmt: Stmt, n: int) -> Operand:
+        """A double word of block-local words for timer n's remaining ms (MD n is
+        MW n and MW n+2: two words allocated one after the other)."""
+        low = self.scratch_word(stmt, f"T{n}.ms")
+        high = self.scratch_word(stmt, f"T{n}.ms+2")
+        assert high.index == low.index + 2, (low, high)
+        return Operand("index", area="MD", index=low.index, text=f"MD{low.index}")
+
     def time_value_update(self, n: int, stmt: Stmt, reload=None, started=False
                           ) -> list[tuple[str, Operand | None]]:
         """With the RLO = timer_running: the words of time_value_word := S7's
@@ -2497,21 +2627,35 @@ class StlFrontEnd:
                 code += [("L", const(base << 12 | int(f"{units:03d}", 16))),
                          ("T", self.time_value_word(stmt, n, "LC"))]
         else:
+            # r = max(0, preset - elapsed - offset) ms; L T n: r over the base,
+            # rounded (awlsim: round(); `L`'s in every base, `LC`'s in 10 ms, 100 ms)
             zero, store = f"{label}.0", f"{label}.1"
             code += [("L", const(ms)), ("L", timer(n)), ("-D", None), ("L", offset),
                      ("-D", None), ("L", self.time_value_word(stmt, n, "at")),
                      ("+D", None), ("L", const(0)), (">D", None),
                      ("JCN", Operand("label", label=zero, text=zero)),
-                     ("+D", None), ("L", const(tb // 2)), ("+D", None),
-                     ("L", const(tb)), ("/D", None),
-                     ("JU", Operand("label", label=store, text=store)),
-                     ("@label", zero), ("L", const(0)), ("@label", store),
+                     ("+D", None), ("JU", Operand("label", label=store, text=store)),
+                     ("@label", zero), ("L", const(0)), ("@label", store)]
+            units = binary
+            if "LC" in forms and base >= 2:
+                # awlsim's S5TIME of the 1 s base truncates the seconds, of the 10 s
+                # base rounds them and then truncates over 10 (timers.py
+                # _seconds_to_s5t_tb1s / _tb10s): r kept in a double word for it
+                r = self.time_value_dword(stmt, n)
+                units = self.time_value_word(stmt, n, "units")
+                code += [("T", r)]
+            code += [("L", const(tb // 2)), ("+D", None), ("L", const(tb)), ("/D", None),
                      ("T", binary)]
+            if units is not binary:
+                code += [("L", r), ("L", const(1000)), ("/D", None)] if base == 2 else [
+                    ("L", r), ("L", const(500)), ("+D", None), ("L", const(1000)),
+                    ("/D", None), ("L", const(10)), ("/D", None)]
+                code.append(("T", units))
             if "LC" in forms:                   # v + 6 (q + 16 h): load_count_bcd's
                 tens = self.scratch_word(stmt, "LC.TENS")
                 code += [("L", const(10)), ("/I", None), ("T", tens), ("L", const(10)),
                          ("/I", None), ("L", const(16)), ("*I", None), ("L", tens),
-                         ("+I", None), ("L", const(6)), ("*I", None), ("L", binary),
+                         ("+I", None), ("L", const(6)), ("*I", None), ("L", units),
                          ("+I", None)] + ([("L", const(base << 12)), ("+I", None)]
                                           if base else []) + [
                          ("T", self.time_value_word(stmt, n, "LC"))]
