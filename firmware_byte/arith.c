@@ -5,6 +5,7 @@
  * the sign of the dividend (both are C99's / and %); a divisor of 0 gives 0 and sets
  * the sticky arithmetic-error flag, which is also written to BYTE_FLAGS.
  */
+#include <stdint.h>
 #include "bb_internal.h"
 
 int32_t bb_arith16(unsigned op, int32_t accu2, int32_t accu1, int *div0) {
@@ -82,11 +83,30 @@ static unsigned arith_cc(unsigned op, int32_t accu2, int32_t accu1, int32_t resu
   }
 }
 
+/* OV after an arithmetic instruction (awlsim): the exact sum, difference, product or
+ * quotient outside INT (DINT for the D forms), or a division by 0; MOD only by 0. */
+static int arith_ov(unsigned op, int32_t accu2, int32_t accu1) {
+  const int dint = is_dint(op);
+  const int64_t a = dint ? accu2 : bb_int16((uint32_t)accu2);
+  const int64_t b = dint ? accu1 : bb_int16((uint32_t)accu1);
+  const int64_t lo = dint ? INT32_MIN : -32768, hi = dint ? INT32_MAX : 32767;
+  int64_t v;
+  switch (op) {
+    case BB_OP_ADD: case BB_OP_ADD_D: v = a + b; break;
+    case BB_OP_SUB: case BB_OP_SUB_D: v = a - b; break;
+    case BB_OP_MUL: case BB_OP_MUL_D: v = a * b; break;
+    case BB_OP_DIV: case BB_OP_DIV_D: if (b == 0) return 1; v = a / b; break;
+    default:                          return b == 0;     /* MOD, MODD */
+  }
+  return v < lo || v > hi;
+}
+
 void bb_proc_arith(bb_state *s, unsigned op) {
   int div0;
   const int32_t a2 = s->accu2, a1 = s->accu1;
+  const unsigned ov = arith_ov(op, a2, a1) ? BB_SW_OV | BB_SW_OS : 0u;
   s->accu1 = is_dint(op) ? bb_arith32(op, s->accu2, s->accu1, &div0)
                          : bb_arith16(op, s->accu2, s->accu1, &div0);
-  s->cc = arith_cc(op, a2, a1, s->accu1);
+  s->cc = arith_cc(op, a2, a1, s->accu1) | ov | (s->cc & BB_SW_OS);
   if (div0) bb_raise_flag(s, BB_FLAG_ARITH);
 }

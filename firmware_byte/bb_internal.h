@@ -42,6 +42,9 @@ int bb_is_shift(unsigned op);
 void bb_proc_logic(bb_state *s, uint32_t instr);
 int bb_cmp16(unsigned c, int32_t accu2, int32_t accu1);
 unsigned bb_cc_of(int64_t v);
+/* bb_state.cc: CC 0 (bit 0), CC 1 (bit 1), and S7's OV and OS (awlsim's rules) */
+#define BB_SW_OV 4u
+#define BB_SW_OS 8u
 unsigned bb_compare_cc(const bb_state *s, unsigned op);
 int bb_proc_status_read(const bb_state *s, unsigned op, unsigned index, int rlo);
 int bb_cmp32(unsigned c, int32_t accu2, int32_t accu1);

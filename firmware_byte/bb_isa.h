@@ -89,7 +89,7 @@
 #define BB_OP_A_CMP             0x98u  /* + c: RLO := RLO AND cmp */
 #define BB_OP_O_CMP             0xA0u  /* + c: RLO := RLO OR  cmp */
 #define BB_OP_STATUS            0xA8u  /* + f (0 LD, 1 A, 2 O, 3 X): a status condition into the RLO */
-#define BB_STATUS_NEGATE        8u     /* index bit: the condition negated */
+#define BB_STATUS_NEGATE        16u    /* index bit: the condition negated */
 #define BB_CC_ZERO              0      /* ==0 */
 #define BB_CC_NONZERO           1      /* <>0 */
 #define BB_CC_POS               2      /* >0 */
@@ -97,6 +97,8 @@
 #define BB_CC_POSZ              4      /* >=0 */
 #define BB_CC_NEGZ              5      /* <=0 */
 #define BB_CC_UO                6      /* UO */
+#define BB_CC_OV                7      /* OV */
+#define BB_CC_OS                8      /* OS */
 #define BB_OP_CMP_D             0xD0u  /* + c: RLO := cmp (DINT) */
 #define BB_OP_A_CMP_D           0xD8u  /* + c: RLO := RLO AND cmp (DINT) */
 #define BB_OP_O_CMP_D           0xE0u  /* + c: RLO := RLO OR  cmp (DINT) */

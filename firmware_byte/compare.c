@@ -29,19 +29,21 @@ unsigned bb_cc_of(int64_t v) {
 }
 
 /* LD/A/O/X [N] cond: the condition of CC 1 (A1) and CC 0 (A0) as awlsim reads it
- * (==0: 00; <>0: not 00; >0: 10; <0: 01; >=0: A0 = 0; <=0: A1 = 0; UO: 11), negated
+ * (==0: 00; <>0: not 00; >0: 10; <0: 01; >=0: A0 = 0; <=0: A1 = 0; UO: 11) or OV, OS, negated
  * by index bit BB_STATUS_NEGATE, then loaded or combined as the opcode's f says. */
 int bb_proc_status_read(const bb_state *s, unsigned op, unsigned index, int rlo) {
   const unsigned a1 = (s->cc >> 1) & 1u, a0 = s->cc & 1u;
   unsigned cond;
-  switch (index & 7u) {
+  switch (index & 15u) {
     case BB_CC_ZERO:    cond = !a1 && !a0; break;
     case BB_CC_NONZERO: cond = a1 || a0; break;
     case BB_CC_POS:     cond = a1 && !a0; break;
     case BB_CC_NEG:     cond = a0 && !a1; break;
     case BB_CC_POSZ:    cond = !a0; break;
     case BB_CC_NEGZ:    cond = !a1; break;
-    default:            cond = a1 && a0; break;     /* BB_CC_UO */
+    case BB_CC_UO:      cond = a1 && a0; break;
+    case BB_CC_OV:      cond = (s->cc & BB_SW_OV) != 0u; break;
+    default:            cond = (s->cc & BB_SW_OS) != 0u; break;     /* BB_CC_OS */
   }
   if (index & BB_STATUS_NEGATE) cond = !cond;
   switch (op - BB_OP_STATUS) {

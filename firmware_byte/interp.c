@@ -102,8 +102,8 @@ int bb_classify(uint32_t instr) {
     case BB_OP_READ: case BB_OP_WRITE:
       return (area == BB_AREA_FB && n < BB_NUM_CELLS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
     case BB_OP_STATUS: case BB_OP_STATUS + 1u: case BB_OP_STATUS + 2u:
-    case BB_OP_STATUS + 3u:   /* a condition c <= UO, maybe negated, nothing else */
-      return ((n & ~(BB_STATUS_NEGATE | 7u)) == 0u && (n & 7u) <= BB_CC_UO)
+    case BB_OP_STATUS + 3u:   /* a condition c <= OS, maybe negated, nothing else */
+      return ((n & ~(BB_STATUS_NEGATE | 15u)) == 0u && (n & 15u) <= BB_CC_OS)
              ? BB_CL_COMPARE : BB_CL_ILLEGAL;
     case BB_OP_JU_B: case BB_OP_JC_B: case BB_OP_JCN_B:
       return BB_CL_BINARY;     /* the target is checked by execution (program length) */
@@ -250,7 +250,7 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
         r = bb_proc_status_read(s, op, n, r);
       } else {
         r = bb_proc_compare(s, op, r);
-        s->cc = bb_compare_cc(s, op);
+        s->cc = bb_compare_cc(s, op) | (s->cc & BB_SW_OS);   /* OV 0, OS kept */
       }
       s->rlo_written = 1;
       break;

@@ -88,10 +88,13 @@ void bb_proc_logic(bb_state *s, uint32_t instr) {
     const int wide = op == BB_OP_AD || op == BB_OP_OD || op == BB_OP_XOD;
     s->accu1 = bb_logic(op, s->accu2, s->accu1);
     /* CC 1: the result is not 0 (of the word for the 16-bit forms); CC 0 = 0 */
-    s->cc = ((wide ? (uint32_t)s->accu1 : (uint32_t)s->accu1 & 0xFFFFu) != 0u) ? 2u : 0u;
+    s->cc = (((wide ? (uint32_t)s->accu1 : (uint32_t)s->accu1 & 0xFFFFu) != 0u) ? 2u : 0u)
+            | (s->cc & BB_SW_OS);                           /* OV 0, OS kept */
   } else {
     const unsigned count = (instr & BB_COUNT_FROM_ACCU2) ? (uint32_t)s->accu2 & 0xFFu
                                                          : bb_index(instr) & 0xFFu;
-    s->accu1 = bb_shift(op, s->accu1, count, &s->cc);
+    unsigned cc = s->cc;
+    s->accu1 = bb_shift(op, s->accu1, count, &cc);
+    if (count != 0u) s->cc = cc | (s->cc & BB_SW_OS);       /* OV 0, OS kept */
   }
 }

@@ -180,6 +180,13 @@ TIMERS = ["SD", "SS", "SP", "SF"]
 
 
 class MixedGen(Gen):
+    def overflow(self, cond: str) -> str:
+        """Every third status read reads OV or OS instead (chosen by the program's
+        length, not by the random stream, so that the programs stay as they were
+        otherwise)."""
+        k = len(self.lines)
+        return cond if k % 3 else ("OV", "OS")[k // 3 % 2]
+
     def load(self) -> str:
         rng = self.rng
         r = rng.random()
@@ -209,7 +216,8 @@ class MixedGen(Gen):
                 self.lines.append(f"  {rng.choice(SHIFTS)}{count}")
             self.lines.append(f"  T {rng.choice(['MW', 'MW', 'QW', 'MD'])}{rng.randrange(4)}")
             if rng.random() < 0.3:       # S7's status bits of the result
-                self.lines += [f"  {rng.choice(STATUS_READS)} {rng.choice(STATUS_CONDITIONS)}",
+                self.lines += [f"  {rng.choice(STATUS_READS)} "
+                               f"{self.overflow(rng.choice(STATUS_CONDITIONS))}",
                                f"  = {self.operand(WRITE_AREAS)}"]
         elif r < 0.5:                    # compare into the RLO, combined or not
             if rng.random() < 0.5:
@@ -220,7 +228,8 @@ class MixedGen(Gen):
                                f"  {rng.choice('AO')} {rng.choice(COMPARES)}"]
             self.lines.append(f"  = {self.operand(WRITE_AREAS)}")
             if rng.random() < 0.3:       # the compare's status bits
-                self.lines += [f"  {rng.choice(STATUS_READS)} {rng.choice(STATUS_CONDITIONS)}",
+                self.lines += [f"  {rng.choice(STATUS_READS)} "
+                               f"{self.overflow(rng.choice(STATUS_CONDITIONS))}",
                                f"  = {self.operand(WRITE_AREAS)}"]
         elif r < 0.75:                   # a timer, then its status
             t = rng.randrange(8)

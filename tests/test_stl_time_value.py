@@ -156,3 +156,22 @@ def test_refusals(tmp_path, capsys, text, where, message):
     body = "ORGANIZATION_BLOCK OB 1\nBEGIN\n" + text + "END_ORGANIZATION_BLOCK\n"
     err = assert_refused(tmp_path, capsys, body, where)
     assert "unsupported:" in err and message in err, err
+
+
+@pytest.mark.parametrize("kind", ["SS", "SV"])
+def test_reset_keeps_a_preset_beyond_int_in_accu1(tmp_path, kind):
+    """Regression (helper review): `R T 1` of a timer whose time value is read saves
+    and restores ACCU1 through 16 bits; a preset of 40 000 ms the IL held there was
+    then taken as still in ACCU1 by the next start (SS/SV T 2 ran out at once)."""
+    path = tmp_path / f"r_{kind}.awl"
+    path.write_text("ORGANIZATION_BLOCK OB 1\nBEGIN\n"
+                    "      U     E 0.0\n      L     S5T#40S\n      SE    T 1\n"
+                    "      U     E 0.2\n      R     T 1\n"
+                    f"      U     E 0.1\n      {kind}    T 2\n"
+                    "      U     T 2\n      =     A 0.2\n"
+                    "      L     T 1\n      T     MW 10\nEND_ORGANIZATION_BLOCK\n")
+    stimulus = [{0: 0}] * 3 + [{0: 3}] * 6
+    expected, got, _ = timer_scans(path, stimulus, tmp_path, mnemonics="de",
+                                   timers=(1, 2), quiet=False, clock_mhz="0.2")
+    assert transitions(got, "Q0.2") == transitions(expected, "Q0.2")
+    assert transitions(expected, "Q0.2") == ([(3, 1)] if kind == "SV" else [])

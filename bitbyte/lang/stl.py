@@ -29,7 +29,7 @@ rejected (`unsupported:`), never run with a different meaning.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import replace, dataclass, field
 
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
@@ -110,7 +110,7 @@ SHIFT_D = ("SLD", "SRD", "SSD", "RLD", "RRD")
 # status bits CC 1 / CC 0 (docs/s7.md, "Status bits"): the conditions a combine reads
 # and the jumps on them (the conditions whose OR decides the jump; SPN/JN is A1 XOR
 # A0, which is >0 OR <0)
-CC_CONDITIONS = DEF.status_conditions
+CC_CONDITIONS = tuple(c for c in DEF.status_conditions if c not in ("OV", "OS"))
 CC_JUMPS = {"JZ": ("==0",), "JN": (">0", "<0"), "JP": (">0",), "JM": ("<0",),
             "JPZ": (">=0",), "JMZ": ("<=0",), "JUO": ("UO",)}
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
@@ -2156,7 +2156,12 @@ class StlFrontEnd:
                 self.emit_code(([("T", old)] if keep else []) + self.time_value_reset(
                     op.index, stmt) + ([("L", old)] if keep else []))
                 if keep:
-                    st.acc = (ANY if st.acc[0] in (DINT, WIDE) else st.acc[0],
+                    acc1 = st.acc[0]
+                    if isinstance(acc1, Known):     # the IL's ACCU1 back through 16 bits
+                        il = acc1.il_value if acc1.il_value is not None else acc1.value
+                        il = (il + 0x8000) % 0x10000 - 0x8000
+                        acc1 = replace(acc1, il_value=None if il == acc1.value else il)
+                    st.acc = (ANY if acc1 in (DINT, WIDE) else acc1,
                               ChangedBy(f"`{stmt.mnemonic.text} {op.text}` (line "
                                         f"{stmt.line})"))
             st.ner = 0

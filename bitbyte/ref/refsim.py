@@ -152,6 +152,20 @@ def arith_cc(m: str, a: int, b: int, result: int) -> tuple[int, int]:
     return cc_of(result)
 
 
+def arith_ov(m: str, a: int, b: int) -> bool:
+    """S7's OV after +I ... MODD (awlsim): the exact sum, difference, product or
+    quotient outside INT (DINT for the D forms), or a division by 0; MOD only by 0."""
+    op = m[:-1] if m[0] in "+-*/" else "MOD"
+    if op in ("/", "MOD") and b == 0:
+        return True
+    if op == "MOD":
+        return False
+    v = a + b if op == "+" else a - b if op == "-" else a * b if op == "*" \
+        else _div_trunc(a, b)
+    bits = 32 if m.endswith("D") else 16
+    return not -(1 << (bits - 1)) <= v < 1 << (bits - 1)
+
+
 STATUS_CONDITIONS = {
     "==0": lambda a1, a0: not a1 and not a0, "<>0": lambda a1, a0: a1 or a0,
     ">0": lambda a1, a0: a1 and not a0, "<0": lambda a1, a0: a0 and not a1,
@@ -258,6 +272,7 @@ class RefSim:
         self.costs = resolve_costs(costs)
         self.accu1 = self.accu2 = 0
         self.cc = (0, 0)                # S7's CC 1, CC 0 (status-bit reads)
+        self.ov = self.os = 0           # S7's OV and OS (OS sticky for the scan)
         self.mw: dict[int, int] = {}
         self.qw: dict[int, int] = {}
         self.timers = [TimerState() for _ in range(config.timers)]
@@ -363,6 +378,7 @@ class RefSim:
         self._latch(start)
         self.accu1 = self.accu2 = 0
         self.cc = (0, 0)
+        self.ov = self.os = 0
         return start
 
     def _end_scan(self, end: int, cycles: int) -> ScanRecord:
@@ -480,27 +496,34 @@ class RefSim:
             self.accu1 = result
             self.arith_error |= by_zero
             self.cc = arith_cc(kind, a, b, result)
+            self.ov = int(arith_ov(kind, a, b))
+            self.os |= self.ov
         elif kind in DEF.status_reads:                  # LD ==0 ... XN UO
             func, cond = kind.split()
-            bit = int(bool(STATUS_CONDITIONS[cond](*self.cc))) ^ func.endswith("N")
+            bit = int(bool(self.ov if cond == "OV" else self.os if cond == "OS" else
+                           STATUS_CONDITIONS[cond](*self.cc))) ^ func.endswith("N")
             self.rlo = bit if func.startswith("LD") else combine(func[0], self.rlo, bit)
         elif kind in DEF.word_logic:
             self.accu1 = word_logic(kind, self.accu2, self.accu1)
             wide = kind in DEF.dint_mnemonics
             self.cc = (int((self.accu1 & (0xFFFFFFFF if wide else 0xFFFF)) != 0), 0)
+            self.ov = 0
         elif kind in DEF.shifts:
             count = self.accu2 & 0xFF if op is None else op.value
             before = self.accu1
             self.accu1 = shift(kind, self.accu1, count)
             if count:
                 self.cc = (shifted_out(kind, before, count, self.accu1), 0)
+                self.ov = 0
         elif kind in COMPARES:
             a2, a1 = accu_operands(kind, self.accu2, self.accu1)
             self.rlo = compare(kind, a2, a1)
             self.cc = (0, 0) if a1 == a2 else (0, 1) if a1 > a2 else (1, 0)
+            self.ov = 0
         elif kind[:2] in ("A ", "O "):                  # "A ==I" ... "O <=D"
             a2, a1 = accu_operands(kind, self.accu2, self.accu1)
             self.cc = (0, 0) if a1 == a2 else (0, 1) if a1 > a2 else (1, 0)
+            self.ov = 0
             bit = compare(kind[2:], a2, a1)
             self.rlo = combine(kind[0], self.rlo, bit)
         elif kind in TIMERS:

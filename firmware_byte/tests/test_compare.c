@@ -85,6 +85,10 @@ static int cc_read(unsigned f, unsigned c, int negate, int rlo) {
   return RLO;
 }
 
+#define CC (S.cc & 3u)                  /* CC 1 CC 0; OV and OS are S.cc's bits 2, 3 */
+#define OV ((S.cc >> 2) & 1u)
+#define OS ((S.cc >> 3) & 1u)
+
 static void test_status_bits(void) {
   setup();
   CHECK_EQ(S.cc, 0u);
@@ -93,57 +97,92 @@ static void test_status_bits(void) {
   CHECK_EQ(cc_read(0, BB_CC_ZERO, 0, 0), 1);
   CHECK_EQ(cc_read(0, BB_CC_NONZERO, 0, 1), 0);
   CHECK_EQ(cc_read(0, BB_CC_ZERO, 1, 1), 0);                    /* LDN ==0 */
+  CHECK_EQ(cc_read(0, BB_CC_OV, 0, 1), 0);
+  CHECK_EQ(cc_read(0, BB_CC_OS, 1, 0), 1);                      /* LDN OS */
   S.accu2 = 32767; S.accu1 = 1; ex(i_op(BB_OP_ADD));            /* wraps: negative */
-  CHECK_EQ(S.cc, 1u);
+  CHECK_EQ(CC, 1u);
+  CHECK_EQ(OV, 1u);                                              /* 32768: overflow */
+  CHECK_EQ(OS, 1u);
   CHECK_EQ(cc_read(0, BB_CC_NEG, 0, 0), 1);
   CHECK_EQ(cc_read(1, BB_CC_POS, 0, 1), 0);                     /* A >0 */
   CHECK_EQ(cc_read(2, BB_CC_POSZ, 0, 0), 0);                    /* O >=0 */
   CHECK_EQ(cc_read(3, BB_CC_NEGZ, 0, 1), 0);                    /* X <=0: 1 ^ 1 */
+  CHECK_EQ(cc_read(1, BB_CC_OV, 0, 1), 1);                      /* A OV */
+  CHECK_EQ(cc_read(3, BB_CC_OS, 0, 1), 0);                      /* X OS: 1 ^ 1 */
+  S.accu2 = 2; S.accu1 = 3; ex(i_op(BB_OP_SUB));                /* -1: no overflow, */
+  CHECK_EQ(CC, 1u);                                              /* OS stays */
+  CHECK_EQ(OV, 0u);
+  CHECK_EQ(OS, 1u);
+  CHECK_EQ(cc_read(0, BB_CC_OV, 0, 1), 0);
+  CHECK_EQ(cc_read(0, BB_CC_OS, 0, 0), 1);
+  bb_scan_start(&S);
   S.accu2 = 256; S.accu1 = 256; ex(i_op(BB_OP_MUL));            /* 65536 -> 0, CC of */
   CHECK_EQ(S.accu1, 0);                                          /* the exact product */
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
+  CHECK_EQ(OV, 1u);
+  S.accu2 = -181; S.accu1 = 181; ex(i_op(BB_OP_MUL));           /* -32761: fits */
+  CHECK_EQ(CC, 1u);
+  CHECK_EQ(OV, 0u);
+  CHECK_EQ(OS, 1u);
+  bb_scan_start(&S);
   S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_DIV));                /* unordered */
-  CHECK_EQ(S.cc, 3u);
+  CHECK_EQ(S.cc, 3u | BB_SW_OV | BB_SW_OS);
   CHECK_EQ(cc_read(0, BB_CC_UO, 0, 0), 1);
   CHECK_EQ(cc_read(0, BB_CC_NONZERO, 0, 0), 1);
   CHECK_EQ(cc_read(0, BB_CC_POS, 0, 0), 0);
+  bb_scan_start(&S);
   S.accu2 = -32768; S.accu1 = -1; ex(i_op(BB_OP_DIV));          /* exact 32768 */
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
+  CHECK_EQ(OV, 1u);
+  bb_scan_start(&S);
   S.accu2 = INT32_MIN; S.accu1 = -1; ex(i_op(BB_OP_DIV_D));
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
+  CHECK_EQ(OV, 1u);
+  S.accu2 = INT32_MAX; S.accu1 = 1; ex(i_op(BB_OP_ADD_D));       /* DINT overflow */
+  CHECK_EQ(OV, 1u);
+  S.accu2 = 40000; S.accu1 = 40000; ex(i_op(BB_OP_MUL_D));      /* 1.6e9 fits DINT */
+  CHECK_EQ(OV, 0u);
   S.accu2 = -7; S.accu1 = 2; ex(i_op(BB_OP_MOD_D));             /* remainder -1 */
-  CHECK_EQ(S.cc, 1u);
+  CHECK_EQ(CC, 1u);
+  CHECK_EQ(OV, 0u);
+  S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_MOD));                /* MOD by 0 */
+  CHECK_EQ(OV, 1u);
   S.accu2 = 3; S.accu1 = 9; ex(i_cmp(BB_OP_CMP, BB_CMP_EQ));    /* ACCU1 > ACCU2 */
-  CHECK_EQ(S.cc, 1u);
+  CHECK_EQ(CC, 1u);
+  CHECK_EQ(OV, 0u);                                              /* compares: OV 0, */
+  CHECK_EQ(OS, 1u);                                              /* OS kept */
   S.accu2 = 9; S.accu1 = 3; ex(i_cmp(BB_OP_CMP_D, BB_CMP_LT));
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
   ex(i_cmp(BB_OP_CMP, BB_CMP_NE));
   S.accu2 = 0x10000; S.accu1 = 0; ex(i_cmp(BB_OP_CMP, BB_CMP_EQ));   /* INT: equal */
-  CHECK_EQ(S.cc, 0u);
+  CHECK_EQ(CC, 0u);
+  S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_DIV));                /* OV 1 again */
   S.accu2 = 0x0F00; S.accu1 = 0x00F0; ex(i_op(BB_OP_AW));       /* 0: CC 1 = 0 */
-  CHECK_EQ(S.cc, 0u);
+  CHECK_EQ(S.cc, BB_SW_OS);                                      /* word logic: OV 0 */
   S.accu2 = 0x10000; S.accu1 = 0x10000; ex(i_op(BB_OP_AW));     /* the word is 0 */
-  CHECK_EQ(S.cc, 0u);
+  CHECK_EQ(CC, 0u);
   S.accu1 = 0x10000; ex(i_op(BB_OP_AD));                         /* the dword is not */
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
+  S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_DIV));                /* OV 1 again */
   S.accu1 = 0x8001; ex(BB_INSTR(BB_OP_SLW, 0, 1));              /* bit 15 out */
-  CHECK_EQ(S.cc, 2u);
-  ex(BB_INSTR(BB_OP_SLW, 0, 0));                                /* count 0: unchanged */
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(S.cc, 2u | BB_SW_OS);                                 /* a shift: OV 0 */
+  S.accu2 = 7; S.accu1 = 0; ex(i_op(BB_OP_DIV));                /* OV 1 again */
+  S.accu1 = 0x8001; ex(BB_INSTR(BB_OP_SLW, 0, 0));              /* count 0: unchanged */
+  CHECK_EQ(S.cc, 3u | BB_SW_OV | BB_SW_OS);
   S.accu1 = 0x8001; ex(BB_INSTR(BB_OP_SRW, 0, 2));              /* bit 1 out */
-  CHECK_EQ(S.cc, 0u);
+  CHECK_EQ(CC, 0u);
   S.accu1 = 1; ex(BB_INSTR(BB_OP_RRD, 0, 1));                   /* bit 31 of the result */
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(CC, 2u);
   /* L and T leave them; a new scan clears them */
   L(5); ex(i_T(BB_AREA_MW, 0));
-  CHECK_EQ(S.cc, 2u);
+  CHECK_EQ(S.cc, 2u | BB_SW_OS);
   bb_scan_start(&S);
   CHECK_EQ(S.cc, 0u);
   /* bad status reads are illegal */
-  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 7)), BB_CL_ILLEGAL);
-  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 16)), BB_CL_ILLEGAL);
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 9)), BB_CL_ILLEGAL);    /* no condition 9 */
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS, 0, 32)), BB_CL_ILLEGAL);
   CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS + 4u, 0, 0)), BB_CL_ILLEGAL);
-  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS + 3u, 0, BB_CC_UO | BB_STATUS_NEGATE)), BB_CL_COMPARE);
+  CHECK_EQ(ex(BB_INSTR(BB_OP_STATUS + 3u, 0, BB_CC_OS | BB_STATUS_NEGATE)), BB_CL_COMPARE);
 }
 
 void suite_compare(void) {
