@@ -105,8 +105,8 @@ def context(en: str, lang: str) -> tuple[list[str], list[str], str]:
         blocks = ("DATA_BLOCK DB 1\n STRUCT\n  " + ("x : BOOL" if "DBX" in en else
                                                     "w : INT") +
                   ";\n END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n")
-    if en.split()[-1] in ("==0", "<>0", ">0", "<0", ">=0", "<=0", "UO") or \
-            word in ("JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO"):
+    if en.split()[-1] in ("==0", "<>0", ">0", "<0", ">=0", "<=0", "UO", "OV", "OS") or \
+            word in ("JZ", "JN", "JP", "JM", "JPZ", "JMZ", "JUO", "JO", "JOS"):
         before = before + ["+I"]          # status bits set right before (docs/s7.md)
     ju = {"de": "SPA", "en": "JU"}[lang]
     return before, [a.replace("{JU}", ju) for a in after], blocks

@@ -142,7 +142,7 @@ def test_oracle_catches_a_wrong_jump_condition(tmp_path, monkeypatch, wrong):
     ("L 1\nL 2\n+I\nM1: U >0\n= A 0.0\nL 3\nLOOP M1", 11, "reads the status bits"),
     ("L 1\nL 2\n+I\n+ 3\nSPZ M1\nM1: NOP 0", 12, "reads the status bits"),  # `+ n`
     ("L 5\nL 2\n+I\nLC Z 1\nU <0\n= A 0.0", 12, "reads the status bits"),
-    ("L 1\nL 2\n+I\nU OV\n= A 0.0", 11, "unsupported: status bit `OV`"),
+    ("L 1\nL 2\n+I\nL 3\nLOOP M1\nM1: U OV\n= A 0.0", 13, "reads the status bit OV"),
 ])
 def test_rejections(tmp_path, body, line, needle):
     err = error_of(tmp_path, body)

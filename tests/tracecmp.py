@@ -105,3 +105,11 @@ def time_value_difference(expected, got, values: dict[str, tuple[int, int, bool]
                        units(convert(r + 0.002, tb, bcd), bcd)[1] for r in left):
                 return k, column, expected[k][column], row[column]
     return None
+
+
+def assert_equal_and_varied(expected, got, columns) -> None:
+    """`got` equals `expected` scan for scan, and each of `columns` takes both values
+    in `expected` (so that the comparison can see a wrong translation of it)."""
+    assert first_difference(expected, got) is None, first_difference(expected, got)
+    for column in columns:
+        assert {row[column] for row in expected} == {0, 1}, column

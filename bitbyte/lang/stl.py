@@ -110,9 +110,23 @@ SHIFT_D = ("SLD", "SRD", "SSD", "RLD", "RRD")
 # status bits CC 1 / CC 0 (docs/s7.md, "Status bits"): the conditions a combine reads
 # and the jumps on them (the conditions whose OR decides the jump; SPN/JN is A1 XOR
 # A0, which is >0 OR <0)
-CC_CONDITIONS = tuple(c for c in DEF.status_conditions if c not in ("OV", "OS"))
+CC_CONDITIONS = DEF.status_conditions          # ==0 ... UO, and OV, OS
 CC_JUMPS = {"JZ": ("==0",), "JN": (">0", "<0"), "JP": (">0",), "JM": ("<0",),
-            "JPZ": (">=0",), "JMZ": ("<=0",), "JUO": ("UO",)}
+            "JPZ": (">=0",), "JMZ": ("<=0",), "JUO": ("UO",), "JO": ("OV",),
+            "JOS": ("OS",)}
+# which of the IL's status bits are S7's (_State.cc_ok): CC 1/CC 0, OV, OS
+STATUS_BITS = frozenset({"CC", "OV", "OS"})
+CC_OV = frozenset({"CC", "OV"})
+
+
+def status_bit(cond: str) -> str:
+    """The status bit a condition of CC_CONDITIONS reads."""
+    return cond if cond in ("OV", "OS") else "CC"
+
+
+def meet_status(oks) -> frozenset:
+    """The status bits S7's on every path (none: all, as TOP)."""
+    return frozenset.intersection(STATUS_BITS, *oks)
 FC_BLIND = ("=", "S", "R", "SET", "CLR", "JC", "JCN", "BE", "BEU", "BEC") + COMPARES \
     + COMPARES_D \
     + TIMER_STARTS + ("CU", "CD") + ("@CALL", "@LEAVE", "@END", "@RET")
@@ -155,15 +169,14 @@ _WHY = {
         "LAR1 LAR2 TAR1 TAR2 CAR +AR1 +AR2",
     "data block registers: known statically (`OPN DB n`), not kept; instance DBs "
     "are inlined": "OPN CDB",
-    "the byte processor keeps no overflow bits OV/OS": "JO JOS",
     "master control relay: every assignment would depend on it": "MCR( )MCR MCRA MCRD",
 }
 UNSUPPORTED_WHY = {m: why for why, names in _WHY.items() for m in names.split()}
 REGISTER_REASONS = {
     "BR": "BR is read by A/O/X and SPBI/SPBIN, written by SAVE, SPBB, SPBNB",
     "BIE": "BR is read by U/O/X and SPBI/SPBIN, written by SAVE, SPBB, SPBNB",
-    "OV": "the byte processor keeps no overflow bit",
-    "OS": "the byte processor keeps no stored overflow bit",
+    "OV": "OV is read by U/O/X and SPO (JO) only",
+    "OS": "OS is read by U/O/X and SPS (JOS) only",
     "STW": "only the RLO and /FC exist here, /FC known statically",
     "DB register": "the DB registers are known statically, not kept",
     "address register": "the bit and byte processors address directly"}
@@ -411,9 +424,11 @@ class _State:
         # ACCU1, ACCU2: None (S7: the previous scan's value; here: cleared), ANY,
         # CLOBBERED, TOP or a Known value
         self.acc: tuple = (None, None)
-        # the IL's CC 1 / CC 0 are S7's: right after an arithmetic, compare, word logic
-        # or shift instruction, until a label or a translation that changes them
-        self.cc_ok = False
+        # which of the IL's status bits are S7's (STATUS_BITS): CC 1 / CC 0 and OV
+        # right after an arithmetic, compare, word logic or shift instruction, OS
+        # from there on while every one that may change it is S7's own, until a
+        # label or a translation that changes them
+        self.cc_ok: frozenset = frozenset({"OS"})   # (S7 starts every OB with 0)
 
     def key(self) -> tuple:
         return (self.ner, self.orm, len(self.parens))
@@ -1087,7 +1102,7 @@ class StlFrontEnd:
         self.emit("LD", rlo)
         edges[label].append((st.ner, stmt, "JU"))
         self.acc_edges[label].append(st.acc)
-        st.cc_ok = False                    # the compare chain changed them
+        st.cc_ok -= CC_OV                   # the compare chain changed them
         self.cc_edges[label].append(st.cc_ok)
         fix = self.assumed.get(label, (0, ""))[1]
         if fix and st.ner == 0:
@@ -1097,12 +1112,13 @@ class StlFrontEnd:
 
     def cc_jump(self, stmt: Stmt, st: _State, m: str, edges) -> bool:
         """SPZ SPN SPP SPM SPPZ SPMZ SPU (English JZ JN JP JM JPZ JMZ JUO) jump on
-        CC 1 / CC 0 and change no status bit (awlsim's insn_spz.py ...).  Here, as
+        CC 1 / CC 0, SPO (JO) on OV, SPS (JOS) on OS, and change no status bit but
+        SPS's OS, 0 where it jumps (awlsim's insn_spz.py ... insn_sps.py).  Here, as
         `LOOP`: the RLO saved in a local bit, the condition read into the RLO (`LD
         ==0`; SPN: `LD >0`, `O <0`), `JCN` past the jump, the RLO restored on both
         paths; /FC and the accumulators pass unchanged."""
         label = self.outside_label(stmt, st)
-        self.need_cc(stmt, st)
+        self.need_cc(stmt, st, {status_bit(c) for c in CC_JUMPS[m]})
         rlo = self.local_bit(stmt, ("@", "RLO"))
         skip = f"CCJ.{self.stmts.index(stmt)}"
         self.emit("=", rlo)
@@ -1110,7 +1126,14 @@ class StlFrontEnd:
         self.emit(f"LD {first}")
         for cond in more:
             self.emit(f"O {cond}")
-        return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
+        if m != "JOS":
+            return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
+        # SPS (JOS) clears OS where it jumps; the IL's stays: not S7's at the target
+        kept = st.cc_ok
+        st.cc_ok = kept - {"OS"}
+        falls = self.jump_and_restore(stmt, st, label, skip, rlo, edges)
+        st.cc_ok = kept                         # not taken: OS was 0 in both
+        return falls
 
     def br_jump(self, stmt: Stmt, st: _State, m: str, edges) -> bool:
         """SPBI / SPBIN (JBI / JNBI) jump on BR = 1 / 0; S7 ends the logic string
@@ -1163,7 +1186,7 @@ class StlFrontEnd:
         self.emit("-I")
         written = f"`{stmt.mnemonic.text} {stmt.operands[0].text}` (line {stmt.line})"
         st.acc = (ANY, None if st.acc[1] is None else ChangedBy(written))
-        st.cc_ok = False                    # <>I, -I changed them
+        st.cc_ok = frozenset()              # <>I, -I changed them (-I may set OS)
         return self.jump_and_restore(stmt, st, label, skip, rlo, edges)
 
     def copy(self, stmt: Stmt, st: _State, pairs: list) -> None:
@@ -1869,7 +1892,8 @@ class StlFrontEnd:
                 for a in states:
                     acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
                 wanted_acc[name] = acc
-            wanted_cc = {name: all(oks) for name, oks in self.cc_edges.items() if oks}
+            wanted_cc = {name: meet_status(oks) for name, oks in self.cc_edges.items()
+                         if oks}
             if wanted == assumed and wanted_acc == assumed_acc \
                     and wanted_cc == self.assumed_cc:
                 self.check_overlaps()
@@ -2004,7 +2028,7 @@ class StlFrontEnd:
                         acc = (_meet(acc[0], a[0]), _meet(acc[1], a[1]))
                 st.acc = acc
                 cc = self.assumed_cc.get(name)      # (not known yet: true, as TOP)
-                st.cc_ok = cc if cc is not None else all(self.cc_edges[name])
+                st.cc_ok = cc if cc is not None else meet_status(self.cc_edges[name])
                 for w in stmt.labels:
                     self.pending.append(w.text)
                 reachable = True    # (a label nobody jumps to counts as reached)
@@ -2086,9 +2110,11 @@ class StlFrontEnd:
         area, rest = _split_area(ops[0].text) if ops else ("", "")
         tc = area.upper() in ("T", "Z", "C") and (rest[:1].isdigit() or not rest
                                                   and len(ops) > 1)   # not C#5
-        if m.startswith("@") or m in tuple(IN_PLACE) + ("LC", "LOOP", "JL", "FR") \
-                + TIMER_STARTS + ("CU", "CD") or m in ("S", "R", "L") and tc:
-            st.cc_ok = False
+        if m.startswith("@") or m in tuple(IN_PLACE) + ("LOOP",):
+            st.cc_ok = frozenset()      # (S7's calls and block ends clear OS; + n,
+        elif m in ("LC", "JL", "FR") + TIMER_STARTS + ("CU", "CD") or \
+                m in ("S", "R", "L") and tc:     # NEGI ... and LOOP may set it)
+            st.cc_ok -= CC_OV           # compares and arithmetic that cannot overflow
         return falls
 
     def translate_statement(self, stmt: Stmt, st: _State, edges) -> bool:
@@ -2107,7 +2133,7 @@ class StlFrontEnd:
             elif m == "@RET":
                 edges[stmt.extra].append((0, stmt, "JU"))
                 self.acc_edges[stmt.extra].append(st.acc)
-                st.cc_ok = False            # a block end (its copies): not tracked
+                st.cc_ok = frozenset()      # a block end (its copies): not tracked
                 self.cc_edges[stmt.extra].append(st.cc_ok)
                 self.emit("JU", Operand("label", label=stmt.extra.upper(),
                                         text=stmt.mnemonic.text))
@@ -2766,7 +2792,7 @@ class StlFrontEnd:
                 (self.read_dint if dint else self.read_acc)(stmt, st, which)
             self.emit(IL_DINT.get(m, m))
             st.acc = (DINT if dint else ANY, st.acc[1])
-            st.cc_ok = True
+            st.cc_ok |= CC_OV
         else:                                   # a compare: RLO := result, OR := 0
             self.no_operand(stmt)
             for which in (1, 2):
@@ -2774,7 +2800,7 @@ class StlFrontEnd:
             self.close_term(st)
             self.emit(m)
             st.ner = 1
-            st.cc_ok = True
+            st.cc_ok |= CC_OV
 
     def word_logic(self, stmt: Stmt, st: _State, m: str) -> None:
         """`UW`/`OW`/`XOW` (English `AW`/`OW`/`XOW`): S7 combines ACCU1-L with ACCU2-L
@@ -2796,13 +2822,13 @@ class StlFrontEnd:
             self.emit(m)
             st.acc = (DINT if dint else ANY,
                       ChangedBy(f"`{stmt.mnemonic.text} {word.text}` (line {stmt.line})"))
-            st.cc_ok = True
+            st.cc_ok |= CC_OV
             return
         read(stmt, st, 1)
         read(stmt, st, 2)
         self.emit(m)
         st.acc = (DINT if dint else ANY, st.acc[1])
-        st.cc_ok = True
+        st.cc_ok |= CC_OV
 
     def immediate(self, stmt: Stmt) -> tuple[int, Word]:
         """The constant operand of a word logic or shift instruction as S7's immediate
@@ -2856,7 +2882,7 @@ class StlFrontEnd:
             after = ANY
         st.acc = (after, st.acc[1])
         if count:                               # a count of 0 changes no status bit
-            st.cc_ok = True                     # (from ACCU2: maybe 0, kept as it was)
+            st.cc_ok |= CC_OV                   # (from ACCU2: maybe 0, kept as it was)
 
     def int_to_dint(self, stmt: Stmt, st: _State) -> None:
         """`ITD`: S7 sign-extends ACCU1-L into ACCU1 and leaves ACCU2 alone (awlsim's
@@ -2869,7 +2895,7 @@ class StlFrontEnd:
             self.emit("L", Operand("const", area="INT", value=0, text="0"))
             self.emit("+I")
             st.acc = (DINT, ChangedBy(f"`{stmt.mnemonic.text}` (line {stmt.line})"))
-            st.cc_ok = False                    # S7's ITD changes no status bit
+            st.cc_ok = frozenset()              # S7's ITD changes no status bit
         else:
             st.acc = (DINT, st.acc[1])
 
@@ -3139,8 +3165,22 @@ class StlFrontEnd:
                                            f"{n + 1}, "
                                            "here words and bits are apart", word.col)
 
-    def need_cc(self, stmt: Stmt, st: _State) -> None:
-        if not st.cc_ok:
+    def need_cc(self, stmt: Stmt, st: _State, bits=("CC",)) -> None:
+        if "OV" in bits and "OV" not in st.cc_ok or "OS" in bits and "OS" not in st.cc_ok:
+            which = "OV" if "OV" in bits else "OS"
+            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}"
+                                   f"{' ' + stmt.operands[0].text if stmt.operands else ''}"
+                                   f"` reads the status bit {which}, which this "
+                                   "translation keeps as S7's only after an arithmetic, "
+                                   "compare, word logic or shift instruction in "
+                                   "straight-line code" + (
+                                       ", with none of its own that may set OS between "
+                                       "(not across a label, a call or block end, "
+                                       "`LOOP`, `+ n`, `NEGI`, `INVI`, `ITD`)"
+                                       if which == "OS" else
+                                       " (not across a label, a call, `LOOP`, a jump "
+                                       "list, a timer or counter, `LC`, `+ n` …)"))
+        if "CC" in bits and "CC" not in st.cc_ok:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}"
                                    f"{' ' + stmt.operands[0].text if stmt.operands else ''}"
                                    "` reads the status bits CC 1/CC 0, which this "
@@ -3154,8 +3194,8 @@ class StlFrontEnd:
     def combine(self, stmt: Stmt, st: _State, m: str) -> None:
         func, neg = COMBINE[m]
         cond = stmt.operands[0].text.upper() if len(stmt.operands) == 1 else ""
-        if cond in CC_CONDITIONS:               # U ==0 ...: a status condition
-            self.need_cc(stmt, st)
+        if cond in CC_CONDITIONS:               # U ==0 ... U OS: a status condition
+            self.need_cc(stmt, st, (status_bit(cond),))
             n = "N" if neg else ""
             if st.ner == 0:
                 self.emit(f"LD{n} {cond}")
