@@ -222,12 +222,14 @@ class Gen:
             if last in ARITH + COMPARE + LOGIC_W[self.lang] + SHIFT_W and r.random() < 0.7:
                 # the status bits of that result (T leaves them): a combine or a jump
                 if r.random() < 0.7:
-                    self.emit(f"{r.choice(COMBINES[self.lang])}\t{r.choice(CC_CONDITIONS)}")
+                    cond = self.overflow_bit(r.choice(CC_CONDITIONS))
+                    self.emit(f"{r.choice(COMBINES[self.lang])}\t{cond}")
                     self.emit(f"=\t{self.addr('QM')}")
                 else:
                     self.cc_labels = getattr(self, "cc_labels", 0) + 1
                     label = f"K{self.cc_labels}"
-                    self.emit(f"{r.choice(CC_JUMPS[self.lang])}\t{label}")
+                    jump = self.overflow_bit(r.choice(CC_JUMPS[self.lang]))
+                    self.emit(f"{jump}\t{label}")
                     self.emit(f"=\t{self.addr('QM')}")
                     self.label = f"{label}:"
                     self.emit(f"=\t{self.addr('QM')}")
@@ -421,6 +423,19 @@ class Gen:
             self.time_values()
         self.lines.append("END_ORGANIZATION_BLOCK")
         return "\n".join(blocks + self.lines) + "\n"
+
+    def overflow_bit(self, choice: str) -> str:
+        """Every third status read (or jump on the status bits) reads OV or OS
+        instead (SPO / SPS, English JO / JOS), chosen by the program's length, not by
+        the random stream, so that the programs stay as they were otherwise."""
+        k = len(self.lines)
+        if k % 3:
+            return choice
+        bit = ("OV", "OS")[k // 3 % 2]
+        if choice in CC_CONDITIONS:
+            return bit
+        return {("de", "OV"): "SPO", ("de", "OS"): "SPS", ("en", "OV"): "JO",
+                ("en", "OS"): "JOS"}[self.lang, bit]
 
     def time_values(self) -> None:
         """Timer programs: now and then `L T n` / `LC T n` of some timers into MW 20
