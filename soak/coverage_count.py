@@ -45,6 +45,8 @@ def legal_bins() -> set[tuple[str, str, str, str]]:
         if mnemonic in CHANNEL_MNEMONICS:
             continue
         kinds = [a for a in sig.accepts if a not in CHANNEL_AREAS] or ["-"]
+        if sig.optional:                # a shift's count may come from ACCU2
+            kinds.append("-")
         bins |= {(mnemonic, kind, mode, ex) for kind in kinds for mode, ex in MODES}
     bins |= {("(", str(d), mode, ex) for d in range(1, DEFAULT.nest_depth + 1)
              for mode, ex in MODES}
