@@ -90,6 +90,7 @@
 #define BB_OP_O_CMP             0xA0u  /* + c: RLO := RLO OR  cmp */
 #define BB_OP_STATUS            0xA8u  /* + f (0 LD, 1 A, 2 O, 3 X): a status condition into the RLO */
 #define BB_STATUS_NEGATE        16u    /* index bit: the condition negated */
+#define BB_STATUS_COND          15u    /* index bits of the condition */
 #define BB_CC_ZERO              0      /* ==0 */
 #define BB_CC_NONZERO           1      /* <>0 */
 #define BB_CC_POS               2      /* >0 */

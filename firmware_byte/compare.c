@@ -34,7 +34,7 @@ unsigned bb_cc_of(int64_t v) {
 int bb_proc_status_read(const bb_state *s, unsigned op, unsigned index, int rlo) {
   const unsigned a1 = (s->cc >> 1) & 1u, a0 = s->cc & 1u;
   unsigned cond;
-  switch (index & 15u) {
+  switch (index & BB_STATUS_COND) {
     case BB_CC_ZERO:    cond = !a1 && !a0; break;
     case BB_CC_NONZERO: cond = a1 || a0; break;
     case BB_CC_POS:     cond = a1 && !a0; break;

@@ -103,7 +103,7 @@ int bb_classify(uint32_t instr) {
       return (area == BB_AREA_FB && n < BB_NUM_CELLS) ? BB_CL_BINARY : BB_CL_ILLEGAL;
     case BB_OP_STATUS: case BB_OP_STATUS + 1u: case BB_OP_STATUS + 2u:
     case BB_OP_STATUS + 3u:   /* a condition c <= OS, maybe negated, nothing else */
-      return ((n & ~(BB_STATUS_NEGATE | 15u)) == 0u && (n & 15u) <= BB_CC_OS)
+      return ((n & ~(BB_STATUS_NEGATE | BB_STATUS_COND)) == 0u && (n & BB_STATUS_COND) <= BB_CC_OS)
              ? BB_CL_COMPARE : BB_CL_ILLEGAL;
     case BB_OP_JU_B: case BB_OP_JC_B: case BB_OP_JCN_B:
       return BB_CL_BINARY;     /* the target is checked by execution (program length) */

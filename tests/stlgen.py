@@ -340,6 +340,15 @@ class Gen:
         if n in self.timer_nets:
             self.timer_network()
             return
+        if self.words and not self.timer_kind and not self.jump_lists and \
+                len(self.lines) % 4 == 1:
+            # OS at a network's start (after labels, jumps ...; not in programs with
+            # calls, which clear it in S7: jump_lists is their flag, `calls` is off
+            # inside the blocks' bodies), chosen by position: the random stream
+            # stays as it was
+            combine = COMBINES[self.lang][len(self.lines) // 4 % len(COMBINES[self.lang])]
+            self.emit(f"{combine}\tOS")
+            self.emit(f"=\t{AREA[self.lang]['M']}1.6")
         if self.timer_kind:             # off, could make an edge two scans off
             self.network_timer = r.choice(sorted(self.timer_kind))
         if self.words and r.random() < 0.35:

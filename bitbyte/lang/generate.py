@@ -194,6 +194,8 @@ def c_isa(d: Definition) -> str:
                 "+ f (0 LD, 1 A, 2 O, 3 X): a status condition into the RLO"),
           _cdef("BB_STATUS_NEGATE", f"{1 << d.status_negate_bit}u",
                 "index bit: the condition negated"),
+          _cdef("BB_STATUS_COND", f"{(1 << d.status_negate_bit) - 1}u",
+                "index bits of the condition"),
           *(_cdef(name, str(c), cond) for c, (cond, name) in enumerate(
               zip(d.status_conditions, d.status_c))),
           _cdef("BB_OP_CMP_D", _h(d.dint_compare_bases[""]), "+ c: RLO := cmp (DINT)"),

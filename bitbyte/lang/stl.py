@@ -3167,19 +3167,19 @@ class StlFrontEnd:
 
     def need_cc(self, stmt: Stmt, st: _State, bits=("CC",)) -> None:
         if "OV" in bits and "OV" not in st.cc_ok or "OS" in bits and "OS" not in st.cc_ok:
-            which = "OV" if "OV" in bits else "OS"
-            raise self.unsupported(stmt, f"`{stmt.mnemonic.text}"
-                                   f"{' ' + stmt.operands[0].text if stmt.operands else ''}"
-                                   f"` reads the status bit {which}, which this "
-                                   "translation keeps as S7's only after an arithmetic, "
-                                   "compare, word logic or shift instruction in "
-                                   "straight-line code" + (
-                                       ", with none of its own that may set OS between "
-                                       "(not across a label, a call or block end, "
-                                       "`LOOP`, `+ n`, `NEGI`, `INVI`, `ITD`)"
-                                       if which == "OS" else
-                                       " (not across a label, a call, `LOOP`, a jump "
-                                       "list, a timer or counter, `LC`, `+ n` …)"))
+            which = "OV" if "OV" in bits and "OV" not in st.cc_ok else "OS"
+            read = (f"`{stmt.mnemonic.text}"
+                    f"{' ' + stmt.operands[0].text if stmt.operands else ''}` reads the "
+                    f"status bit {which}, which this translation keeps as S7's ")
+            raise self.unsupported(stmt, read + (
+                "from the OB's start until a call or block end (S7 clears it there), "
+                "the target of an `SPS` (which clears it where it jumps), or its own "
+                "code for `+ n`, `NEGI`, `INVI`, `NEGD`, `INVD`, `ITD` or `LOOP`, which "
+                "may set it; nothing makes it S7's again before the scan ends"
+                if which == "OS" else
+                "only right after an arithmetic, compare, word logic or shift "
+                "instruction in straight-line code (not across a label, a call, `LOOP`, "
+                "a jump list, a timer or counter, `LC`, `+ n` …)"))
         if "CC" in bits and "CC" not in st.cc_ok:
             raise self.unsupported(stmt, f"`{stmt.mnemonic.text}"
                                    f"{' ' + stmt.operands[0].text if stmt.operands else ''}"
