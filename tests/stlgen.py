@@ -301,6 +301,11 @@ class Gen:
         else:
             self.emit(f"L\tS5T#{ms}MS")
         self.emit(f"{kind}\tT {n}")
+        if kind not in ("SA", "SF") and len(self.lines) % 3 == 0:
+            # FR from an input, by position (the random stream stays as it was)
+            self.emit(f"{COMBINES[self.lang][0]}\t{AREA[self.lang]['I']} 1."
+                      f"{len(self.lines) % 8}")
+            self.emit(f"FR\tT {n}")
         if r.random() < 0.3:
             self.emit(f"=\t{self.addr('QM')}")             # the RLO is the enable
         if kind not in ("SA", "SF") and r.random() < 0.3:
@@ -349,6 +354,10 @@ class Gen:
             combine = COMBINES[self.lang][len(self.lines) // 4 % len(COMBINES[self.lang])]
             self.emit(f"{combine}\tOS")
             self.emit(f"=\t{AREA[self.lang]['M']}1.6")
+        elif self.words and not self.timer_kind and len(self.lines) % 4 == 3:
+            combine = COMBINES[self.lang][len(self.lines) // 4 % len(COMBINES[self.lang])]
+            self.emit(f"{combine}\t{'BIE' if self.lang == 'de' else 'BR'}")
+            self.emit(f"=\t{AREA[self.lang]['M']}1.5")
         if self.timer_kind:             # off, could make an edge two scans off
             self.network_timer = r.choice(sorted(self.timer_kind))
         if self.words and r.random() < 0.35:
@@ -368,6 +377,8 @@ class Gen:
         for _ in range(r.randrange(1, 3)):
             op = r.choice(("=", "=", "S", "R"))
             self.emit(f"{op}\t{self.addr('QM')}")
+        if self.words and len(self.lines) % 5 == 0:
+            self.emit("SAVE")           # BR := RLO (by position: the stream stays)
 
     def body(self, networks: int) -> None:
         r = self.r
@@ -619,7 +630,8 @@ def with_symbols(text: str, lang: str, seed: int) -> tuple[str, list[tuple[str, 
     out = []
     for line in text.split("\n"):
         m = _ADDRESS.match(line)
-        jump = m and m.group(1).split()[-1] in JUMPS[lang]
+        jump = m and m.group(1).split()[-1] in JUMPS[lang] + CC_JUMPS[lang] + [
+            "SPO", "SPS", "JO", "JOS"]                       # (a label, not an address)
         if m and not jump and r.random() < 0.5:
             address = f"{m.group(2)} {m.group(3)}"
             if address not in names:
