@@ -2636,8 +2636,7 @@ class StlFrontEnd:
         `started`: the RLO says the timer has just started — its time value is the
         preset's (constants) and the offset is taken.  `reload`: what the compiler
         knows of ACCU1, loaded back afterwards (ACCU2 is then changed)."""
-        label = f"@TV{self.value_labels}"
-        self.value_labels += 1
+        label = self.value_label()
         ms, base = self.presets[n], self.timebases[n][0]
         tb = (10, 100, 1000, 10_000)[base]
         forms = self.timer_reads[n]
@@ -2705,10 +2704,14 @@ class StlFrontEnd:
                               text="L#2147483647")), ("SS", clock), ("L", clock),
                 ("T", word)]
 
+    def value_label(self) -> str:
+        """A fresh label of the time values' own code (no S7 label starts with @)."""
+        self.value_labels += 1
+        return f"@TV{self.value_labels - 1}"
+
     def time_value_reset(self, n: int, stmt: Stmt) -> list[tuple[str, Operand | None]]:
         """`R T n` with the RLO = 1: S7's time value 0, its time base kept."""
-        label = f"@TV{self.value_labels}"
-        self.value_labels += 1
+        label = self.value_label()
         code = [("JCN", Operand("label", label=label, text=label)),
                 ("L", Operand("const", area="INT", value=0, text="0")),
                 ("T", self.time_value_word(stmt, n, "L"))]
