@@ -39,6 +39,7 @@
 #define BB_IMM_MASK             0xFFFFFFu
 #define BB_FROM_STATUS          0x20000u /* T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n */
 #define BB_STATUS_WAIT          0x40000u /* with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first */
+#define BB_AT_LATCH             0x80000u /* SD/SS/SP/SF: the time is LATCH_MS (the scan's latch), not the instruction's */
 #define BB_COUNT_FROM_ACCU2     0x800u /* shifts: the count is ACCU2's low byte, not index n */
 
 /* Byte-instruction opcodes (docs/isa.md, "Byte instructions"). */

@@ -18,6 +18,7 @@
 #define BB_BUS_TIME_MS          0x08u  /* R */
 #define BB_BUS_TICK_DIV         0x09u  /* RW */
 #define BB_BUS_CLOCK            0x0Au  /* R */
+#define BB_BUS_LATCH_MS         0x0Bu  /* R */
 #define BB_BUS_TC_BIT           0x10u  /* W */
 #define BB_BUS_T_STATUS_LO      0x11u  /* R */
 #define BB_BUS_T_STATUS_HI      0x12u  /* R */

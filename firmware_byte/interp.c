@@ -256,8 +256,9 @@ static int exec(bb_state *s, uint32_t instr, int *rlo, int serial) {
       break;
     case BB_CL_TIMER: {
       uint32_t now = 0;
-      if (op != BB_OP_RT)
-        now = hal_bus_read(s->hal_ctx, serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
+      if (op != BB_OP_RT)                    /* one read either way: the cost is the same */
+        now = hal_bus_read(s->hal_ctx, (instr & BB_AT_LATCH) ? BB_BUS_LATCH_MS :
+                                       serial ? BB_BUS_DISPATCH_MS : BB_BUS_TIME_MS);
       bb_proc_timer(s, op, n, (instr & BB_FROM_STATUS) ?
                     status_input(s, instr, BB_BUS_T_ENABLE_LO, n) : r, now);
       break;

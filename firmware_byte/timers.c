@@ -4,6 +4,7 @@
  * now  = TIME_MS in the instruction's first clock (interp.c reads it and passes it
  *        in: DISPATCH_MS, the port's snapshot, in serial mode; TIME_MS as the first
  *        access in parallel mode; the timer procedure itself needs no time but that);
+ *        with the word's at-latch bit (S7's timers) LATCH_MS, the scan's latch time;
  * en   = the RLO; preset = ACCU1's full 32-bit value in ms (negative counts as 0),
  *        re-read at every execution;
  * d    = now - start (modulo 2^32, so the 49-day wrap of TIME_MS is harmless).

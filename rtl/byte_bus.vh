@@ -18,6 +18,7 @@
 `define BUS_TIME_MS          8'h08     // R
 `define BUS_TICK_DIV         8'h09     // RW
 `define BUS_CLOCK            8'h0A     // R
+`define BUS_LATCH_MS         8'h0B     // R
 `define BUS_TC_BIT           8'h10     // W
 `define BUS_T_STATUS_LO      8'h11     // R
 `define BUS_T_STATUS_HI      8'h12     // R

@@ -142,6 +142,17 @@ module byte_port #(
   // In the first clock itself the snapshot is the live value: the read data takes it
   // last (below), since next_i comes late from the bit side.
 
+  // ---------------------------------------------------------------- latch snapshot
+  // LATCH_MS: the time base in the clock of the bit side's last scan latch. S7's timers
+  // (the word's at-latch bit) take their time from it, so every timer of a scan sees the
+  // scan's latch time, as S7 gives each cycle one time (docs/s7.md "Timers"). In the
+  // latch clock itself the read data takes the live value, as for DISPATCH_MS.
+  reg [31:0] latch_ms_q;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)      latch_ms_q <= 32'd0;
+    else if (latch_i) latch_ms_q <= ms_q;
+  end
+
   // ---------------------------------------------------------------- decode
   wire [2:0] chan   = bus_addr_i[2:0];
   wire is_fby_rd    = bus_re_i && (bus_addr_i[7:3] == AddrFby[7:3]);   // 8 channels
@@ -238,6 +249,7 @@ module byte_port #(
             (A == `BUS_TIME_MS)          ? ms_q :
             (A == `BUS_TICK_DIV)         ? tick_div_q :
             (A == `BUS_CLOCK)            ? clock_q :
+            (A == `BUS_LATCH_MS)         ? latch_ms_q :
             (A == `BUS_T_STATUS_LO)      ? t_stat[31:0] :
             (A == `BUS_T_STATUS_HI)      ? t_stat[63:32] :
             (A == `BUS_C_STATUS_LO)      ? c_stat[31:0] :
@@ -266,7 +278,8 @@ module byte_port #(
   wire rd_status = bus_addr_i == `BUS_STATUS;
   wire rd_ms_now = disp_first && bus_addr_i == `BUS_DISPATCH_MS;
   wire rd_iw_now = disp_first && bus_addr_i == `BUS_DISPATCH_IW;
-  assign bus_rdata_o = rd_ms_now ? ms_q
+  wire rd_latch_now = latch_i && bus_addr_i == `BUS_LATCH_MS;
+  assign bus_rdata_o = (rd_ms_now || rd_latch_now) ? ms_q
                      : rd_iw_now ? {{16{named_iw[15]}}, named_iw}
                      : rd_tab[bus_addr_i] | {31'd0, rd_status && next_i};
 
@@ -340,6 +353,14 @@ module byte_port #(
   always @(*) if (f_refused_q && rst_ni)
     assume (bus_addr_i == f_addr_q && bus_re_i == f_re_q && bus_we_i == f_we_q);
   always @(posedge clk_i) if (f_past_valid) assume ($stable(marker_i) || !f_refused_q);
+
+  // LATCH_MS: the time base as it was at the bit side's last scan latch, the live value
+  // in the latch clock itself (a shadow of TIME_MS taken at each latch).
+  reg [31:0] f_latch_ms = 32'd0;
+  always @(posedge clk_i) if (!rst_ni) f_latch_ms <= 32'd0; else if (latch_i) f_latch_ms <= ms_q;
+  always @(*) if (rst_ni && f_past_valid && bus_addr_i == `BUS_LATCH_MS)
+    assert (bus_rdata_o == (latch_i ? ms_q : f_latch_ms));
+  always @(*) if (rst_ni && f_past_valid) assert (latch_ms_q == f_latch_ms);  // induction
 
   // The marker exchange's cells: at FBY k / FBI k (k < 8) and in the MCELL window.
   wire       f_in_win = bus_addr_i >= `BUS_MCELL;

@@ -285,6 +285,7 @@ class BusModel:
         self.stalls_bit = self.stalls_byte = 0
         self.pending = False
         self.disp_ms = self.disp_iw = 0
+        self.latch_ms = 0               # TIME_MS at the last latch
         self.tc_wait_sel = 0
         self.mc_pend = False            # a marker cell's read was refused last clock
 
@@ -308,6 +309,7 @@ class BusModel:
             "TIME_MS": lambda: self.ms,
             "TICK_DIV": lambda: self.tick_div,
             "CLOCK": lambda: self.clock_count,
+            "LATCH_MS": lambda: self.ms if i["latch"] else self.latch_ms,
             "T_STATUS_LO": lambda: lo(i["t_stat"]), "T_STATUS_HI": lambda: hi(i["t_stat"]),
             "C_STATUS_LO": lambda: lo(i["c_stat"]), "C_STATUS_HI": lambda: hi(i["c_stat"]),
             "T_ENABLE_LO": lambda: lo(i["t_en"]), "T_ENABLE_HI": lambda: hi(i["t_en"]),
@@ -388,6 +390,8 @@ class BusModel:
             self.disp_ms = self.ms
             self.disp_iw = word(i["in_words"], i["instr"] & 0xF)
         self.pending = bool(i["next"] and not out["done_we_o"])
+        if i["latch"]:
+            self.latch_ms = self.ms
         if self.started or i["latch"] or i["time_start"]:
             self.started = True
             self.clock_count = (self.clock_count + 1) & M32

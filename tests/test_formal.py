@@ -150,6 +150,11 @@ MUTATIONS = [
     ("byte_port", "byte_port.v",
      "wire [6:0] mc_k      = in_mc ? bus_addr_i[6:0] : {4'd0, chan};",
      "wire [6:0] mc_k      = {4'd0, chan};", "_widx_o == f_k"),   # the window's cell lost
+    # byte_port: LATCH_MS, the time of S7's timers (docs/s7.md "Timers")
+    ("byte_port", "byte_port.v", "    else if (latch_i) latch_ms_q <= ms_q;",
+     "    else if (latch_i) latch_ms_q <= ms_q + 32'd1;", "f_latch_ms"),  # a wrong time
+    ("byte_port", "byte_port.v", "assign bus_rdata_o = (rd_ms_now || rd_latch_now) ? ms_q",
+     "assign bus_rdata_o = rd_ms_now ? ms_q", "latch_i ? ms_q : f_latch_ms"),  # a clock late
     # byte_port: TC_WAIT, parallel mode's status wait (docs/exchange.md)
     ("byte_port", "byte_port.v",
      "&& !(is_tc_wait_rd && !tc_wait_written) && !(mc_rd",

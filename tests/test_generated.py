@@ -73,7 +73,7 @@ def test_definition_change_without_regenerating_is_caught():
     def move_scan_done(raw):
         for r in raw["register"]:
             if r["name"] == "SCAN_DONE":
-                r["addr"] = 0x0B
+                r["addr"] = 0x0C
     stale = generate.stale(_changed(move_scan_done))
     assert "firmware_byte/bus_map.h" in stale and "rtl/byte_bus.vh" in stale
     assert "docs/byte-bus.md" in stale

@@ -985,8 +985,6 @@ ERRORS = [
     ("U     E 0.0\nZV    M 0.0", 9, 7, "operand of the wrong kind: `ZV` needs a counter"),
     ("LC    T 64", 8, 7, "operand out of range: `T 64`"),
     ("U(\nU     E 0.0\nFR    Z 1", 10, 1, "unsupported: `FR` inside parentheses"),
-    ("L     T 1\nT     MW 0\nU     T 63\n=     A 0.0", 10, 7,
-     "unsupported: `T 63` in a program that loads a time value"),
     ("U(\nU     E 0.0\nL     S5T#1S\nSE    T 1\n)", 11, 1,
      "unsupported: `SE` inside parentheses"),
     ("L     MW 0\n+I", 9, 1,

@@ -134,7 +134,7 @@ def test_fr_on_timers_against_awlsim(tmp_path, lang):
     without, _ = timers(tmp_path, lang, fr=False)
     for column in ("Q0.1", "Q0.2", "MW10"):         # the FRs restart T 1, T 2, T 3
         assert transitions(expected, column) != transitions(without, column), column
-    assert transitions(expected, "Q0.3") == [(36, 1), (100, 0)]    # status kept
+    assert transitions(expected, "Q0.3") == [(39, 1), (100, 0)]    # status kept
 
 
 @pytest.mark.parametrize("mode", ["serial", "parallel"])

@@ -76,8 +76,8 @@ def time_value_difference(expected, got, values: dict[str, tuple[int, int, bool]
     does not fit it): a word is acceptable if it equals awlsim's at that scan or a
     neighbouring one, or if it lies between what awlsim's own conversions
     (timers.py: getTimevalBin, _seconds_to_s5t_tb*) give for awlsim's remaining
-    time there minus and plus 2 ms (bitbyte reads its time in whole ms, at the start
-    and at the read, awlsim the latch time in s)."""
+    time there minus and plus 1 ms (S7's timers run on the scan's latch time, in
+    whole ms here — LATCH_MS — and in s in awlsim)."""
     from awlsim.core import timers as awl
 
     s5t = {10: awl._seconds_to_s5t_tb10ms, 100: awl._seconds_to_s5t_tb100ms,
@@ -100,9 +100,9 @@ def time_value_difference(expected, got, values: dict[str, tuple[int, int, bool]
                 continue
             base, ours = units(row[column], bcd)
             left = [expected[j][key] for j in near for key in (f"@R{n}", f"@R{n}<")]
-            if not any(base == units(convert(r - 0.002, tb, bcd), bcd)[0] and
-                       units(convert(r - 0.002, tb, bcd), bcd)[1] <= ours <=
-                       units(convert(r + 0.002, tb, bcd), bcd)[1] for r in left):
+            if not any(base == units(convert(r - 0.001, tb, bcd), bcd)[0] and
+                       units(convert(r - 0.001, tb, bcd), bcd)[1] <= ours <=
+                       units(convert(r + 0.001, tb, bcd), bcd)[1] for r in left):
                 return k, column, expected[k][column], row[column]
     return None
 

@@ -21,7 +21,7 @@ def _hand_partitioned(program: Program, channels: int) -> Partition:
             labels[side][name.upper()] = len(parts[side])
         m, op = ins.mnemonic, ins.operand
         p = PartInstr(m, op, ins.line, ins.col, ins.source, list(ins.labels), side,
-                      origin=i)
+                      ins.at_latch, origin=i)
         if side == "BYTE" and m in BYTE_JUMPS:
             p.mnemonic, p.note = BYTE_JUMPS[m], "byte jump on F_B"
         elif side == "BYTE" and m == "END":

@@ -55,7 +55,7 @@ class _Builder:
 
     def copy(self, ins: Instr) -> PartInstr:
         return PartInstr(ins.mnemonic, ins.operand, ins.line, ins.col, ins.source, [],
-                         ins.section, origin=self.cur)
+                         ins.section, ins.at_latch, origin=self.cur)
 
     def synth(self, mnemonic: str, op: Operand | None, note: str) -> PartInstr:
         cause = self.program.instrs[self.cur]

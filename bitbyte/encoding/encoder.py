@@ -35,6 +35,7 @@ class Encoded(NamedTuple):
 
 
 POOL_WORDS = DEF.firmware["pool_words"]
+TIMER_STARTS = ("SD", "SS", "SP", "SF")     # the timer instructions that read the time
 
 
 def encode(program: Program, config: Config = DEFAULT, mode: str = "serial") -> Encoded:
@@ -114,7 +115,10 @@ def _encode_byte_side(program: Program, instr: Instr, mode: str, pool: list[int]
             return isa.immediate_word(op.value)
         return isa.pool_word(pool.index(op.value & 0xFFFFFFFF))
     opcode = isa.BYTE_OPCODES[isa.byte_key(m, op.area)]
-    return isa.word_operand_word(opcode, op.area, op.index)
+    word = isa.word_operand_word(opcode, op.area, op.index)
+    if instr.at_latch and m in TIMER_STARTS:
+        word |= 1 << isa.AT_LATCH_BIT        # the time is the scan's latch time (S7)
+    return word
 
 
 # --------------------------------------------------------------------------------------

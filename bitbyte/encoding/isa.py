@@ -6,8 +6,8 @@ of hiding in both.  The numbers come from bitbyte/lang/definition.toml, as do th
 generated `rtl/bit_isa.vh` and `firmware_byte/bb_isa.h`.
 
 Word layout (bits):  31..24 opcode | 23..16 reserved (0, except bit 16 wait-for-update
-of a bit-side T/C read, bits 17/18 from-status / status-wait of a byte T/C instruction:
-docs/isa.md) | 15..12 area | 11..0 index, or 15..0 the jump target, or all operand
+of a bit-side T/C read, bits 17/18 from-status / status-wait of a byte T/C instruction,
+bit 19 at-latch of a timer: docs/isa.md) | 15..12 area | 11..0 index, or 15..0 the jump target, or all operand
 bits 0.
 """
 from __future__ import annotations
@@ -20,6 +20,7 @@ INDEX_BITS = DEF.fields["index"].width     # operand index field: byte*8+bit, or
 WAIT_UPDATE_BIT = DEF.wait_update_bit      # T/C read in a bit part: wait for this scan's update
 FROM_STATUS_BIT = DEF.from_status_bit      # byte T/C word: input from T_ENABLE / C_PULSE bit n
 STATUS_WAIT_BIT = DEF.status_wait_bit      # ... after the bit side wrote it this scan
+AT_LATCH_BIT = DEF.at_latch_bit            # byte SD/SS/SP/SF: the time is the scan's latch time
 TARGET_BITS = DEF.fields["target"].width   # jump target field: an instruction address
 
 # Logic function field f of loads/combines and opening parentheses.

@@ -69,6 +69,7 @@ class Definition:
         self.wait_update_bit: int = w["wait_update"]
         self.from_status_bit: int = w["from_status"]
         self.status_wait_bit: int = w["status_wait"]
+        self.at_latch_bit: int = w["at_latch"]
         self.byte_bit: int = w["byte_bit"]
         self.count_from_accu2_bit: int = w["count_from_accu2"]
 

@@ -181,6 +181,8 @@ def c_isa(d: Definition) -> str:
                "T/C instruction: enable / count input from T_ENABLE / C_PULSE bit n"),
          _cdef("BB_STATUS_WAIT", _h(1 << d.status_wait_bit, 5),
                "with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first"),
+         _cdef("BB_AT_LATCH", _h(1 << d.at_latch_bit, 5),
+               "SD/SS/SP/SF: the time is LATCH_MS (the scan's latch), not the instruction's"),
          _cdef("BB_COUNT_FROM_ACCU2", _h(1 << d.count_from_accu2_bit, 3),
                "shifts: the count is ACCU2's low byte, not index n"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]

@@ -80,6 +80,9 @@ class Instr:
     line/col are 1-based and point at the mnemonic; source is the whole source line.
     section is "" in an ordinary (mixed) program, "BIT" or "BYTE" for an instruction
     of a hand-partitioned program's `BIT:` / `BYTE:` section (parallel mode only).
+    at_latch: a timer instruction (SD SS SP SF) whose time is its scan's latch time,
+    not its own (the word's at-latch bit, LATCH_MS): S7's timers, which the `.awl`
+    front end emits (docs/s7.md "Timers"); the IL has no syntax for it.
     """
 
     mnemonic: str
@@ -89,6 +92,7 @@ class Instr:
     source: str = ""
     labels: list[str] = field(default_factory=list)
     section: str = ""
+    at_latch: bool = False
 
 
 @dataclass(frozen=True)

@@ -88,6 +88,7 @@ AREA_NAME = {"de": {"C": "Z"}, "en": {"C": "C"}}     # an English area as writte
 STATUS_AREAS = ("T", "C")   # status bits a combine reads (timers, counters)
 TIMER_STARTS = ("SP", "SE", "SD", "SS", "SF")  # canonical: S7 SI, SV, SE, SS, SA
 IL_TIMER = {"SP": "SD", "SE": "SS", "SD": "SD", "SS": "SS", "SF": "SF"}
+IL_TIMER_STARTS = ("SD", "SS", "SP", "SF")   # IL timers that read the time: at_latch
 COMBINE = {"A": ("A", 0), "AN": ("A", 1), "O": ("O", 0), "ON": ("O", 1),
            "X": ("X", 0), "XN": ("X", 1)}
 OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),
@@ -1352,20 +1353,6 @@ class StlFrontEnd:
                 w.text.upper() in ("BR", "BIE") for w in stmt.operands[:1])
                 for stmt in self.stmts):
             self.scratch(("BR",))
-        # the scan clock: an IL timer restarted at every scan start, whose elapsed ms
-        # at an S7 start is how far into its scan the timer started
-        self.scan_clock = self.config.timers - 1
-        if self.timer_reads:
-            for stmt in self.stmts:
-                area, rest = _split_area(stmt.operands[0].text) if stmt.operands \
-                    else ("", "")
-                if area == "T" and not rest.startswith("#") and \
-                        self.timer_operand(stmt).index == self.scan_clock:
-                    raise self.unsupported(stmt, f"`T {self.scan_clock}` in a program "
-                                           "that loads a time value (`L T n`, `LC T "
-                                           "n`): the translation keeps the last "
-                                           "timer for its scan clock",
-                                           stmt.operands[0].col)
         self.check_scratch()
 
     def read_blocks(self) -> None:
@@ -1898,6 +1885,8 @@ class StlFrontEnd:
                     and wanted_cc == self.assumed_cc:
                 self.check_overlaps()
                 self.check_local_region()
+                for ins in program.instrs:      # S7's time: the scan's latch (LATCH_MS)
+                    ins.at_latch = ins.mnemonic in IL_TIMER_STARTS
                 return program
             assumed, assumed_acc, self.assumed_cc = wanted, wanted_acc, wanted_cc
         raise self.error(1, 1, "internal error: the states at the labels did not "
@@ -2310,18 +2299,7 @@ class StlFrontEnd:
             if n in self.timer_reads:           # S7's time value at the latch time,
                 values += [(mnem, op, where) for mnem, op in self.timer_running(
                     n, start=True) + self.time_value_update(n, stmt)]
-            if n in self.timer_reads:           # when this execution ran
-                code += [("SET", None)] + self.read_scan_clock(
-                    self.time_value_word(stmt, n, "at"))
             block += [Instr(mnem, op, *where) for mnem, op in code]
-        if values:                              # the scan clock from the latch on
-            clock = Operand("index", area="T", index=self.scan_clock,
-                            text=f"T {self.scan_clock}")
-            where = values[0][2]
-            block = [Instr(mnem, op, *where) for mnem, op in (
-                ("SET", None), ("R", clock), (
-                    "L", Operand("const", area="DINT", value=2 ** 31 - 1,
-                                 text="L#2147483647")), ("SS", clock))] + block
         for mnem, op, where in values:          # after every timer's execution
             if mnem == "@label":
                 inner[op.upper()] = len(block)
@@ -2630,12 +2608,11 @@ class StlFrontEnd:
         """With the RLO = timer_running: the words of time_value_word := S7's
         remaining time in the preset's time base, rounded (awlsim rounds the
         remaining seconds over the base), and as BCD with the time base in bits
-        13..12; jumped over otherwise.  The IL timer started when its instruction
-        ran, S7's at the latch of that scan: the remaining time is preset - elapsed
-        - that offset (the scan clock's elapsed then, kept in a word), at least 0.
+        13..12; jumped over otherwise.  The IL timer runs on its scan's latch time as
+        S7's does (at_latch): the remaining time is preset - elapsed, at least 0.
         `started`: the RLO says the timer has just started — its time value is the
-        preset's (constants) and the offset is taken.  `reload`: what the compiler
-        knows of ACCU1, loaded back afterwards (ACCU2 is then changed)."""
+        preset's (constants).  `reload`: what the compiler knows of ACCU1, loaded
+        back afterwards (ACCU2 is then changed)."""
         label = self.value_label()
         ms, base = self.presets[n], self.timebases[n][0]
         tb = (10, 100, 1000, 10_000)[base]
@@ -2648,21 +2625,19 @@ class StlFrontEnd:
         def timer(k: int) -> Operand:
             return Operand("index", area="T", index=k, text=f"T {k}")
         binary = self.time_value_word(stmt, n, "L")
-        offset = self.time_value_word(stmt, n, "offset")
         code = [("JCN", Operand("label", label=label, text=label))]
-        if started:                             # (RLO = 1: the clock runs on)
+        if started:
             units = ms // tb                    # S5TIME: ms = units * tb
-            code += self.read_scan_clock(offset) + [("L", const(units)), ("T", binary)]
+            code += [("L", const(units)), ("T", binary)]
             if "LC" in forms:
                 code += [("L", const(base << 12 | int(f"{units:03d}", 16))),
                          ("T", self.time_value_word(stmt, n, "LC"))]
         else:
-            # r = max(0, preset - elapsed - offset) ms; L T n: r over the base,
-            # rounded (awlsim: round(); `L`'s in every base, `LC`'s in 10 ms, 100 ms)
+            # r = max(0, preset - elapsed) ms; L T n: r over the base, rounded
+            # (awlsim: round(); `L`'s in every base, `LC`'s in 10 ms, 100 ms)
             zero, store = f"{label}.0", f"{label}.1"
-            code += [("L", const(ms)), ("L", timer(n)), ("-D", None), ("L", offset),
-                     ("-D", None), ("L", self.time_value_word(stmt, n, "at")),
-                     ("+D", None), ("L", const(0)), (">D", None),
+            code += [("L", const(ms)), ("L", timer(n)), ("-D", None),
+                     ("L", const(0)), (">D", None),
                      ("JCN", Operand("label", label=zero, text=zero)),
                      ("+D", None), ("JU", Operand("label", label=store, text=store)),
                      ("@label", zero), ("L", const(0)), ("@label", store)]
@@ -2694,15 +2669,6 @@ class StlFrontEnd:
                                       text=f"{reload.il_value}ms")
                          if reload.il_value is not None else const(reload.value)))
         return code + [("@label", label)]
-
-    def read_scan_clock(self, word: Operand) -> list[tuple[str, Operand | None]]:
-        """With the RLO = 1: the scan clock's ms since this scan's start into `word`
-        (an IL timer's elapsed changes only when its instruction executes)."""
-        clock = Operand("index", area="T", index=self.scan_clock,
-                        text=f"T {self.scan_clock}")
-        return [("L", Operand("const", area="DINT", value=2 ** 31 - 1,
-                              text="L#2147483647")), ("SS", clock), ("L", clock),
-                ("T", word)]
 
     def value_label(self) -> str:
         """A fresh label of the time values' own code (no S7 label starts with @)."""

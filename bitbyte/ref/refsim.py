@@ -265,6 +265,7 @@ class RefSim:
         self.markers = 0
         self.latched_pins = 0        # pins at the previous latch (0 before the first)
         self.last_latch = -1         # clock of the previous latch, -1 = none yet
+        self.latch_clock = 0         # the clock of this scan's latch (LATCH_MS)
         # bit processor
         self.rlo = 0
         self.stack: list[tuple[int, str, int]] = []
@@ -376,6 +377,7 @@ class RefSim:
         """The scan's first clock: the inputs latched in it, ACCU1 / ACCU2 cleared."""
         start = self.clock
         self._latch(start)
+        self.latch_clock = start                 # the time of S7's timers (at_latch)
         self.accu1 = self.accu2 = 0
         self.cc = (0, 0)
         self.ov = self.os = 0
@@ -527,7 +529,9 @@ class RefSim:
             bit = compare(kind[2:], a2, a1)
             self.rlo = combine(kind[0], self.rlo, bit)
         elif kind in TIMERS:
-            self._timer(kind, self.timers[op.index], clock)
+            # S7's timers (at_latch) take the scan's latch time: LATCH_MS
+            self._timer(kind, self.timers[op.index],
+                        self.latch_clock if ins.at_latch else clock)
         elif kind == "R T":
             if self.rlo:
                 self.timers[op.index] = TimerState()    # stopped, status/elapsed/edge 0

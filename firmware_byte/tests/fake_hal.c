@@ -104,6 +104,7 @@ uint32_t hal_bus_read(void *ctx, uint16_t addr) {
       case BB_BUS_DISPATCH_MS:    v = h->disp_ms; break;
       case BB_BUS_DISPATCH_IW:    v = sext16(h->disp_iw); break;
       case BB_BUS_TIME_MS:        v = time_ms(h); break;
+      case BB_BUS_LATCH_MS:       v = h->latch_ms; break;
       case BB_BUS_TICK_DIV:       v = h->tick_div; break;
       case BB_BUS_CLOCK:          v = (uint32_t)h->clock; break;
       case BB_BUS_T_STATUS_LO:    v = (uint32_t)h->t_status; break;

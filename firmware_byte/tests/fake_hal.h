@@ -37,6 +37,7 @@ typedef struct {
   uint32_t disp_ms;          /* TIME_MS in the dispatch's first clock */
   uint16_t disp_iw;          /* IW (instr bits 3..0) in that clock; read sign-extended */
   uint64_t disp_clock;       /* the clock the snapshot was taken in */
+  uint32_t latch_ms;         /* LATCH_MS: TIME_MS at the last latch (set by the test) */
   unsigned snapshots;
   /* DONE */
   unsigned done_count;

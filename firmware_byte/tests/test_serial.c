@@ -267,6 +267,33 @@ static void test_timer_now_first_clock(void) {
   for (unsigned k = 0; k < FH.nlog; k++) CHECK(FH.log[k].addr != BB_BUS_TIME_MS);
 }
 
+static void test_timer_at_latch(void) {
+  /* the at-latch bit (S7's timers): now = LATCH_MS, the scan's latch time, in place of
+   * DISPATCH_MS, in the same clock, so the cost is unchanged */
+  setup();
+  FH.tick_div = 100;
+  FH.latch_ms = 2;                                        /* the scan latched at 2 ms */
+  dispatch(i_imm(3), 1, 0, 0);                            /* preset 3 ms */
+  fh_clear_log();
+  CHECK_EQ(dispatch(i_tmr(BB_OP_SD, 1) | BB_AT_LATCH, 1, 0, 498), 10);
+  CHECK_ACCESS(2, BB_BUS_LATCH_MS, 500);                  /* where DISPATCH_MS would be */
+  CHECK_EQ(FH.log[2].data, 2);
+  CHECK_EQ(S.timer[1].start, 2);                          /* not 4, the dispatch's ms */
+  CHECK_ACCESS(3, BB_BUS_TC_BIT, 501);
+  CHECK_ACCESS(4, BB_BUS_DONE, 507);
+  CHECK_EQ(FH.nlog, 5);
+  CHECK_EQ(S.overruns, 0);
+  /* the next scan latched at 5 ms: d = 5 - 2 = 3 >= 3, whatever the dispatch's ms */
+  FH.latch_ms = 5;
+  dispatch(i_tmr(BB_OP_SD, 1) | BB_AT_LATCH, 1, 0, 590);
+  CHECK_EQ(bb_timer_status(&S, 1), 1);
+  CHECK_EQ(bb_timer_elapsed(&S, 1), 3);
+  /* without the bit the same timer takes the dispatch's time */
+  S.accu1 = 3;
+  dispatch(i_tmr(BB_OP_SD, 2), 1, 0, 698);
+  CHECK_EQ(S.timer[2].start, 6);
+}
+
 static void test_iw_first_clock(void) {
   /* L IW n in serial mode loads the input word of the instruction's first clock, from
    * DISPATCH_IW, even if the input changes 2 clocks later, i.e. in the very clock the
@@ -416,6 +443,7 @@ void suite_serial(void) {
   RUN(test_accu_reset_on_new_scan);
   RUN(test_accu_reset_after_65536_skipped_scans);
   RUN(test_timer_now_first_clock);
+  RUN(test_timer_at_latch);
   RUN(test_iw_first_clock);
   RUN(test_fake_snapshot);
   RUN(test_illegal);
