@@ -147,7 +147,8 @@ const char *bb_class_name(int cls);
  *   hal_wait_dispatch(); t0 = hal_now();
  *   read DISPATCH_INSTR (t0), DISPATCH_CTX (t0+1); its FIRST bit -> ACCUs := 0;
  *   execute (its own bus accesses from t0+2; a timer reads DISPATCH_MS, L IW n reads
- *   DISPATCH_IW: the port's snapshot of the first clock); hal_spend(cost - used - 1)
+ *   DISPATCH_IW: the port's snapshot of the first clock; a timer with the at-latch
+ *   bit LATCH_MS, the scan's latch time); hal_spend(cost - used - 1)
  *   if positive;
  *   write DONE = RLO | rlo_written << 1 (in the last clock of the cost).
  * JU_B / JC_B / JCN_B / END_B belong to a byte program only: dispatched, they are
@@ -155,7 +156,8 @@ const char *bb_class_name(int cls);
  * Returns the clocks the instruction took (= its cost unless it overran). */
 int bb_serial_step(bb_state *s);
 
-/* The instruction's semantics with its own bus accesses (TIME_MS for SD/SS/SP/SF,
+/* The instruction's semantics with its own bus accesses (TIME_MS for SD/SS/SP/SF, or
+ * LATCH_MS with the at-latch bit,
  * IW/QW, all read live; TC_BIT, BYTE_FLAGS, channels), no dispatch protocol and no
  * padding.
  * *rlo is F_B in and out (NULL: s->rlo). Returns the cost class (bb_class).

@@ -203,6 +203,43 @@ async def dispatch_snapshot(dut):
 
 
 @cocotb.test()
+async def latch_snapshot(dut):
+    """LATCH_MS: TIME_MS in the latch clock (read live in that clock, when the byte
+    side of parallel mode may already ask), then held until the next latch."""
+    latch_ms, time_ms = REG["LATCH_MS"].addr, REG["TIME_MS"].addr
+    await reset(dut)
+    await access(dut, REG["TICK_DIV"].addr, 2)   # 2 clocks per ms
+    dut.bus_re_i.value = 1
+    clock = 0                                    # the first latch starts the time base
+
+    async def tick():
+        nonlocal clock
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+        clock += 1
+
+    async def reads(addr) -> int:
+        dut.bus_addr_i.value = addr
+        await Timer(1, unit="ns")
+        return int(dut.bus_rdata_o.value)
+
+    for latch_clock in (0, 9, 16):
+        while clock < latch_clock:
+            await tick()
+        dut.latch_i.value = 1
+        now = await reads(time_ms)
+        assert now == latch_clock // 2
+        assert await reads(latch_ms) == now, ("live in the latch clock", latch_clock)
+        await tick()
+        dut.latch_i.value = 0
+        for _ in range(3):                       # held while TIME_MS goes on
+            assert await reads(latch_ms) == now, ("held", clock)
+            await tick()
+        assert await reads(time_ms) > now
+    dut.bus_re_i.value = 0
+
+
+@cocotb.test()
 async def status_vectors(dut):
     """The six 64-bit vectors of the timer/counter status buffer, each on its LO/HI
     register pair (addresses from bitbyte/lang/definition.toml): distinct random

@@ -385,10 +385,9 @@ class Gen:
         labels: dict[int, str] = {}
         jumps: dict[int, tuple[str, str]] = {}
         for n in range(networks - 1):
-            # (timer programs: no jumps, so that every scan takes as long: a timer
-            # starts at its instruction, not at the latch as in awlsim, and its
-            # run-out may come two scans late after a long scan; docs/s7.md)
-            if r.random() < 0.25 and not self.timer_kind:
+            # (timer programs too: their jumps make scans of different lengths, which
+            # S7's timers do not see, as they run on the latch time; docs/s7.md)
+            if r.random() < 0.25:
                 target = r.randrange(n + 1, networks)
                 name = labels.setdefault(target, f"M{target:03d}")
                 jumps[n] = (r.choice(JUMPS[self.lang]), name)

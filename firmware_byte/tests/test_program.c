@@ -41,6 +41,26 @@ static const uint32_t fig13[] = {
   (uint32_t)BB_OP_END_B << 24,              /* END_B            0 */
 };
 
+static void test_timer_at_latch_parallel(void) {
+  /* the same byte part with SD T1's at-latch bit (S7's timers): LATCH_MS read in
+   * TIME_MS's place, in the same clock; the scan's 52 clocks unchanged */
+  uint32_t part[NWORDS(fig13)];
+  memcpy(part, fig13, sizeof part);
+  part[2] |= BB_AT_LATCH;
+  setup();
+  load(part, NWORDS(part));
+  S.mw[1] = 5;
+  FH.fby_val[0] = 1;
+  FH.clock = 2000;         /* ms 2 */
+  FH.latch_ms = 1;         /* the scan latched in ms 1 */
+  fh_clear_log();
+  CHECK_EQ(bb_run_scan(&S), 52);
+  CHECK_ACCESS(1, BB_BUS_LATCH_MS, 2011);
+  CHECK_EQ(FH.log[1].data, 1);
+  CHECK_EQ(S.timer[1].start, 1);
+  CHECK_EQ(S.overruns, 0);
+}
+
 static void test_fig13_straight(void) {
   setup();
   load(fig13, NWORDS(fig13));
@@ -520,6 +540,7 @@ static void test_run_modes(void) {
 
 void suite_program(void) {
   RUN(test_fig13_straight);
+  RUN(test_timer_at_latch_parallel);
   RUN(test_jump_on_compare);
   RUN(test_jump_on_read);
   RUN(test_backward_loop);
