@@ -87,5 +87,53 @@ module scan_ctrl (
       end
     end
   end
+
+`ifdef FORMAL
+  // formal/scan_ctrl.sby, k-induction, from outside the counters: the clocks of a scan
+  // are the executing clocks since its latch (f_exec, wrapping, minus its value at the
+  // latch), the longest scan is the largest scan_cycles_o ever reported, the count is
+  // the scan_done_o pulses, and the watchdog fires exactly on the clock a scan without
+  // END reaches the limit. (The limit is a setting: stable while the CPU runs.)
+  `include "formal_past.vh"
+  always @(posedge clk_i) if (f_past_valid) assume ($stable(watchdog_limit_i));
+  reg [31:0] f_exec, f_at_latch, f_max, f_done;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      f_exec     <= 32'd0;
+      f_at_latch <= 32'd0;
+      f_max      <= 32'd0;
+      f_done     <= 32'd0;
+    end else begin
+      if (exec_o)  f_exec     <= f_exec + 32'd1;
+      if (latch_o) f_at_latch <= f_exec;
+      if (scan_done_o) begin
+        f_done <= f_done + 32'd1;
+        if (scan_cycles_o > f_max) f_max <= scan_cycles_o;
+      end
+    end
+  // the clocks of the current scan once this clock ends (this one included)
+  wire [31:0] f_scan_len = f_exec + 32'd1 - (latch_o ? f_exec : f_at_latch);
+  always @(*) if (rst_ni) begin
+    assert (cycle_q_o == f_exec - f_at_latch);
+    assert (scan_count_o == f_done + {31'd0, scan_done_o});
+    assert (scan_cycles_max_o == ((scan_done_o && scan_cycles_o > f_max) ? scan_cycles_o
+                                                                          : f_max));
+    // a scan still running has not reached the limit (else FAULT): no count wraps
+    if (exec_o && !first_q) assert (cycle_q_o < watchdog_limit_i);
+    if (first_q) assert (exec_o);                    // (induction)
+  end
+  always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    // a completed scan reports its clocks
+    if ($past(exec_o && end_i)) assert (scan_cycles_o == cycle_q_o && scan_done_o);
+    // the watchdog: FAULT from the clock after one that, without END, reached the limit
+    // (written as <=: a cell apart from the RTL's >=, for make mutate's mapping)
+    assert (fault_o == ($past(fault_o) || $past(exec_o && !end_i &&
+                                               watchdog_limit_i <= f_scan_len)));
+  end
+  always @(*) if (rst_ni) begin
+    cover (scan_count_o == 32'd2 && scan_cycles_max_o == 32'd3 && scan_cycles_o == 32'd2);
+    cover (fault_o && watchdog_limit_i == 32'd3);
+  end
+`endif
 endmodule
 `default_nettype wire

@@ -129,6 +129,29 @@ async def watchdog_limit_uses_every_bit(dut):
 
 
 @cocotb.test()
+async def watchdog_fires_at_limits_with_low_bits_set(dut):
+    """Limits 2**k - 1 (every bit below k set), k = 2 .. 11: the fault comes exactly
+    after `limit` clocks without END (make mutate: the limit's bit 17 XORed with its
+    bit 6 let a scan run past a limit of 100)."""
+    await reset(dut)
+    for k in range(2, 12):
+        limit = (1 << k) - 1
+        dut.rst_ni.value, dut.run_i.value = 0, 0    # reset again, the clock running
+        dut.watchdog_limit_i.value = limit
+        await clock(dut)
+        dut.rst_ni.value = 1
+        dut.mem_ready_i.value = 1
+        await clock(dut)
+        dut.run_i.value = 1
+        await clock(dut)
+        for _ in range(limit - 1):
+            await clock(dut)                 # latch .. clock limit-1: no END yet
+        assert int(dut.fault_o.value) == 0, limit
+        await clock(dut)                     # clock `limit` without END
+        assert int(dut.fault_o.value) == 1, limit
+
+
+@cocotb.test()
 async def longest_scan_compares_every_bit(dut):
     """Scans of 2**k + 1 clocks, each followed by one of 40: the longest stays the
     long one, for k up to 12 (make mutate: a compare ignoring bit 11 of the longest

@@ -132,6 +132,16 @@ MUTATIONS = [
     ("tc_status", "tc_status.v", "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val;",
      "if (en_we && !en_cnt) timer_enable_o[en_idx]  <= en_val && ctl_we_i;",
      "timer_enable_o[f_n] == f_tv"),             # the waiting reader gets a wrong enable
+    # scan_ctrl: the counters and the watchdog from outside (f_exec, f_max, f_done)
+    ("scan_ctrl", "scan_ctrl.v",
+     "wire watchdog_fire = exec_o && !end_i && (cycles_now >= watchdog_limit_i);",
+     "wire watchdog_fire = exec_o && !end_i && (cycles_now > watchdog_limit_i);",
+     "watchdog_limit_i"),                        # a clock too late
+    ("scan_ctrl", "scan_ctrl.v", ": (cycle_q_o >= scan_cycles_max_o);",
+     ": (cycle_q_o > scan_cycles_max_o);", "assert (scan_cycles_max_o =="),  # one longer missed
+    ("scan_ctrl", "scan_ctrl.v", "          scan_count_o  <= scan_count_o + 32'd1;",
+     "          scan_count_o  <= scan_count_o + {31'd0, run_i};",
+     "assert (scan_count_o =="),                 # a scan ending in STOP not counted
     ("dispatch", "dispatch.v", "else if (latch_i) first_q <= 1'b1;",
      "else if (1'b0) first_q <= 1'b1;"),                   # a new scan keeps the ACCUs
     ("dispatch", "dispatch.v", "assign done_o        = req_i && done_we_i;",
