@@ -107,20 +107,26 @@ async def watchdog_exactly_at_limit(dut):
     assert int(dut.fault_o.value) == 1 and int(dut.scan_count_o.value) == 1
 
 
+async def restart(dut, limit: int) -> None:
+    """Reset again with the clock running, a new limit, then RUN: the next clock is
+    scan 0's latch."""
+    dut.rst_ni.value, dut.run_i.value = 0, 0
+    dut.watchdog_limit_i.value = limit
+    await clock(dut)
+    dut.rst_ni.value = 1
+    dut.mem_ready_i.value = 1
+    await clock(dut)
+    dut.run_i.value = 1
+    await clock(dut)
+
+
 @cocotb.test()
 async def watchdog_limit_uses_every_bit(dut):
     """A limit of 2**k + 4 lets scans of 8 clocks run, for every bit k above the
     scan's length (make mutate: a limit bit stuck at 0 fired the watchdog early)."""
     await reset(dut)
     for k in range(4, 32):
-        dut.rst_ni.value, dut.run_i.value = 0, 0    # reset again, the clock running
-        dut.watchdog_limit_i.value = (1 << k) + 4
-        await clock(dut)
-        dut.rst_ni.value = 1
-        dut.mem_ready_i.value = 1
-        await clock(dut)
-        dut.run_i.value = 1
-        await clock(dut)
+        await restart(dut, (1 << k) + 4)
         for _ in range(2):
             for _ in range(7):
                 await clock(dut)             # latch + 6 clocks
@@ -136,14 +142,7 @@ async def watchdog_fires_at_limits_with_low_bits_set(dut):
     await reset(dut)
     for k in range(2, 12):
         limit = (1 << k) - 1
-        dut.rst_ni.value, dut.run_i.value = 0, 0    # reset again, the clock running
-        dut.watchdog_limit_i.value = limit
-        await clock(dut)
-        dut.rst_ni.value = 1
-        dut.mem_ready_i.value = 1
-        await clock(dut)
-        dut.run_i.value = 1
-        await clock(dut)
+        await restart(dut, limit)
         for _ in range(limit - 1):
             await clock(dut)                 # latch .. clock limit-1: no END yet
         assert int(dut.fault_o.value) == 0, limit
