@@ -208,6 +208,11 @@ def _parser() -> argparse.ArgumentParser:
                         "per program line the RLO after it, the operand bit it read, "
                         "ACCU1/ACCU2 after word instructions, or 'not executed' "
                         "(serial and parallel mode)")
+    r.add_argument("--exchange-log", default=None, metavar="FILE",
+                   help="parallel and free-running mode, Verilator: write every condition "
+                        "that crosses to FILE (CSV: the bit side's FBI/FBY retirements, "
+                        "the byte side's channel and cell accesses and SCAN_DONE, each "
+                        "with its clock and its side's scan; docs/exchange.md)")
     r.add_argument("--force", action="append", default=[], metavar="OP=V[@FROM-TO]",
                    help="force an input or output bit (I, PI, Q, PQ or its symbol) to 0 "
                         "or 1 in scans FROM..TO (default: all; @K: scan K only; @K-: "
@@ -390,6 +395,11 @@ def cmd_run(args) -> int:
             raise UsageError(f"--status {args.status}: not a scan of this run "
                              f"(scans 0..{(args.scans or 1) - 1})")
         job.status_scan = args.status
+    if args.exchange_log is not None:
+        if args.mode == "serial" or args.sim != "verilator":
+            raise UsageError("--exchange-log: parallel and free-running mode on Verilator "
+                             "(serial mode has no crossings)")
+        job.xlog = str(Path(args.exchange_log).resolve())
     if args.force:
         forces = [parse_force(text, program.symbols, prep.config, program.symbol_names)
                   for text in args.force]
@@ -452,7 +462,8 @@ def cmd_run_plant(args) -> int:
                        ("--marker-write-buffer", args.marker_write_buffer),
                        ("--tc-path", args.tc_path != "channel"),
                        ("--clock-mhz", args.clock_mhz != "100"),
-                       ("--status", args.status is not None), ("--force", args.force)):
+                       ("--status", args.status is not None), ("--force", args.force),
+                       ("--exchange-log", args.exchange_log is not None)):
         if given:
             raise UsageError(f"{opt} does not apply to a plant (the plant file sets it)")
     try:

@@ -172,7 +172,35 @@ struct Run {
   struct Status { uint64_t count = 0; unsigned rlo = 0, opnd = 0; int32_t accu1 = 0, accu2 = 0; };
   std::map<uint32_t, Status> status, byte_status;  // the bit processor's; the byte part's
   uint64_t byte_seq = 0;                              // byte-part instructions seen completed
+  // --exchange-log: every condition that crosses, one line each, for a model of the
+  // exchange (tests/exchange_model.py): the bit side's retirements with an FBI / FBY
+  // operand (clock, its scan, the instruction word, the operand it read, the RLO after
+  // it) and the byte side's channel and cell accesses and SCAN_DONE (clock, its scan,
+  // the address, bit 0 of the data, 1 for a write).
+  FILE* xlog = nullptr;
+  std::vector<uint32_t> bit_words;                    // the bit program, by address
+  uint64_t byte_scans = 0;                            // SCAN_DONE writes so far
+  void log_bit_exchange() {
+    if (!xlog || !top->dbg_ret_valid_o) return;
+    const uint32_t pc = top->dbg_ret_pc_o;
+    if (pc >= bit_words.size() || ((bit_words[pc] >> BB_AREA_SHIFT) & BB_AREA_MASK) != BB_AREA_FB)
+      return;
+    std::fprintf(xlog, "%llu,bit,%llu,%u,%u,%u\n", (unsigned long long)(n - 1),
+                 (unsigned long long)scans, bit_words[pc], unsigned(top->dbg_ret_opnd_o),
+                 unsigned(top->dbg_rlo_o));
+  }
+  void log_byte_exchange(uint16_t addr, uint32_t data, bool write) {  // in its clock
+    if (!xlog) return;
+    const bool cell = addr >= BB_BUS_FBY(0) && addr < BB_BUS_FBI(0) + BB_BUS_CHANNELS;
+    const bool window = addr >= BB_BUS_MCELL(0) && addr < BB_BUS_MCELL(0) + BB_BUS_MCELLS;
+    if (!cell && !window && addr != BB_BUS_SCAN_DONE) return;
+    std::fprintf(xlog, "%llu,byte,%llu,%u,%u,%u\n", (unsigned long long)n,
+                 (unsigned long long)byte_scans, unsigned(addr), unsigned(data & 1),
+                 unsigned(write));
+    if (addr == BB_BUS_SCAN_DONE) ++byte_scans;
+  }
   void observe_retirement() {
+    log_bit_exchange();
     if (int64_t(scans) != rf->status_scan) {
       byte_seq = bb_ret_seq(bb);
       return;
@@ -271,6 +299,7 @@ extern "C" uint32_t hal_bus_read(void* ctx, uint16_t addr) {
     r.fall();
     const uint32_t data = r.top->bus_rdata_o;
     const bool ready = r.top->bus_ready_o;
+    if (ready) r.log_byte_exchange(addr, data, false);
     r.end_clock();
     if (ready) return data;  // else: a byte-side stall, the access repeats
   }
@@ -284,6 +313,7 @@ extern "C" void hal_bus_write(void* ctx, uint16_t addr, uint32_t data) {
     r.top->bus_we_i = 1;
     r.fall();
     const bool ready = r.top->bus_ready_o;
+    if (ready) r.log_byte_exchange(addr, data, true);
     r.end_clock();
     if (ready) return;
   }
@@ -412,6 +442,15 @@ int main(int argc, char** argv) {
   // ---- reset, program load, memory clear, time base, RUN (the protocol the Python
   // model assumes)
   const auto image = read_hex(rf.prog, prog_words);
+  if (!rf.xlog.empty()) {
+    run.xlog = std::fopen(rf.xlog.c_str(), "w");
+    if (!run.xlog) die("cannot write %s", rf.xlog.c_str());
+    std::fputs("clock,side,scan,at,value,rlo\n", run.xlog);
+    for (auto [a, w] : image) {
+      if (a >= run.bit_words.size()) run.bit_words.resize(a + 1, 0);
+      run.bit_words[a] = w;
+    }
+  }
   top.rst_ni = 0;
   top.run_i = 0;
   top.watchdog_limit_i = uint32_t(rf.watchdog);
@@ -487,6 +526,7 @@ int main(int argc, char** argv) {
     out.flush();
     if (std::fclose(out.f) != 0) die("error writing %s", rf.trace.c_str());
   }
+  if (run.xlog && std::fclose(run.xlog) != 0) die("error writing %s", rf.xlog.c_str());
   if (d.wave) d.wave->close();
   top.final();
   if (convert_vcd) {

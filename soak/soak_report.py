@@ -61,8 +61,11 @@ def main(argv=None) -> int:
         "`t_us` and `cycles` included, against the reference interpreter) and in "
         "parallel mode with the handshake flip-flops and with the strict queues (every "
         "traced value per scan against the reference interpreter in serial mode), "
-        "timers and counters included (soak/test_soak.py says how). "
-        f"That is {3 * programs} hardware runs.",
+        "timers and counters included (soak/test_soak.py says how), and in "
+        "free-running mode with the free-running queues (every read and the loss "
+        "counts against a model of the queues) and with the marker area (every read "
+        "within the snapshot bound; tests/exchange_model.py). "
+        f"That is {5 * programs} hardware runs.",
         "",
         f"**Mismatches: {len(mismatches)}.**" + (
             " Saved under build/soak/cases/:" if mismatches else ""),

@@ -1,6 +1,7 @@
 """The soak (`make soak N=10000`, issue 15): N random programs on the Verilator harness
 against the reference interpreter, in serial mode and in parallel mode with both
-exchanges (the handshake flip-flops, the strict queues).  Not part of `make test`
+exchanges (the handshake flip-flops, the strict queues), and in free-running mode
+against a model of the exchange.  Not part of `make test`
 (pyproject's testpaths do not include soak/); `make test`'s random tests are the same
 comparisons on a few hundred programs.
 
@@ -18,6 +19,11 @@ What is compared:
   depend on it) reads a timer that the program never starts (value 0 in every mode).
   Counters stay as they are (by scan).
 
+* free-running, free-running queues and marker area: the program of the parallel
+  comparison for FREE_SCANS bit scans with `--exchange-log`; every read and the
+  queues' loss counts against a model of the queues, every read of the marker area
+  within its snapshot bound (tests/exchange_model.py, free_check).
+
 The first BITBYTE_SOAK_COCOTB programs (40) also run through cocotb on Icarus and on
 Verilator (test_soak_cocotb_sample), serial and parallel (handshake and queue in turn).
 
@@ -33,8 +39,11 @@ adds them up into docs/soak.md.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
+import re
 import random
 import shlex
 import time
@@ -49,6 +58,7 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.run.prepare import prepare_run
 from bitbyte.sim.cocotb_runner import records_from_rows, run_jobs
 from coverage_count import Coverage
+from exchange_model import TO_BIT, TO_BYTE, check_marker, check_queues, read_log
 from randprog import (FULL_WATCH, long_timers, random_mixed_program, random_mixed_stimulus,
                       random_mixed_watch, random_parallel_program, random_program,
                       random_scan_stimulus, random_stimulus, random_watch)
@@ -188,6 +198,50 @@ class Case:
         return problems
 
 
+FREE_SCANS = 40
+LOSSES = re.compile(r"queue losses +overflows to-byte (\d+) to-bit (\d+), underflows "
+                    r"to-byte (\d+) to-bit (\d+)")
+
+
+def free_check(tmp: Path, index: int, family: Family) -> list[str]:
+    """Free-running mode (docs/exchange.md): the program of the parallel comparison for
+    FREE_SCANS bit scans with every crossing logged. With the free-running queues each
+    read must give the value a model of the queues gives and the run's loss counts
+    must be the model's; with the marker area each read must keep the snapshot bound
+    (tests/exchange_model.py)."""
+    seed = SEED * 100000 + index
+    name = f"{family.name}{seed}f"
+    il, stim = tmp / f"{name}.il", tmp / f"{name}.csv"
+    il.write_text(long_timers(family.program(seed), random.Random(seed)))
+    stim.write_text(random_scan_stimulus(seed, FREE_SCANS))
+    problems = []
+    for exchange in ("queue-free", "marker"):
+        log = tmp / f"{name}.{exchange}.xlog.csv"
+        argv = ["run", str(il), "--sim", "verilator", "--stimulus", str(stim), "--scans",
+                str(FREE_SCANS), "--watchdog", str(PAR_WATCHDOG), "--mode", "free",
+                "--exchange", exchange, "--exchange-log", str(log)]
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            run_hw(argv)
+        crossings, _ = read_log(log)
+        if exchange == "marker":
+            problem = check_marker(crossings)
+        else:
+            found = LOSSES.search(out.getvalue())
+            if not found:
+                raise Mismatch(f"{name}: no queue losses in the summary of bitbyte "
+                               f"{shlex.join(argv)}")
+            ovf_byte, ovf_bit, unf_byte, unf_bit = map(int, found.groups())
+            problem = check_queues(crossings, {TO_BYTE: (ovf_byte, unf_byte),
+                                               TO_BIT: (ovf_bit, unf_bit)})
+        if problem is not None:
+            where = save_case(f"{name}-free-{exchange}", {
+                "program.il": il.read_text(), "stimulus.csv": stim.read_text(),
+                "exchange-log.csv": log.read_text(), "model.txt": problem + "\n"}, argv)
+            problems.append(f"{name}: free-running, {exchange}: {problem} ({where})")
+    return problems
+
+
 def serial_check(tmp: Path, index: int, family: Family, cov: Coverage) -> str | None:
     problems = Case(tmp, index, family, cov, parallel=False).on_harness(tmp)
     return problems[0] if problems else None
@@ -213,6 +267,7 @@ def test_soak_chunk(chunk, tmp_path):
             if problem:
                 problems.append(problem)
             problems += parallel_check(tmp_path, index, family, cov)
+            problems += free_check(tmp_path, index, family)
         except Mismatch as exc:
             problems.append(f"program {index}: {exc}")
     OUT.mkdir(parents=True, exist_ok=True)
