@@ -175,8 +175,9 @@ struct Run {
   // --exchange-log: every condition that crosses, one line each, for a model of the
   // exchange (tests/exchange_model.py): the bit side's retirements with an FBI / FBY
   // operand (clock, its scan, the instruction word, the operand it read, the RLO after
-  // it) and the byte side's channel and cell accesses and SCAN_DONE (clock, its scan,
-  // the address, bit 0 of the data, 1 for a write).
+  // it), the clock that latches each bit scan after scan 0 (`latch`), and the byte
+  // side's channel and cell accesses and SCAN_DONE (clock, its scan, the address, bit 0
+  // of the data, 1 for a write).
   FILE* xlog = nullptr;
   std::vector<uint32_t> bit_words;                    // the bit program, by address
   uint64_t byte_scans = 0;                            // SCAN_DONE writes so far
@@ -270,6 +271,9 @@ struct Run {
             "more scans", (unsigned long long)scans, host_writes.size());
       record();
       ++scans;
+      if (xlog)  // END ran in the clock that just ended: this one latches the next scan
+        std::fprintf(xlog, "%llu,bit,%llu,latch,0,0\n", (unsigned long long)n,
+                     (unsigned long long)scans);
       queue_force(int64_t(scans));
       if (scans >= want_scans || (n >= until && scans >= until_min_scans)) std::longjmp(stop, 1);
       if (by_scan) apply_stim(scans);  // the next clock latches scan `scans`

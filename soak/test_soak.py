@@ -223,9 +223,9 @@ def free_check(tmp: Path, index: int, family: Family) -> list[str]:
         out = io.StringIO()
         with contextlib.redirect_stdout(out):
             run_hw(argv)
-        crossings, _ = read_log(log)
+        crossings, snaps = read_log(log)
         if exchange == "marker":
-            problem = check_marker(crossings)
+            problem = check_marker(crossings, snaps)
         else:
             found = LOSSES.search(out.getvalue())
             if not found:

@@ -16,11 +16,11 @@ read, the RLO after it) and the byte side's channel and cell accesses and SCAN_D
   counts against the model's. Positions come from the scan numbers of the log, not
   from the RTL's pointers, and the clocks order the two sides.
 * **Marker area** (`marker`, without the write buffer): the reader reads each cell of
-  its snapshot, taken at its own scan start from the writer's cells. Checked as the
-  documented bound, not clock for clock: every read of a cell in a reader's scan gives
-  the same value, and that value is one the writer's cell held at some clock from a few
-  clocks before that scan's first crossing to the first read (a write a scan earlier
-  than that is visible: "within the reader's next complete scan").
+  its snapshot, taken from the writer's cells in the reader's snapshot clock (the bit
+  side's END clock before the scan, the byte side's SCAN_DONE): every read of a cell
+  in a reader's scan gives the same value, the writer's cell as it was then (a write
+  in the snapshot clock itself allowed either way). So a condition written before the
+  reader's scan starts is seen in that scan: "within the reader's next complete scan".
 """
 from __future__ import annotations
 
@@ -51,14 +51,19 @@ class Crossing:
     value: int         # written, or read
 
 
-def read_log(path: Path) -> tuple[list[Crossing], dict[str, list[int]]]:
-    """The crossings in clock order, and each side's scan-start clocks as far as the log
-    shows them (the byte side's: the clock after each SCAN_DONE)."""
+def read_log(path: Path) -> tuple[list[Crossing], dict[str, dict[int, int]]]:
+    """The crossings in clock order, and each side's snapshot clocks by scan: the clock
+    a scan's marker snapshot is taken in (the bit side's: its END clock, the one before
+    the latch of the next scan; the byte side's: its SCAN_DONE write). Scan 0's is not
+    in the log."""
     crossings: list[Crossing] = []
-    starts: dict[str, list[int]] = {"bit": [], "byte": [0]}
+    snaps: dict[str, dict[int, int]] = {"bit": {}, "byte": {}}
     with open(path, newline="") as f:
-        for row in csv.DictReader(f):
+        for n, row in enumerate(csv.DictReader(f), start=2):
             clock, side, scan = int(row["clock"]), row["side"], int(row["scan"])
+            if side == "bit" and row["at"] == "latch":
+                snaps["bit"][scan] = clock - 1
+                continue
             at, value = int(row["at"]), int(row["value"])
             if side == "bit":
                 op, cell = at >> 24, at & 0xFFF
@@ -67,8 +72,11 @@ def read_log(path: Path) -> tuple[list[Crossing], dict[str, list[int]]]:
                                               int(row["rlo"])))
                 elif (op & DEF.logic_mask) == isa.LOAD_BASE:    # LD/A/O/X[N] FBI k
                     crossings.append(Crossing(clock, side, scan, TO_BIT, False, cell, value))
+                else:
+                    raise ValueError(f"{path}:{n}: a bit instruction on a channel that "
+                                     f"is neither `= FBY k` nor a read: {at:#010x}")
             elif at == SCAN_DONE:
-                starts["byte"].append(clock + 1)
+                snaps["byte"][scan + 1] = clock
             elif FBY0 <= at < FBY0 + CHANNELS:                 # READ FBY k
                 crossings.append(Crossing(clock, side, scan, TO_BYTE, False, at - FBY0, value))
             elif FBI0 <= at < FBI0 + CHANNELS:                 # WRITE FBI k
@@ -78,7 +86,7 @@ def read_log(path: Path) -> tuple[list[Crossing], dict[str, list[int]]]:
                 crossings.append(Crossing(clock, side, scan, TO_BIT if write else TO_BYTE,
                                           write, at - MCELL0, value))
     crossings.sort(key=lambda c: c.clock)
-    return crossings, starts
+    return crossings, snaps
 
 
 def check_queues(crossings: list[Crossing], losses: dict[str, tuple[int, int]],
@@ -126,21 +134,25 @@ def check_queues(crossings: list[Crossing], losses: dict[str, tuple[int, int]],
     return None
 
 
-def check_marker(crossings: list[Crossing], latency: int = 4) -> str | None:
-    """None if the marker area's reads keep the documented bound (the module's
-    docstring); else the first read that does not. `latency`: clocks a write may take
-    to reach the snapshots (the region merges a cell into its word in two)."""
+def check_marker(crossings: list[Crossing], snaps: dict[str, dict[int, int]],
+                 latency: int = 1) -> str | None:
+    """None if the marker area's reads keep the snapshot semantics (the module's
+    docstring); else the first read that does not. A reader scan's snapshot is taken in
+    its snapshot clock S (read_log): every read of a cell in that scan gives one value,
+    the writer's cell as it was after clock S - latency or a write up to clock S
+    (marker_region.v: a write reaches the snapshots from the next clock). Scan 0, whose
+    snapshot clock the log does not show: a value the cell held before the scan's first
+    crossing."""
     for direction, reader in ((TO_BYTE, "byte"), (TO_BIT, "bit")):
         mine = [c for c in crossings if c.direction == direction]
         history: dict[int, list[tuple[int, int]]] = {}       # cell -> (clock, value)
         for c in mine:
             if c.write:
                 history.setdefault(c.cell, []).append((c.clock, c.value))
-        span: dict[int, tuple[int, int]] = {}                # reader scan -> first, last
+        first_crossing: dict[int, int] = {}
         for c in crossings:
             if c.side == reader:
-                first, last = span.get(c.scan, (c.clock, c.clock))
-                span[c.scan] = (min(first, c.clock), max(last, c.clock))
+                first_crossing.setdefault(c.scan, c.clock)
         got: dict[tuple[int, int], Crossing] = {}           # (scan, cell) -> first read
         for c in mine:
             if c.write:
@@ -151,10 +163,13 @@ def check_marker(crossings: list[Crossing], latency: int = 4) -> str | None:
                         f"{first.clock} and {c.value} in clock {c.clock}, both in "
                         f"{reader} scan {c.scan}: not one snapshot")
         for (scan, cell), read in got.items():
-            # the snapshot was taken between the reader's last crossing of the scan
-            # before and its first of this one
-            lo = span[scan - 1][1] - latency if scan - 1 in span else -1
-            hi = span[scan][0]
+            if scan in snaps[reader]:
+                hi = snaps[reader][scan]
+                lo = hi - latency
+            elif scan == 0:
+                lo, hi = -1, first_crossing[scan]
+            else:
+                return f"{direction}: {reader} scan {scan} has no snapshot clock in the log"
             writes = history.get(cell, [])
             held = {next((v for t, v in reversed(writes) if t <= lo), 0)}
             held |= {v for t, v in writes if lo < t <= hi}

@@ -35,13 +35,13 @@ def free_run(tmp: Path, seed: int, exchange: str):
         rc = cli.main(["run", str(il), "--stimulus", str(stim), "--scans", str(SCANS),
                        "--mode", "free", "--exchange", exchange, "--exchange-log", str(log)])
     assert rc == 0, out.getvalue()
-    crossings, _ = read_log(log)
+    crossings, snaps = read_log(log)
     found = LOSSES.search(out.getvalue())
     losses = None
     if found:
         ovf_byte, ovf_bit, unf_byte, unf_bit = map(int, found.groups())
         losses = {TO_BYTE: (ovf_byte, unf_byte), TO_BIT: (ovf_bit, unf_bit)}
-    return crossings, losses
+    return crossings, snaps, losses
 
 
 def inverted_reads(crossings):
@@ -50,7 +50,7 @@ def inverted_reads(crossings):
 
 @pytest.mark.parametrize("seed", SEEDS)
 def test_free_running_queues_against_the_model(tmp_path, seed):
-    crossings, losses = free_run(tmp_path, seed, "queue-free")
+    crossings, _, losses = free_run(tmp_path, seed, "queue-free")
     kinds = {(c.direction, c.write) for c in crossings}
     assert kinds == {(TO_BYTE, True), (TO_BYTE, False), (TO_BIT, True), (TO_BIT, False)}
     assert check_queues(crossings, losses) is None, check_queues(crossings, losses)
@@ -58,18 +58,32 @@ def test_free_running_queues_against_the_model(tmp_path, seed):
     # (the slot pointers not returning to 0 at a scan start)
     assert check_queues(inverted_reads(crossings), losses) is not None
     for direction in (TO_BYTE, TO_BIT):
-        more = dict(losses, **{direction: (losses[direction][0] + 1, losses[direction][1])})
-        assert check_queues(crossings, more) is not None
+        for kind in (0, 1):                     # an overflow, an underflow more
+            more = list(losses[direction])
+            more[kind] += 1
+            assert check_queues(crossings, dict(losses, **{direction: tuple(more)})) \
+                is not None
     one_scan = [dataclasses.replace(c, scan=0) for c in crossings]
     assert check_queues(one_scan, losses) is not None
 
 
 @pytest.mark.parametrize("seed", SEEDS)
 def test_marker_area_keeps_the_snapshot_bound(tmp_path, seed):
-    crossings, _ = free_run(tmp_path, seed, "marker")
+    crossings, snaps, _ = free_run(tmp_path, seed, "marker")
     assert sum(not c.write for c in crossings) >= 20
-    assert check_marker(crossings) is None, check_marker(crossings)
-    assert check_marker(inverted_reads(crossings)) is not None
+    assert check_marker(crossings, snaps) is None, check_marker(crossings, snaps)
+    # broken logs: every read inverted; a snapshot never taken (every read 0); each
+    # scan reading what the scan before read (a snapshot a scan late)
+    assert check_marker(inverted_reads(crossings), snaps) is not None
+    never = [c if c.write else dataclasses.replace(c, value=0) for c in crossings]
+    assert check_marker(never, snaps) is not None
+    before = {}
+    for c in crossings:
+        if not c.write:
+            before.setdefault((c.side, c.scan, c.cell), c.value)
+    late = [c if c.write else dataclasses.replace(
+        c, value=before.get((c.side, c.scan - 1, c.cell), c.value)) for c in crossings]
+    assert check_marker(late, snaps) is not None
 
 
 @pytest.mark.parametrize("extra", [[], ["--mode", "parallel", "--sim", "icarus"]])
