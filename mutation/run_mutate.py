@@ -66,7 +66,9 @@ CAMPAIGNS = [
                      "tests/test_cpu_directed.py::test_directed_harness",
                      "tests/test_random_programs.py::test_verilator_harness",
                      "tests/test_random_programs.py::test_mixed_verilator_harness",
-                     "tests/test_random_parallel.py::test_parallel_on_harness"],
+                     "tests/test_random_parallel.py::test_parallel_on_harness",
+                     # free-running mode against the exchange model (both exchanges)
+                     "tests/test_exchange_model.py"],
              ["bit_proc", "bitbyte_cpu", "sync_ram"], harness=True,
              env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
                   "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},
