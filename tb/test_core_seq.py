@@ -520,7 +520,10 @@ async def run_scenario(dut, sc, status=True):
     for a, e in enumerate(sc.entries):
         dut.plan_we_i.value, dut.plan_waddr_i.value, dut.plan_wdata_i.value = 1, a, e
         await FallingEdge(dut.clk_i)
-    dut.plan_we_i.value = 0
+    # the plan bus holds junk while not writing (make mutate: a write enable stuck at 1
+    # rewrote the last entry with its own value, unseen)
+    dut.plan_we_i.value, dut.plan_waddr_i.value = 0, 0
+    dut.plan_wdata_i.value = ~sc.entries[0] & 0xFFFFFFFF if sc.entries else 0x80000000
     for _ in range(3):                               # stopped: nothing starts
         await Timer(1, unit="ns")
         assert not int(dut.copy_en_o.value) and not int(dut.lock_req_o.value)
@@ -634,6 +637,23 @@ async def random_plans_copy_as_planned(dut):
     rng = random.Random(11)
     for i in range(30):
         sc = random_scenario(rng, SEM if i % 2 == 0 else NONE, seed=100 + i)
+        await run_scenario(dut, sc)
+
+
+@cocotb.test()
+async def postcycle_list_at_the_top_of_the_plan(dut):
+    """The postcycle's list far up in the plan, every bit of post_base_i used between
+    the scenarios (make mutate: post_base_i bit 7 stuck at 0 went unseen, every random
+    plan's lists start below 128)."""
+    await start_clock(dut)
+    rng = random.Random(15)
+    for base in (0x80, 0xC0, 0xAA, 0x55, 0xF0):
+        sc = random_scenario(rng, SEM, seed=400 + base)
+        post = sc.entries[sc.post_base:sc.post_base + sc.post_len] or [desc(OWN)]
+        pre = sc.entries[:sc.pre_len]
+        base = max(base, len(pre))
+        sc.entries = pre + [rng.randrange(1 << 32) for _ in range(base - len(pre))] + post
+        sc.post_base, sc.post_len = base, len(post)
         await run_scenario(dut, sc)
 
 
