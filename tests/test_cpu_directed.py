@@ -241,6 +241,28 @@ def test_watched_output_edges(sim, tmp_path):
     assert got == EDGE_WATCH_EXPECT
 
 
+def _harness_equals_reference(il, stim, columns, scans, *extra) -> list[list[int]]:
+    """Run il on the harness (extra: more `bitbyte run` options) and on the reference
+    interpreter with stim, watching columns; assert every scan equal; the reference's
+    rows."""
+    from bitbyte.lang.parser import parse_file
+    from bitbyte.lang.stimulus import parse_stimulus
+    from bitbyte.ref.refsim import refsim_trace
+    program = parse_file(str(il))
+    _, records, fault = refsim_trace(
+        program, stimulus=parse_stimulus(stim.read_text(), str(stim), program.symbols),
+        watch=columns, scans=scans)
+    assert not fault
+    expected = [[r.values[h] for h in columns] for r in records]
+    trace = il.with_suffix(".trace.csv")
+    assert cli.main(["run", str(il), "--scans", str(scans), "--stimulus", str(stim),
+                     "--trace", str(trace), "--watch", ",".join(columns), *extra]) == 0
+    header, *rows = [line.split(",") for line in trace.read_text().splitlines()]
+    at = [header.index(h) for h in columns]
+    assert [[int(r[i]) for i in at] for r in rows] == expected, extra
+    return expected
+
+
 # Every timer and counter index (make mutate: a status, enable, updated or written bit
 # of a high index could be stuck unseen, the other tests use few): timer n a 0 ms
 # on-delay of I0.0, counter n counting I0.1 and reset by I0.2, each status copied to a
@@ -256,27 +278,32 @@ STATUS_WATCH = [f"M{b}.{i}" for b in range(16) for i in range(8)]
 
 @pytest.mark.parametrize("mode", ["serial", "parallel-channel", "parallel-status"])
 def test_every_status_index_harness(mode, tmp_path):
-    from bitbyte.lang.parser import parse_file
-    from bitbyte.lang.stimulus import parse_stimulus
-    from bitbyte.ref.refsim import refsim_trace
-    il, stim, trace = tmp_path / "status.il", tmp_path / "status.csv", tmp_path / "t.csv"
+    il, stim = tmp_path / "status.il", tmp_path / "status.csv"
     il.write_text(STATUS_PROGRAM)
     scans = 10
     stim.write_text("scan,I0.0,I0.1,I0.2\n" + "".join(
         f"{k},{k % 2},{k // 2 % 2},{int(k % 5 == 4)}\n" for k in range(scans)))
-    program = parse_file(str(il))
-    _, records, fault = refsim_trace(
-        program, stimulus=parse_stimulus(stim.read_text(), str(stim), program.symbols),
-        watch=STATUS_WATCH, scans=scans)
-    assert not fault
-    expected = [[r.values[h] for h in STATUS_WATCH] for r in records]
-    argv = ["run", str(il), "--scans", str(scans), "--stimulus", str(stim),
-            "--trace", str(trace), "--watch", ",".join(STATUS_WATCH)]
-    if mode != "serial":
-        argv += ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
-    assert cli.main(argv) == 0, mode
-    header, *rows = [line.split(",") for line in trace.read_text().splitlines()]
-    at = [header.index(h) for h in STATUS_WATCH]
-    got = [[int(r[i]) for i in at] for r in rows]
-    assert got == expected, mode
+    extra = [] if mode == "serial" else ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
+    expected = _harness_equals_reference(il, stim, STATUS_WATCH, scans, *extra)
     assert all(len({row[c] for row in expected}) == 2 for c in range(128))  # all toggle
+
+# Every output pin's edge flags (make mutate: a QR / QF bit of a high output, as the bit
+# processor reads it and as the trace shows it, could be stuck unseen): each scan first
+# copies QR b / QF b (the flags the last END left) to markers, then the input pins to the
+# outputs, with PATTERNS; the markers and the flags watched, against the reference.
+EDGE_NAMES = [f"{n}.{m}" for n in range(PINS // 8) for m in range(8)]
+EDGE_PROGRAM = "".join(f"LD QR{b}\n= M{i // 8}.{i % 8}\nLD QF{b}\n= M{16 + i // 8}.{i % 8}\n"
+                       for i, b in enumerate(EDGE_NAMES)) + \
+    "".join(f"LD I{b}\n= Q{b}\n" for b in EDGE_NAMES)
+EDGE_COLUMNS = ([f"M{b}.{i}" for b in range(32) for i in range(8)]
+                + [f"{f}{b}" for f in ("QR", "QF") for b in EDGE_NAMES])
+
+
+def test_every_output_edge_harness(tmp_path):
+    il, stim = tmp_path / "edges.il", tmp_path / "edges.csv"
+    il.write_text(EDGE_PROGRAM)
+    stim.write_text("scan," + ",".join(f"I{b}" for b in EDGE_NAMES) + "\n" + "".join(
+        f"{s}," + ",".join(str(p >> i & 1) for i in range(PINS)) + "\n"
+        for s, p in enumerate(PATTERNS)))
+    expected = _harness_equals_reference(il, stim, EDGE_COLUMNS, len(PATTERNS))
+    assert all(len({row[c] for row in expected}) == 2 for c in range(len(EDGE_COLUMNS)))
