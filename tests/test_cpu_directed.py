@@ -183,6 +183,14 @@ PATTERNS = [0, (1 << PINS) - 1, 0, int("55" * 16, 16), int("AA" * 16, 16),
             0x0123456789ABCDEFFEDCBA9876543210, 0]
 
 
+def _write_pin_patterns(stim) -> None:
+    """A scan-keyed stimulus: every input pin, PATTERNS[s] in scan s."""
+    names = [f"{n}.{m}" for n in range(PINS // 8) for m in range(8)]
+    stim.write_text("scan," + ",".join(f"I{b}" for b in names) + "\n" + "".join(
+        f"{s}," + ",".join(str(p >> i & 1) for i in range(PINS)) + "\n"
+        for s, p in enumerate(PATTERNS)))
+
+
 def _pins_expected(view: str) -> list[int]:
     prev, out = 0, []
     for p in PATTERNS:
@@ -197,9 +205,7 @@ def test_every_pin_harness(view, tmp_path):
     il = tmp_path / f"pins_{view}.il"
     il.write_text("".join(f"LD {view}{b}\n= Q{b}\n" for b in names))
     stim = tmp_path / "pins.csv"
-    stim.write_text("scan," + ",".join(f"I{b}" for b in names) + "\n" + "".join(
-        f"{s}," + ",".join(str(p >> i & 1) for i in range(PINS)) + "\n"
-        for s, p in enumerate(PATTERNS)))
+    _write_pin_patterns(stim)
     trace = tmp_path / "trace.csv"
     assert cli.main(["run", str(il), "--scans", str(len(PATTERNS)), "--stimulus", str(stim),
                      "--trace", str(trace)]) == 0
@@ -287,23 +293,50 @@ def test_every_status_index_harness(mode, tmp_path):
     expected = _harness_equals_reference(il, stim, STATUS_WATCH, scans, *extra)
     assert all(len({row[c] for row in expected}) == 2 for c in range(128))  # all toggle
 
-# Every output pin's edge flags (make mutate: a QR / QF bit of a high output, as the bit
-# processor reads it and as the trace shows it, could be stuck unseen): each scan first
-# copies QR b / QF b (the flags the last END left) to markers, then the input pins to the
-# outputs, with PATTERNS; the markers and the flags watched, against the reference.
+# Every output pin's edge flags and PIO bit (make mutate: a QR / QF / Q bit of a high
+# output, as the bit processor reads it and as the trace shows it, could be stuck
+# unseen): each scan first copies QR b / QF b (the flags the last END left) and Q b (the
+# PIO) to markers, then the input pins to the outputs, with PATTERNS; the markers and
+# the flags watched, against the reference.
 EDGE_NAMES = [f"{n}.{m}" for n in range(PINS // 8) for m in range(8)]
 EDGE_PROGRAM = "".join(f"LD QR{b}\n= M{i // 8}.{i % 8}\nLD QF{b}\n= M{16 + i // 8}.{i % 8}\n"
+                       f"LD Q{b}\n= M{32 + i // 8}.{i % 8}\n"
                        for i, b in enumerate(EDGE_NAMES)) + \
     "".join(f"LD I{b}\n= Q{b}\n" for b in EDGE_NAMES)
-EDGE_COLUMNS = ([f"M{b}.{i}" for b in range(32) for i in range(8)]
+EDGE_COLUMNS = ([f"M{b}.{i}" for b in range(48) for i in range(8)]
                 + [f"{f}{b}" for f in ("QR", "QF") for b in EDGE_NAMES])
 
 
 def test_every_output_edge_harness(tmp_path):
     il, stim = tmp_path / "edges.il", tmp_path / "edges.csv"
     il.write_text(EDGE_PROGRAM)
-    stim.write_text("scan," + ",".join(f"I{b}" for b in EDGE_NAMES) + "\n" + "".join(
-        f"{s}," + ",".join(str(p >> i & 1) for i in range(PINS)) + "\n"
-        for s, p in enumerate(PATTERNS)))
+    _write_pin_patterns(stim)
     expected = _harness_equals_reference(il, stim, EDGE_COLUMNS, len(PATTERNS))
     assert all(len({row[c] for row in expected}) == 2 for c in range(len(EDGE_COLUMNS)))
+
+
+# Every bit of every input word (make mutate: a bit of a high input word could be stuck
+# unseen): L IW n / T MW n for the 16 words, walking ones and zeros, against the
+# reference; and every pin's pending falling / rising edge right after a REFRESH (the
+# input unit's pending edges, which only the latch clock and REFRESH read).
+def test_every_input_word_bit_harness(tmp_path):
+    il, stim = tmp_path / "iw.il", tmp_path / "iw.csv"
+    il.write_text("".join(f"L IW{n}\nT MW{n}\n" for n in range(16)))
+    values = [1 << k for k in range(16)] + [~(1 << k) & 0xFFFF for k in range(16)]
+    stim.write_text("scan," + ",".join(f"IW{n}" for n in range(16)) + "\n" + "".join(
+        f"{s}," + ",".join(str(sext16(values[(s + n) % 32])) for n in range(16)) + "\n"
+        for s in range(32)))
+    expected = _harness_equals_reference(il, stim, [f"MW{n}" for n in range(16)], 32)
+    assert all(len({row[n] for row in expected}) == 32 for n in range(16))
+
+
+def sext16(v: int) -> int:
+    return v - 0x10000 if v & 0x8000 else v
+
+
+@pytest.mark.parametrize("view", ["IR", "IF"])
+def test_every_pending_edge_after_refresh_harness(view, tmp_path):
+    il, stim = tmp_path / f"pend_{view}.il", tmp_path / "pend.csv"
+    il.write_text("".join(f"REFRESH\nLD {view}{b}\n= Q{b}\n" for b in EDGE_NAMES))
+    _write_pin_patterns(stim)
+    _harness_equals_reference(il, stim, [f"Q{b}" for b in EDGE_NAMES], len(PATTERNS))
