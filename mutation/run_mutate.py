@@ -68,6 +68,7 @@ CAMPAIGNS = [
                      "tests/test_cpu_directed.py::test_every_output_edge_harness",
                      "tests/test_cpu_directed.py::test_every_input_word_bit_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_after_refresh_harness",
+                     "tests/test_cpu_directed.py::test_every_pending_edge_within_the_scan_harness",
                      "tests/test_random_programs.py::test_verilator_harness",
                      "tests/test_random_programs.py::test_mixed_verilator_harness",
                      "tests/test_random_parallel.py::test_parallel_on_harness",
