@@ -64,7 +64,7 @@ def main(argv=None) -> int:
         "timers and counters included (soak/test_soak.py says how), and in "
         "free-running mode with the free-running queues (every read and the loss "
         "counts against a model of the queues) and with the marker area (every read "
-        "within the snapshot bound; tests/exchange_model.py). "
+        "the writer's cell as it was at the reader's snapshot; tests/exchange_model.py). "
         f"That is {5 * programs} hardware runs.",
         "",
         f"**Mismatches: {len(mismatches)}.**" + (
