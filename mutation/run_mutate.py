@@ -73,7 +73,9 @@ CAMPAIGNS = [
                      "tests/test_random_programs.py::test_mixed_verilator_harness",
                      "tests/test_random_parallel.py::test_parallel_on_harness",
                      # free-running mode against the exchange model (both exchanges)
-                     "tests/test_exchange_model.py"],
+                     "tests/test_exchange_model.py",
+                     # 100 marker cells each way (the MCELL window's cells from 64 on)
+                     "tests/test_free_running.py::test_marker_area_carries_100_crossings_each_way[verilator]"],
              ["bit_proc", "bitbyte_cpu", "sync_ram"], harness=True,
              env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
                   "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},
