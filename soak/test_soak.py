@@ -43,7 +43,6 @@ import contextlib
 import io
 import json
 import os
-import re
 import random
 import shlex
 import time
@@ -58,7 +57,7 @@ from bitbyte.ref.refsim import refsim_trace
 from bitbyte.run.prepare import prepare_run
 from bitbyte.sim.cocotb_runner import records_from_rows, run_jobs
 from coverage_count import Coverage
-from exchange_model import TO_BIT, TO_BYTE, check_marker, check_queues, read_log
+from exchange_model import check_marker, check_queues, losses_of, read_log
 from randprog import (FULL_WATCH, long_timers, random_mixed_program, random_mixed_stimulus,
                       random_mixed_watch, random_parallel_program, random_program,
                       random_scan_stimulus, random_stimulus, random_watch)
@@ -199,8 +198,6 @@ class Case:
 
 
 FREE_SCANS = 40
-LOSSES = re.compile(r"queue losses +overflows to-byte (\d+) to-bit (\d+), underflows "
-                    r"to-byte (\d+) to-bit (\d+)")
 
 
 def free_check(tmp: Path, index: int, family: Family) -> list[str]:
@@ -227,13 +224,11 @@ def free_check(tmp: Path, index: int, family: Family) -> list[str]:
         if exchange == "marker":
             problem = check_marker(crossings, snaps)
         else:
-            found = LOSSES.search(out.getvalue())
-            if not found:
+            losses = losses_of(out.getvalue())
+            if losses is None:
                 raise Mismatch(f"{name}: no queue losses in the summary of bitbyte "
                                f"{shlex.join(argv)}")
-            ovf_byte, ovf_bit, unf_byte, unf_bit = map(int, found.groups())
-            problem = check_queues(crossings, {TO_BYTE: (ovf_byte, unf_byte),
-                                               TO_BIT: (ovf_bit, unf_bit)})
+            problem = check_queues(crossings, losses)
         if problem is not None:
             where = save_case(f"{name}-free-{exchange}", {
                 "program.il": il.read_text(), "stimulus.csv": stim.read_text(),

@@ -25,6 +25,7 @@ read, the RLO after it) and the byte side's channel and cell accesses and SCAN_D
 from __future__ import annotations
 
 import csv
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -87,6 +88,20 @@ def read_log(path: Path) -> tuple[list[Crossing], dict[str, dict[int, int]]]:
                                           write, at - MCELL0, value))
     crossings.sort(key=lambda c: c.clock)
     return crossings, snaps
+
+
+LOSSES = re.compile(r"queue losses +overflows to-byte (\d+) to-bit (\d+), underflows "
+                    r"to-byte (\d+) to-bit (\d+)")
+
+
+def losses_of(summary: str) -> dict[str, tuple[int, int]] | None:
+    """The free-running queues' (overflows, underflows) per direction from a `bitbyte
+    run` summary (its `queue losses` line), None without one."""
+    found = LOSSES.search(summary)
+    if not found:
+        return None
+    ovf_byte, ovf_bit, unf_byte, unf_bit = map(int, found.groups())
+    return {TO_BYTE: (ovf_byte, unf_byte), TO_BIT: (ovf_bit, unf_bit)}
 
 
 def check_queues(crossings: list[Crossing], losses: dict[str, tuple[int, int]],

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pytest
 
+from bitbyte.ref.refsim import to_int16
 from bitbyte.run.prepare import prepare_run
 from bitbyte import cli
 from bitbyte.sim.cocotb_runner import run_jobs
@@ -324,14 +325,10 @@ def test_every_input_word_bit_harness(tmp_path):
     il.write_text("".join(f"L IW{n}\nT MW{n}\n" for n in range(16)))
     values = [1 << k for k in range(16)] + [~(1 << k) & 0xFFFF for k in range(16)]
     stim.write_text("scan," + ",".join(f"IW{n}" for n in range(16)) + "\n" + "".join(
-        f"{s}," + ",".join(str(sext16(values[(s + n) % 32])) for n in range(16)) + "\n"
+        f"{s}," + ",".join(str(to_int16(values[(s + n) % 32])) for n in range(16)) + "\n"
         for s in range(32)))
     expected = _harness_equals_reference(il, stim, [f"MW{n}" for n in range(16)], 32)
     assert all(len({row[n] for row in expected}) == 32 for n in range(16))
-
-
-def sext16(v: int) -> int:
-    return v - 0x10000 if v & 0x8000 else v
 
 
 @pytest.mark.parametrize("view", ["IR", "IF"])

@@ -10,19 +10,16 @@ import contextlib
 import dataclasses
 import io
 import random
-import re
 from pathlib import Path
 
 import pytest
 
 from bitbyte import cli
-from exchange_model import TO_BIT, TO_BYTE, check_marker, check_queues, read_log
+from exchange_model import TO_BIT, TO_BYTE, check_marker, check_queues, losses_of, read_log
 from randprog import long_timers, random_parallel_program, random_scan_stimulus
 
 SEEDS = (2, 11, 17, 26)   # parallel-generator programs that cross both ways and lose some
 SCANS = 40
-LOSSES = re.compile(r"queue losses +overflows to-byte (\d+) to-bit (\d+), underflows "
-                    r"to-byte (\d+) to-bit (\d+)")
 
 
 def free_run(tmp: Path, seed: int, exchange: str):
@@ -36,12 +33,7 @@ def free_run(tmp: Path, seed: int, exchange: str):
                        "--mode", "free", "--exchange", exchange, "--exchange-log", str(log)])
     assert rc == 0, out.getvalue()
     crossings, snaps = read_log(log)
-    found = LOSSES.search(out.getvalue())
-    losses = None
-    if found:
-        ovf_byte, ovf_bit, unf_byte, unf_bit = map(int, found.groups())
-        losses = {TO_BYTE: (ovf_byte, unf_byte), TO_BIT: (ovf_bit, unf_bit)}
-    return crossings, snaps, losses
+    return crossings, snaps, losses_of(out.getvalue())
 
 
 def inverted_reads(crossings):
