@@ -19,7 +19,7 @@ from bitbyte.encoding import isa
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
-from bitbyte.lang.program import Instr, Program
+from bitbyte.lang.program import TIMER_STARTS, Instr, Program
 
 BYTE_PROCESSOR = "needs the byte processor"
 PARALLEL = "is for the byte processor: in parallel mode the program is partitioned " \
@@ -35,7 +35,6 @@ class Encoded(NamedTuple):
 
 
 POOL_WORDS = DEF.firmware["pool_words"]
-TIMER_STARTS = ("SD", "SS", "SP", "SF")     # the timer instructions that read the time
 
 
 def encode(program: Program, config: Config = DEFAULT, mode: str = "serial") -> Encoded:

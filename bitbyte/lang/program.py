@@ -29,6 +29,9 @@ OPENS = {
     "X(": ("X", 0), "XN(": ("X", 1),
 }
 JUMPS = ("JU", "JC", "JCN")
+# The timer instructions that read the time base (R T n does not): the ones an
+# Instr.at_latch concerns.
+TIMER_STARTS = ("SD", "SS", "SP", "SF")
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,7 @@ from dataclasses import replace, dataclass, field
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
-from bitbyte.lang.program import Instr, Operand, Program
+from bitbyte.lang.program import TIMER_STARTS as IL_TIMER_STARTS, Instr, Operand, Program
 from bitbyte.lang.s7symbols import Symbol, read_symbol_table
 from bitbyte.lang.suggest import did_you_mean
 
@@ -88,7 +88,6 @@ AREA_NAME = {"de": {"C": "Z"}, "en": {"C": "C"}}     # an English area as writte
 STATUS_AREAS = ("T", "C")   # status bits a combine reads (timers, counters)
 TIMER_STARTS = ("SP", "SE", "SD", "SS", "SF")  # canonical: S7 SI, SV, SE, SS, SA
 IL_TIMER = {"SP": "SD", "SE": "SS", "SD": "SD", "SS": "SS", "SF": "SF"}
-IL_TIMER_STARTS = ("SD", "SS", "SP", "SF")   # IL timers that read the time: at_latch
 COMBINE = {"A": ("A", 0), "AN": ("A", 1), "O": ("O", 0), "ON": ("O", 1),
            "X": ("X", 0), "XN": ("X", 1)}
 OPEN = {"A(": ("A", 0), "AN(": ("A", 1), "O(": ("O", 0), "ON(": ("O", 1),

@@ -38,7 +38,7 @@ from typing import Iterable, Mapping
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.costs import byte_kind, resolve_costs
 from bitbyte.lang.definition import DEF
-from bitbyte.lang.program import COMBINES, JUMPS, OPENS, Instr, Operand, Program
+from bitbyte.lang.program import COMBINES, JUMPS, OPENS, TIMER_STARTS, Instr, Operand, Program
 from bitbyte.lang.stimulus import Stimulus, no_stimulus
 from bitbyte.lang.trace import Column, ScanRecord, mhz, trace_columns
 
@@ -46,7 +46,7 @@ from bitbyte.lang.trace import Column, ScanRecord, mhz, trace_columns
 
 ARITHMETIC = DEF.arithmetic                 # +I ... MOD, +D ... MODD
 COMPARES = DEF.all_compares                 # ==I ... <=I, ==D ... <=D
-TIMERS = ("SD", "SS", "SP", "SF")
+TIMERS = TIMER_STARTS
 COUNTER_MAX = DEF.firmware["counter_max"]
 
 class RefSimError(Exception):
