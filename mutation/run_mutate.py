@@ -56,7 +56,7 @@ CAMPAIGNS = [
     # its saturation test runs on Verilator only (131 000 clocks)
     Campaign("cond_queue", ["tb/test_cond_queue.py"], ["cond_queue"], keyword="icarus or saturation"),
     bench("dispatch"), bench("input_unit"), bench("output_unit"), bench("scan_ctrl"),
-    bench("tc_status"), bench("shared_mem"),
+    bench("tc_status"), bench("shared_mem"), bench("force_table"),
     bench("byte_port", "time_base", "bus_stats"),
     bench("core_seq", "copy_engine"),
     # its own bench against a model of the four settings (the CPU tests reach only the
