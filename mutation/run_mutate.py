@@ -65,6 +65,8 @@ CAMPAIGNS = [
     Campaign("cpu", ["tests/test_cpu_directed.py::test_every_pin_harness",
                      "tests/test_cpu_directed.py::test_directed_harness",
                      "tests/test_cpu_directed.py::test_every_status_index_harness",
+                     "tests/test_cpu_directed.py::test_every_counter_through_the_status_buffer_harness",
+                     "tests/test_cpu_directed.py::test_every_timer_and_counter_input_bit_harness",
                      "tests/test_cpu_directed.py::test_every_output_edge_harness",
                      "tests/test_cpu_directed.py::test_every_input_word_bit_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_after_refresh_harness",
@@ -75,7 +77,9 @@ CAMPAIGNS = [
                      # free-running mode against the exchange model (both exchanges)
                      "tests/test_exchange_model.py",
                      # 100 marker cells each way (the MCELL window's cells from 64 on)
-                     "tests/test_free_running.py::test_marker_area_carries_100_crossings_each_way[verilator]"],
+                     "tests/test_free_running.py::test_marker_area_carries_100_crossings_each_way[verilator]",
+                     # the marker copy port (plants' copy engine), which the harness ties off
+                     "tb/test_bitbyte_cpu.py"],
              ["bit_proc", "bitbyte_cpu", "sync_ram"], harness=True,
              env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
                   "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},

@@ -131,7 +131,7 @@ module bitbyte_cpu #(
   wire [$clog2(StatusBits)-1:0] tc_idx, ctl_idx;
   wire        tcw_we, tcw_is_counter, tcw_val;
   wire [$clog2(StatusBits)-1:0] tcw_idx;
-  wire [31:0] byte_flags, queue_overflows, queue_underflows;
+  wire [31:0] queue_overflows, queue_underflows;
   wire [31:0] queue_overflows_now, queue_underflows_now;
   assign byte_next_o = next;
 
@@ -469,13 +469,12 @@ module bitbyte_cpu #(
     .queue_overflows_i (queue_overflows),
     .queue_underflows_i(queue_underflows),
     .stalls_bit_o    (stalls_bit_o),
-    .stalls_byte_o   (stalls_byte_o),
-    .byte_flags_o    (byte_flags)
+    .stalls_byte_o   (stalls_byte_o)
   );
 
   // Observation only: kept for waveforms (sim/bitbyte.gtkw), not used by logic.
   // verilator lint_off UNUSEDSIGNAL
-  wire unused_obs = ^{cycle_now, exec_pc, exec_valid, byte_flags};
+  wire unused_obs = ^{cycle_now, exec_pc, exec_valid};
   // verilator lint_on UNUSEDSIGNAL
 endmodule
 `default_nettype wire

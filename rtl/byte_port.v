@@ -76,8 +76,7 @@ module byte_port #(
   input  wire [31:0]                   queue_overflows_i,   // {to-bit, to-byte}
   input  wire [31:0]                   queue_underflows_i,
   output wire [31:0]                   stalls_bit_o,
-  output wire [31:0]                   stalls_byte_o,
-  output reg  [31:0]                   byte_flags_o
+  output wire [31:0]                   stalls_byte_o
 );
   // Register addresses: rtl/byte_bus.vh, generated from bitbyte/lang/definition.toml. The
   // windows are decoded by their high address bits.
@@ -207,6 +206,8 @@ module byte_port #(
   // ready until the bit side has written that bit in this scan (its written bit). A
   // bus-level wait, as an empty channel's, so every runner's stall loop serves it.
   reg  [6:0]  tc_wait_sel_q;                       // bit 6 counter, bits 5..0 n
+  // BYTE_FLAGS: the firmware's sticky flags, kept for a host to read; no logic uses them
+  reg  [31:0] byte_flags_q;
   wire [63:0] tc_wait_en = tc_wait_sel_q[6] ? c_pulse : t_en;
   wire [63:0] tc_wait_wr = tc_wait_sel_q[6] ? c_wr : t_wr;
   wire        tc_wait_val     = tc_wait_en[tc_wait_sel_q[5:0]];
@@ -266,7 +267,7 @@ module byte_port #(
             (A == `BUS_CHAN_STATUS)      ? {16'd0, fbi_full8, fby_full8} :
             (A == `BUS_STALLS_BIT)       ? stalls_bit_o :
             (A == `BUS_STALLS_BYTE)      ? stalls_byte_o :
-            (A == `BUS_BYTE_FLAGS)       ? byte_flags_o :
+            (A == `BUS_BYTE_FLAGS)       ? byte_flags_q :
             (A == `BUS_QUEUE_OVERFLOWS)  ? queue_overflows_i :
             (A == `BUS_QUEUE_UNDERFLOWS) ? queue_underflows_i : 32'd0;
       end
@@ -320,12 +321,12 @@ module byte_port #(
     if (!rst_ni) begin
       tick_div_q    <= `BUS_TICK_DIV_RESET;   // 100 MHz
       out_words_o   <= {(OutWords*16){1'b0}};
-      byte_flags_o  <= 32'd0;
+      byte_flags_q  <= 32'd0;
       tc_wait_sel_q <= 7'd0;
     end else begin
       if (bus_we_i && bus_addr_i == `BUS_TC_WAIT) tc_wait_sel_q <= bus_wdata_i[6:0];
       if (bus_we_i && bus_addr_i == `BUS_TICK_DIV) tick_div_q <= bus_wdata_i;
-      if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_o <= bus_wdata_i;
+      if (bus_we_i && bus_addr_i == `BUS_BYTE_FLAGS) byte_flags_q <= bus_wdata_i;
       for (w = 0; w < OutWords; w = w + 1)
         if (bus_we_i && is_qw && word == w[3:0]) out_words_o[w*16 +: 16] <= bus_wdata_i[15:0];
     end

@@ -526,6 +526,24 @@ int main(int argc, char** argv) {
                  (unsigned long long)scans, (unsigned long long)rf.watchdog);
     if (d.wave) { d.tick(); d.tick(); }  // show the outputs dropping to 0
   }
+  // The status buffer's enable / pulse bits after the last scan (Fig. 2's bit -> byte
+  // half: a serial dispatch's RLO, or `= T n` / `= C n`), read as a host reads them:
+  // the bus read data is combinational, so no clock passes.
+  uint32_t tc_inputs[4] = {0, 0, 0, 0};
+  const uint16_t tc_regs[4] = {BB_BUS_T_ENABLE_LO, BB_BUS_T_ENABLE_HI, BB_BUS_C_PULSE_LO,
+                               BB_BUS_C_PULSE_HI};
+  if (!fault) {
+    top.bus_we_i = 0;
+    top.bus_re_i = 1;
+    for (int i = 0; i < 4; ++i) {
+      top.bus_addr_i = tc_regs[i];
+      top.eval();
+      if (!top.bus_ready_o) die("bus register 0x%02x not ready for a read", tc_regs[i]);
+      tc_inputs[i] = top.bus_rdata_o;
+    }
+    top.bus_re_i = 0;
+    top.eval();
+  }
   if (out.f) {
     out.flush();
     if (std::fclose(out.f) != 0) die("error writing %s", rf.trace.c_str());
@@ -553,6 +571,10 @@ int main(int argc, char** argv) {
     stat("queue_underflows", top.dbg_queue_underflows_o);
   }
   stat("byte_flags", bb_flags(&bb));
+  if (!fault) {
+    stat("t_enable", uint64_t(tc_inputs[1]) << 32 | tc_inputs[0]);
+    stat("c_pulse", uint64_t(tc_inputs[3]) << 32 | tc_inputs[2]);
+  }
   if (!rf.waves.empty()) stat("wave_t0_ps", t0_ps);  // waves only: the layout's first view
   for (const auto& [pc, s] : run.status)  // with `status K` only: the block status
     std::printf("status %u %llu %u %u %d %d\n", pc, (unsigned long long)s.count, s.rlo,

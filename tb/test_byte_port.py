@@ -455,7 +455,7 @@ class BusModel:
 
     def registers(self) -> dict:
         return {"out_words_o": sum(v << (16 * k) for k, v in enumerate(self.out_words)),
-                "byte_flags_o": self.byte_flags, "byte_scan_done_o": self.scan_done,
+                "byte_scan_done_o": self.scan_done,
                 "stalls_bit_o": self.stalls_bit, "stalls_byte_o": self.stalls_byte}
 
 

@@ -294,6 +294,63 @@ def test_every_status_index_harness(mode, tmp_path):
     expected = _harness_equals_reference(il, stim, STATUS_WATCH, scans, *extra)
     assert all(len({row[c] for row in expected}) == 2 for c in range(128))  # all toggle
 
+
+# The same for counters through the status buffer (make mutate: a counter's written or
+# updated bit of a high index could be stuck unseen). Above, each counter has two
+# updates (CU, R), so the partition sends its inputs through the channels; here each
+# has one, `S C n` loading IW0 (3 or 0 by turns) at every rising I0.1, so with
+# --tc-path status every counter's pulse goes through C_PULSE (its written bit) and
+# `LD C n` waits for the update (its updated bit, docs/isa.md bit 16).
+COUNTER_SET_PROGRAM = "".join(
+    f"L IW0\nLD I0.1\nS C{n}\nLD C{n}\n= M{n // 8}.{n % 8}\n" for n in range(STATUS))
+COUNTER_SET_WATCH = [f"M{b}.{i}" for b in range(8) for i in range(8)]
+
+
+@pytest.mark.parametrize("mode", ["serial", "parallel-channel", "parallel-status"])
+def test_every_counter_through_the_status_buffer_harness(mode, tmp_path):
+    il, stim = tmp_path / "counters.il", tmp_path / "counters.csv"
+    il.write_text(COUNTER_SET_PROGRAM)
+    scans = 10
+    stim.write_text("scan,I0.1,IW0\n" + "".join(
+        f"{k},{k % 2},{3 if k // 2 % 2 == 0 else 0}\n" for k in range(scans)))
+    extra = [] if mode == "serial" else ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
+    if mode == "parallel-status":   # the program takes the path this test is about
+        out = tmp_path / "asm"
+        assert cli.main(["asm", str(il), "--mode", "parallel", "--tc-path", "status",
+                         "-o", str(out)]) == 0
+        listing = (out / "counters.partition.txt").read_text()
+        assert listing.count("once written in this scan") == STATUS
+        assert listing.count("waits (bit 16)") == STATUS
+    expected = _harness_equals_reference(il, stim, COUNTER_SET_WATCH, scans, *extra)
+    assert all(len({row[c] for row in expected}) == 2 for c in range(STATUS))  # all toggle
+
+
+# Fig. 2's bit -> byte half, every index: timer n's enable is pin n (SD T n), counter
+# n's count input pin 64+n (CU C n). After the last scan T_ENABLE / C_PULSE over the
+# bus must be those pins of the last scan's image: written by the serial dispatch
+# (the RLO it dispatches with) or, with --tc-path status, by the bit side's `= T n` /
+# `= C n` (docs/byte-bus.md; make mutate: the dispatch's index into the buffer, with
+# a bit flipped, went unseen, as serial mode's firmware takes the dispatched RLO).
+TC_INPUT_PROGRAM = "".join(
+    f"LD I{n // 8}.{n % 8}\nL 0\nSD T{n}\nLD I{8 + n // 8}.{n % 8}\nCU C{n}\n"
+    for n in range(STATUS))
+
+
+@pytest.mark.parametrize("mode", ["serial", "parallel-status"])
+def test_every_timer_and_counter_input_bit_harness(mode, tmp_path):
+    from bitbyte.sim.verilator import run_harness
+    il, stim = tmp_path / "inputs.il", tmp_path / "inputs.csv"
+    il.write_text(TC_INPUT_PROGRAM)
+    _write_pin_patterns(stim)
+    extra = {} if mode == "serial" else {"mode": "parallel", "tc_path": "status"}
+    for scans in (4, 6):    # the last scan's image: 0x55..., then a pattern whose pin n
+        _, columns, job, _ = prepare_run(    # and pin n ^ 32 differ for most n
+            str(il), stimulus=str(stim), watch="Q0.0", scans=scans, **extra)
+        _, fault, stats = run_harness(job, columns)
+        assert not fault
+        last = PATTERNS[scans - 1]
+        assert stats.tc_inputs == (last & (1 << 64) - 1, last >> 64), (scans, mode)
+
 # Every output pin's edge flags and PIO bit (make mutate: a QR / QF / Q bit of a high
 # output, as the bit processor reads it and as the trace shows it, could be stuck
 # unseen): each scan first copies QR b / QF b (the flags the last END left) and Q b (the

@@ -19,6 +19,8 @@ class RunStats:
     byte_scans: int | None = None                # free-running: the byte side's scans
     queue_losses: tuple[int, int] | None = None  # queue-free: QUEUE_OVERFLOWS, _UNDERFLOWS
     byte_flags: int = 0                          # BYTE_FLAGS (bb_flags())
+    # the Verilator harness: T_ENABLE and C_PULSE (64 bits each) after the last scan
+    tc_inputs: tuple[int, int] | None = None
     wall_s: float | None = None                  # the simulator's own run time
     wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
     block_status: dict | None = None             # --status: address -> Retired

@@ -102,6 +102,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      queue_losses=(st["queue_overflows"], st["queue_underflows"])
                      if "queue_overflows" in st else None,
                      byte_flags=st["byte_flags"], wall_s=st["wall_s"],
+                     tc_inputs=(st["t_enable"], st["c_pulse"]) if "t_enable" in st else None,
                      wave_t0_ps=st.get("wave_t0_ps"),
                      startup_scans=user_job.startup_scans, startup_cycles=startup,
                      block_status=parse_block_status(proc.stdout)
