@@ -125,7 +125,8 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 	@rm -rf build/soak; mkdir -p build/soak
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; t0=$$(date +%s); \
 	echo "soak: BITBYTE_SEED=$$seed N=$(N)"; \
-	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) BITBYTE_TEARING_SCANS=100000 $(VENV)/bin/pytest -q -n $(JOBS) \
+	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) BITBYTE_TEARING_SCANS=100000 \
+	  BITBYTE_PLANT_COVERAGE=build/soak $(VENV)/bin/pytest -q -n $(JOBS) \
 	  -p no:cacheprovider soak/ tests/test_plant_tearing.py; rc=$$?; \
 	$(VENV)/bin/python soak/soak_report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
 	exit $$rc

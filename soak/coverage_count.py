@@ -85,3 +85,48 @@ class Coverage:
 
     def to_json(self) -> list:
         return [list(k) + [v] for k, v in sorted(self.counts.items())]
+
+
+# ------------------------------------------------------------------ the plant's cross
+# Spec §7: protection x layout x contention, counted per reader scan of the plant runs
+# the soak makes (tests/test_plant_tearing.py). Contention of a reader scan: `overlap`
+# when its precycle (waits included) shares a clock with a postcycle of the other core,
+# `apart` when not, `copy_fail` when the scan ran on old copies (the semaphore's skipped
+# precycle, ping-pong's overtaken one: the flag is sticky, so the scan it first shows
+# in). `none` has no flag: its failure is tearing itself.
+PROTECTIONS = ("semaphore", "pingpong", "none")
+LAYOUTS = ("compact", "random")
+CONTENTIONS = ("apart", "overlap", "copy_fail")
+
+
+def plant_legal_bins() -> set[tuple[str, str, str]]:
+    return {(p, lay, c) for p in PROTECTIONS for lay in LAYOUTS for c in CONTENTIONS
+            if c != "copy_fail" or p != "none"}
+
+
+def _copies(rows, clock_mhz: int) -> list[tuple[int, int, int]]:
+    """(scan, precycle, postcycle) as half-open clock intervals, from a core's trace
+    (t_us ends the postcycle; the postcycle follows the scan, the scan the precycle)."""
+    from fractions import Fraction
+    out = []
+    for r in rows:
+        end = int(Fraction(r["t_us"]) * clock_mhz)
+        post, cycles, pre = int(r["post"]), int(r["cycles"]), int(r["pre"])
+        out.append(((end - post - cycles - pre, end - post - cycles), (end - post, end)))
+    return out
+
+
+def plant_contention(reader_rows, other_cores, clock_mhz: int = 100) -> list[str]:
+    """The contention bin of each reader scan (see above); other_cores: the trace rows
+    of each other core."""
+    writes = [post for rows in other_cores for _, post in _copies(rows, clock_mhz)]
+    bins, failed = [], False
+    for (lo, hi), _ in _copies(reader_rows, clock_mhz):
+        row = reader_rows[len(bins)]
+        first_fail = row["copy_fail"] == "1" and not failed
+        failed = failed or row["copy_fail"] == "1"
+        if first_fail:
+            bins.append("copy_fail")
+        else:
+            bins.append("overlap" if any(a < hi and lo < b for a, b in writes) else "apart")
+    return bins

@@ -1,7 +1,7 @@
 """Adds up the soak's chunks (build/soak/chunk*.json) into docs/soak.md: the seed, the
 number of programs, the run time, the mismatches, and the coverage of
-instruction x operand area x mode x exchange against the legal bins
-(soak/coverage_count.py).  Exit status 1 when a chunk is missing, a mismatch was
+instruction x operand area x mode x exchange against the legal bins, and the plant's
+protection x layout x contention (soak/coverage_count.py).  Exit status 1 when a chunk is missing, a mismatch was
 found or a legal bin was not hit, so `make soak` fails with it."""
 from __future__ import annotations
 
@@ -16,7 +16,8 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
-from coverage_count import MODES, legal_bins  # noqa: E402
+from coverage_count import (CONTENTIONS, LAYOUTS, MODES, PROTECTIONS,  # noqa: E402
+                            legal_bins, plant_legal_bins)
 
 
 def commit() -> str:
@@ -46,6 +47,11 @@ def main(argv=None) -> int:
     for c in chunks:
         for *key, n in c["coverage"]:
             counts[tuple(key)] += n
+    plant: Counter = Counter()   # tests/test_plant_tearing.py (BITBYTE_PLANT_COVERAGE)
+    for p in sorted(Path(args.build).glob("plant_*.json")):
+        for *key, n in json.loads(p.read_text())["plant_coverage"]:
+            plant[tuple(key)] += n
+    plant_missed = sorted(plant_legal_bins() - set(plant))
     legal = legal_bins()
     missed = sorted(legal - set(counts))
     extra = sorted(set(counts) - legal)
@@ -95,13 +101,39 @@ def main(argv=None) -> int:
     for m, k in mnemonics:
         cells = [str(counts.get((m, k, mo, ex), 0)) for mo, ex in MODES]
         lines.append(f"| `{m}` | {k} | " + " | ".join(cells) + " |")
+    lines += [
+        "",
+        "## Coverage: the plant's protection x layout x contention",
+        "",
+        "Counted per reader scan of the plant runs in the soak (tests/test_plant_tearing.py: "
+        "the tearing runs at random periods and phases, the lock contention and skip "
+        "runs, ping-pong overtaken by a fast writer; soak/coverage_count.py). "
+        "Contention of a reader scan: `overlap` when its precycle (waits included) "
+        "shares a clock with another core's postcycle, `apart` when not, `copy_fail` "
+        "in the scan the sticky flag first shows (the semaphore's skipped precycle, "
+        "ping-pong's overtaken one; `none` has no such flag, its failure is the "
+        "tearing the test shows). The legal bins: spec §7's three protections and "
+        "two layouts with each contention, but `none` x `copy_fail`.",
+        "",
+        f"Legal bins: {len(plant_legal_bins())}; **missed: {len(plant_missed)}**" + (
+            ": " + ", ".join("/".join(b) for b in plant_missed) if plant_missed else "."),
+        "",
+        "| protection | layout | " + " | ".join(CONTENTIONS) + " |",
+        "|---|---|" + "---:|" * len(CONTENTIONS),
+    ]
+    for prot in PROTECTIONS:
+        for lay in LAYOUTS:
+            lines.append(f"| {prot} | {lay} | " + " | ".join(
+                str(plant.get((prot, lay, c), 0)) if (prot, lay, c) in plant_legal_bins()
+                else "–" for c in CONTENTIONS) + " |")
     Path(args.out).write_text("\n".join(lines) + "\n")
     print(f"soak: {programs} programs, {len(mismatches)} mismatches, "
-          f"{len(missed)} of {len(legal)} legal coverage bins missed -> {args.out}")
+          f"{len(missed)} of {len(legal)} legal coverage bins missed, "
+          f"{len(plant_missed)} of {len(plant_legal_bins())} plant bins -> {args.out}")
     if programs < args.n:
         print(f"soak: only {programs} of {args.n} programs reported", file=sys.stderr)
         return 1
-    return 1 if mismatches or missed else 0
+    return 1 if mismatches or missed or plant_missed else 0
 
 
 if __name__ == "__main__":

@@ -72,18 +72,45 @@ def _chunk(build: Path, n: int, mismatches=(), coverage=None):
         "seconds": 1.0, "coverage": coverage}))
 
 
-@pytest.mark.parametrize("broken", ["none", "mismatch", "bin missed", "chunk missing"])
+@pytest.mark.parametrize("broken", ["none", "mismatch", "bin missed", "chunk missing",
+                                    "plant bin missed"])
 def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     build = tmp_path / "b"
     bins = [list(b) + [1] for b in sorted(coverage_count.legal_bins())]
     bins = bins[1:] if broken == "bin missed" else bins
     _chunk(build, 0, ["p: differs"] if broken == "mismatch" else (), bins)
     _chunk(build, 1, (), bins)
+    plant = [list(b) + [3] for b in sorted(coverage_count.plant_legal_bins())]
+    (build / "plant_a.json").write_text(json.dumps({"plant_coverage": plant[:5]}))
+    (build / "plant_b.json").write_text(json.dumps(
+        {"plant_coverage": plant[6:] if broken == "plant bin missed" else plant[5:]}))
     n = 75 if broken == "chunk missing" else 50
     out = tmp_path / "soak.md"
     rc = report.main(["--build", str(build), "--out", str(out), "--n", str(n),
                       "--seconds", "60"])
     assert rc == (0 if broken == "none" else 1)
     text = out.read_text()
-    assert ("**missed: 0**." in text) == (broken != "bin missed")
+    assert ("Legal bins: 16; **missed: 0**." in text) == (broken != "plant bin missed")
+    assert ("hit: {0}; **missed: 0**.".format(len(coverage_count.legal_bins()))
+            in text) == (broken != "bin missed")
     assert ("**Mismatches: 1.**" in text) == (broken == "mismatch")
+
+
+def test_plant_contention_by_hand():
+    """A reader scan's precycle against another core's postcycles, in clocks at
+    100 MHz: t_us ends the postcycle, which follows the scan, which follows the
+    precycle (soak/coverage_count.py)."""
+    def row(end_clock, pre, cycles, post, fail="0"):
+        return {"t_us": f"{end_clock / 100}", "pre": str(pre), "cycles": str(cycles),
+                "post": str(post), "copy_fail": fail}
+    writer = [row(100, 5, 10, 20)]                  # postcycle: clocks 80..99
+    reader = [row(60, 10, 5, 5),                    # precycle 40..49: apart
+              row(120, 30, 5, 5),                   # precycle 80..109: overlap
+              row(200, 5, 5, 5, "1"),               # the first copy_fail
+              row(300, 5, 5, 5, "1"),               # sticky: no new event
+              row(105, 5, 5, 5)]                    # precycle 90..94: inside it
+    assert coverage_count.plant_contention(reader, [writer]) == [
+        "apart", "overlap", "copy_fail", "apart", "overlap"]
+    # a precycle that ends where the postcycle begins does not share a clock with it
+    assert coverage_count.plant_contention([row(90, 10, 5, 5)], [writer]) == ["apart"]
+    assert coverage_count.plant_contention([row(91, 10, 5, 5)], [writer]) == ["overlap"]
