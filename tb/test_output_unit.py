@@ -99,22 +99,25 @@ async def random_against_model(dut):
     rng = random.Random(99)
     await reset(dut)
     pio = pins = rise = fall = 0
-    for _ in range(500):
+    for _ in range(1500):
         wr = (rng.randrange(OUT_BITS), rng.randrange(2)) if rng.random() < 0.6 else None
         direct = rng.random() < 0.3
         update = rng.random() < 0.1 and not (wr and direct)
+        fault = rng.random() < 0.03         # pins to 0, whatever else this clock does
         if wr:
             bit = 1 << wr[0]
             new_pio = (pio & ~bit) | (bit if wr[1] else 0)
         else:
             new_pio = pio
-        if update:
+        if fault:
+            pins = 0                        # the edge flags keep what they held
+        elif update:
             rise, fall = pio & ~pins, pins & ~pio
             pins = pio
         elif wr and direct:
             pins = (pins & ~(1 << wr[0])) | (wr[1] << wr[0])
         pio = new_pio
-        await clock(dut, wr, direct, update)
+        await clock(dut, wr, direct, update, fault)
         assert state(dut) == (pio, pins)
         assert edges(dut) == (rise, fall)
 

@@ -103,6 +103,38 @@ async def a_write_changes_its_own_bit_only(dut):
         getattr(dut, f"{kind}_we_i").value = 0
 
 
+@cocotb.test()
+async def each_updated_and_written_bit_by_itself(dut):
+    """The set-only vectors (updated: the byte side's status writes; written: the bit
+    processor's own enable / pulse writes in parallel mode), each filled bit by bit in
+    both orders from a latch, checked after every write: a write sets its own bit and
+    no other (the random test latches every ten clocks or so, so these vectors hold
+    few bits at a time: make mutate found mutants that set a second bit of them)."""
+    await start_in_reset(dut, dut.status_we_i, dut.ctl_we_i, dut.bit_we_i,
+                         dut.partitioned_i, dut.latch_i)
+    ports = {("status", 0): "timer_updated_o", ("status", 1): "counter_updated_o",
+             ("bit", 0): "timer_written_o", ("bit", 1): "counter_written_o"}
+    for (kind, counter), out in ports.items():
+        dut.partitioned_i.value = int(kind == "bit")
+        for order in (range(N), range(N - 1, -1, -1)):
+            dut.status_we_i.value = dut.bit_we_i.value = dut.ctl_we_i.value = 0
+            dut.latch_i.value = 1                # clears the vectors
+            await RisingEdge(dut.clk_i)
+            await FallingEdge(dut.clk_i)
+            dut.latch_i.value = 0
+            want = 0
+            for j in order:
+                getattr(dut, f"{kind}_we_i").value = 1
+                getattr(dut, f"{kind}_is_counter_i").value = counter
+                getattr(dut, f"{kind}_idx_i").value = j
+                getattr(dut, f"{kind}_val_i").value = j % 2
+                await RisingEdge(dut.clk_i)
+                await FallingEdge(dut.clk_i)
+                want |= 1 << j
+                assert int(getattr(dut, out).value) == want, (out, j)
+        getattr(dut, f"{kind}_we_i").value = 0
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_tc_status(sim):
     run_cocotb(sim, "tc_status", "test_tc_status")
