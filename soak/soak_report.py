@@ -52,6 +52,7 @@ def main(argv=None) -> int:
         for *key, n in json.loads(p.read_text())["plant_coverage"]:
             plant[tuple(key)] += n
     plant_missed = sorted(plant_legal_bins() - set(plant))
+    plant_extra = sorted(set(plant) - plant_legal_bins())
     legal = legal_bins()
     missed = sorted(legal - set(counts))
     extra = sorted(set(counts) - legal)
@@ -121,6 +122,9 @@ def main(argv=None) -> int:
         "| protection | layout | " + " | ".join(CONTENTIONS) + " |",
         "|---|---|" + "---:|" * len(CONTENTIONS),
     ]
+    if plant_extra:
+        lines[-2:-2] = ["Counted but not legal (a defect in the bins or the plant): " +
+                        ", ".join("/".join(b) for b in plant_extra), ""]
     for prot in PROTECTIONS:
         for lay in LAYOUTS:
             lines.append(f"| {prot} | {lay} | " + " | ".join(
@@ -133,7 +137,7 @@ def main(argv=None) -> int:
     if programs < args.n:
         print(f"soak: only {programs} of {args.n} programs reported", file=sys.stderr)
         return 1
-    return 1 if mismatches or missed or plant_missed else 0
+    return 1 if mismatches or missed or plant_missed or plant_extra else 0
 
 
 if __name__ == "__main__":

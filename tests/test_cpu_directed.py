@@ -343,8 +343,11 @@ def test_every_timer_and_counter_input_bit_harness(mode, tmp_path):
     il.write_text(TC_INPUT_PROGRAM)
     _write_pin_patterns(stim)
     extra = {} if mode == "serial" else {"mode": "parallel", "tc_path": "status"}
-    for scans in (4, 6):    # the last scan's image: 0x55..., then a pattern whose pin n
-        _, columns, job, _ = prepare_run(    # and pin n ^ 32 differ for most n
+    # the last scan's image: all ones, all zeros after them, 0x55..., 0xAA..., and a
+    # pattern in which pin n and pin n ^ 32 differ for a quarter of the n: every bit
+    # is seen at 1 and at 0, written over the other value
+    for scans in (2, 3, 4, 5, 6):
+        _, columns, job, _ = prepare_run(
             str(il), stimulus=str(stim), watch="Q0.0", scans=scans, **extra)
         _, fault, stats = run_harness(job, columns)
         assert not fault

@@ -59,18 +59,21 @@ def _cross(request):
 
 def _tearing_runs(tmp_path, protection: str, seed: int, until_torn: bool = False):
     """Runs with random periods and reader phases until READER_SCANS reader scans (or,
-    until_torn, the first run with a torn group); returns (reader scans, torn scans,
-    distinct values seen). No run may end with the reader's copy_fail set (no skip, no
-    ping-pong precycle overtaken by its writer)."""
+    until_torn, until each layout had a run with a torn group and reader scans both
+    apart from and beside a writer's copy: the layouts take turns); returns (reader
+    scans, torn scans, distinct values seen). No run may end with the reader's
+    copy_fail set (no skip, no ping-pong precycle overtaken by its writer)."""
     rng = random.Random(seed)
     scans = torn = 0
     seen = set()
     run = 0
+    torn_in = set()
     while scans < READER_SCANS:
         nops = rng.randrange(0, 40)
         writer, reader = plantgen.tearing_pair(GROUP, reader_nops=nops)
         w_period, r_period = rng.choice([0, 1, 2, 3]), rng.choice([0, 0, 1, 2])
-        layout = rng.choice(["compact", "random"])
+        layout = coverage_count.LAYOUTS[run % 2] if until_torn else rng.choice(
+            coverage_count.LAYOUTS)
         plant = plantgen.write_plant(
             tmp_path / f"{protection}{run}",
             [("w", writer, w_period), ("r", reader, r_period)],
@@ -84,12 +87,20 @@ def _tearing_runs(tmp_path, protection: str, seed: int, until_torn: bool = False
         for row in rows["r"]:
             group = {row[f"MW{i}"] for i in range(GROUP)}
             torn += len(group) > 1
+            torn_in |= {layout} if len(group) > 1 else set()
             seen |= group
         scans += len(rows["r"])
         run += 1
-        if until_torn and torn:
+        if until_torn and torn_in == set(coverage_count.LAYOUTS) and _met_both(protection):
             break
     return scans, torn, seen
+
+
+def _met_both(protection: str) -> bool:
+    """The runs so far met reader scans apart from and beside a writer's copy, in
+    both layouts."""
+    return {(protection, layout, c) for layout in coverage_count.LAYOUTS
+            for c in ("apart", "overlap")} <= set(CROSS)
 
 
 @pytest.mark.parametrize("protection", ["semaphore", "pingpong"])
@@ -100,14 +111,14 @@ def test_no_tearing_with_protection(tmp_path, protection):
     assert len(seen) > 200           # the reader really followed the writer
     assert torn == 0, f"{torn} torn groups in {scans} reader scans (seed {seed})"
     # the runs met both: copies apart, and a reader's copy beside the writer's
-    assert {(protection, layout, c) for layout in coverage_count.LAYOUTS
-            for c in ("apart", "overlap")} <= set(CROSS), sorted(CROSS.items())
+    assert _met_both(protection), sorted(CROSS.items())
 
 
 def test_tearing_detected_without_protection(tmp_path):
     seed = SEED + 3
     scans, torn, _ = _tearing_runs(tmp_path, "none", seed, until_torn=True)
     assert torn > 0, f"no torn group in {scans} reader scans: the test cannot fail"
+    assert _met_both("none"), sorted(CROSS.items())   # both layouts tear, too
 
 
 def _clocks_to_end(row, clock_mhz=100):

@@ -73,7 +73,7 @@ def _chunk(build: Path, n: int, mismatches=(), coverage=None):
 
 
 @pytest.mark.parametrize("broken", ["none", "mismatch", "bin missed", "chunk missing",
-                                    "plant bin missed"])
+                                    "plant bin missed", "plant bin not legal"])
 def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     build = tmp_path / "b"
     bins = [list(b) + [1] for b in sorted(coverage_count.legal_bins())]
@@ -84,6 +84,9 @@ def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     (build / "plant_a.json").write_text(json.dumps({"plant_coverage": plant[:5]}))
     (build / "plant_b.json").write_text(json.dumps(
         {"plant_coverage": plant[6:] if broken == "plant bin missed" else plant[5:]}))
+    if broken == "plant bin not legal":
+        (build / "plant_c.json").write_text(json.dumps(
+            {"plant_coverage": [["none", "compact", "copy_fail", 1]]}))
     n = 75 if broken == "chunk missing" else 50
     out = tmp_path / "soak.md"
     rc = report.main(["--build", str(build), "--out", str(out), "--n", str(n),
@@ -91,6 +94,8 @@ def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     assert rc == (0 if broken == "none" else 1)
     text = out.read_text()
     assert ("Legal bins: 16; **missed: 0**." in text) == (broken != "plant bin missed")
+    assert ("Counted but not legal (a defect in the bins or the plant): "
+            "none/compact/copy_fail" in text) == (broken == "plant bin not legal")
     assert ("hit: {0}; **missed: 0**.".format(len(coverage_count.legal_bins()))
             in text) == (broken != "bin missed")
     assert ("**Mismatches: 1.**" in text) == (broken == "mismatch")
