@@ -436,13 +436,13 @@ def not_state(mod: dict) -> list[str]:
                   or n == MUTSEL)
 
 
-def yosys_equiv(work: Path, both: str, name: str, netnames, timeout: float) -> bool:
+def yosys_equiv(work: Path, both: str, name: str, blacklist, timeout: float) -> bool:
     """Yosys's own equivalence checker on the two copies of `both`: every named signal
-    of one paired with the same of the other ($equiv cells, the mutsel wires left
+    of one paired with the same of the other ($equiv cells; those in `blacklist` left
     out), each proved by SAT over 5 clocks (equiv_simple) and then by temporal
-    induction (equiv_induct); True only when every one is proved."""
-    (work / f"{name}_eqbl").write_text(
-        "".join(n + "\n" for n in netnames if n.split(".")[-1] == MUTSEL))
+    induction (equiv_induct); True only when every one is proved. The named wires
+    inside are what lets equiv_simple cut the proof into small cones."""
+    (work / f"{name}_eqbl").write_text("".join(n + "\n" for n in blacklist))
     (work / f"{name}_equiv.ys").write_text(
         both + f"equiv_make -blacklist {name}_eqbl gold gate equiv\nhierarchy -top equiv\n"
         "async2sync\nequiv_simple -seq 5\nequiv_induct -seq 5\nequiv_status -assert\n")
@@ -488,8 +488,13 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
               f"hierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
     # First Yosys's equivalence checker: it proves what the checks below leave UNKNOWN
     # when the mutation changes no register at all (a compare against a constant the
-    # inputs can never tell apart: the read multiplexer's decode)
-    if yosys_equiv(work, both, name, mod["netnames"], timeout):
+    # inputs can never tell apart: the read multiplexer's decode; a RAM's peek port
+    # that drives a wire nothing reads)
+    # (left out: mutsel, meant to differ, and the wires the RTL names unused_*, which
+    # lint confirms nothing reads: a mutation of what drives one changes only it)
+    dead = [n for n in mod["netnames"]
+            if n.split(".")[-1] == MUTSEL or n.split(".")[-1].startswith("unused_")]
+    if yosys_equiv(work, both, name, dead, timeout):
         return "equivalent"
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     # a module without a reset (dispatch: no state; sync_ram: memory only) starts from
