@@ -67,6 +67,8 @@ CAMPAIGNS = [
                      "tests/test_cpu_directed.py::test_every_status_index_harness",
                      "tests/test_cpu_directed.py::test_every_counter_through_the_status_buffer_harness",
                      "tests/test_cpu_directed.py::test_every_timer_and_counter_input_bit_harness",
+                     "tests/test_cpu_directed.py::test_accumulators_reset_after_65536_skipped_scans",
+                     "tests/test_cpu_directed.py::test_a_scan_longer_than_2_to_the_20_clocks",
                      "tests/test_cpu_directed.py::test_every_output_edge_harness",
                      "tests/test_cpu_directed.py::test_every_input_word_bit_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_after_refresh_harness",

@@ -470,6 +470,10 @@ int main(int argc, char** argv) {
     d.tick();
   }
   top.prog_we_i = 0;
+  // the load port carries junk from now on (a host's bus does not stay at the last
+  // word): a RAM that wrote without prog_we_i would change the program
+  top.prog_waddr_i = 0;
+  top.prog_wdata_i = 0xFFFFFFFFu;
   d.tick();
   top.rst_ni = 1;
   for (int i = 0; !top.ready_o; ++i) {  // the marker RAM clears itself, one bit a clock
@@ -571,6 +575,8 @@ int main(int argc, char** argv) {
     stat("queue_underflows", top.dbg_queue_underflows_o);
   }
   stat("byte_flags", bb_flags(&bb));
+  stat("scan_count", top.scan_count_o);            // the CPU's own counters, which
+  stat("scan_cycles_max", top.scan_cycles_max_o);  // the run summary cross-checks
   if (!fault) {
     stat("t_enable", uint64_t(tc_inputs[1]) << 32 | tc_inputs[0]);
     stat("c_pulse", uint64_t(tc_inputs[3]) << 32 | tc_inputs[2]);

@@ -161,16 +161,47 @@ done: NOP
 """
 
 
-def test_accumulators_reset_after_65536_skipped_scans(tmp_path):
+@pytest.mark.parametrize("skipped", [65536, 16384])
+def test_accumulators_reset_after_65536_skipped_scans(tmp_path, skipped):
+    """Also after 16 384 (make mutate: the dispatch's scan number with bit 14 stuck at
+    0 made scan 16 384 look like scan 0)."""
     il, stim, trace = tmp_path / "wrap.il", tmp_path / "wrap.csv", tmp_path / "t.csv"
     il.write_text(WRAP_PROGRAM)
-    stim.write_text("scan,I0.0,I0.1\n0,1,1\n1,0,0\n65536,0,1\n")
-    assert cli.main(["run", str(il), "--stimulus", str(stim), "--scans", "65537",
+    stim.write_text(f"scan,I0.0,I0.1\n0,1,1\n1,0,0\n{skipped},0,1\n")
+    assert cli.main(["run", str(il), "--stimulus", str(stim), "--scans", str(skipped + 1),
                      "--trace", str(trace)]) == 0
     lines = trace.read_text().splitlines()
-    assert lines[0].endswith(",QW0") and len(lines) == 1 + 65537
+    assert lines[0].endswith(",QW0") and len(lines) == 1 + skipped + 1
     qw0 = {int(r.split(",")[0]): int(r.rsplit(",", 1)[1]) for r in lines[1:3] + lines[-2:]}
-    assert qw0 == {0: 7, 1: 7, 65535: 7, 65536: 0}
+    assert qw0 == {0: 7, 1: 7, skipped - 1: 7, skipped: 0}
+
+
+# A scan of more than 2^20 clocks (a loop of the byte side's word instructions): the
+# CPU's longest-scan register (scan_cycles_max_o, a host's read-back) against the
+# trace's longest scan, which the harness runner checks on every run (make mutate: its
+# bit 20 stuck at 0 went unseen, no other test's scan reaching 2^20 clocks).
+LONG_SCAN_PROGRAM = """\
+      L     0
+      T     MW0
+loop: L     MW0
+      L     1
+      +I
+      T     MW0
+      L     MW0
+      L     15000
+      <I
+      JC    loop
+"""
+
+
+def test_a_scan_longer_than_2_to_the_20_clocks(tmp_path):
+    from bitbyte.sim.verilator import run_harness
+    il = tmp_path / "long.il"
+    il.write_text(LONG_SCAN_PROGRAM)
+    _, columns, job, _ = prepare_run(str(il), watch="MW0", scans=2, watchdog=4_000_000)
+    records, fault, _ = run_harness(job, columns)     # checks scan_cycles_max_o itself
+    assert not fault and [r.values["MW0"] for r in records] == [15000, 15000]
+    assert min(r.cycles for r in records) > 1 << 20
 
 
 # Every input pin and every output pin (16 bytes each, the default build): one program
@@ -420,3 +451,19 @@ def test_every_pending_edge_within_the_scan_harness(view, tmp_path):
     # latch clock, which sees no edge (spec §4)
     assert all(len({row[c] for row in expected}) == 2 for c in range(1, PINS))
     assert {row[0] for row in expected} == {0}
+
+
+@pytest.mark.parametrize("stat", ["scan_count", "scan_cycles_max"])
+def test_the_cpus_scan_counters_are_checked(tmp_path, monkeypatch, stat):
+    """The runner's cross-check of scan_count_o / scan_cycles_max_o fails when the
+    CPU's figure is one off (here: the harness's report of it)."""
+    from bitbyte.sim import verilator
+    from bitbyte.sim.verilator import SimError, run_harness
+    real = verilator.parse_stats
+    monkeypatch.setattr(verilator, "parse_stats",
+                        lambda out: {**real(out), stat: real(out)[stat] + 1})
+    il = tmp_path / "p.il"
+    il.write_text("LD I0.0\n= Q0.0\n")
+    _, columns, job, _ = prepare_run(str(il), watch="Q0.0", scans=3)
+    with pytest.raises(SimError, match="the CPU counted"):
+        run_harness(job, columns)

@@ -93,6 +93,13 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
     if st.get("scans") != len(records):
         raise SimError(f"Verilator harness: {st.get('scans')} scans reported, "
                        f"{len(records)} in its trace")
+    # the CPU's own scan counter and longest scan (registers for a host: synth_top's
+    # SPI read-back), against the scans the trace holds
+    longest = max((r.cycles for r in records), default=0)
+    if (st.get("scan_count"), st.get("scan_cycles_max")) != (len(records), longest):
+        raise SimError(f"Verilator harness: the CPU counted {st.get('scan_count')} scans, "
+                       f"the longest {st.get('scan_cycles_max')} clocks; its trace has "
+                       f"{len(records)}, the longest {longest}")
     startup = startup_cycles(user_job, records)
     records = traced(user_job, records)
     if trace and user_job.startup_scans:
