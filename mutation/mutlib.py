@@ -490,11 +490,15 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
     # when the mutation changes no register at all (a compare against a constant the
     # inputs can never tell apart: the read multiplexer's decode; a RAM's peek port
     # that drives a wire nothing reads)
-    # (left out: mutsel, meant to differ, and the wires the RTL names unused_*, which
-    # lint confirms nothing reads: a mutation of what drives one changes only it)
-    dead = [n for n in mod["netnames"]
-            if n.split(".")[-1] == MUTSEL or n.split(".")[-1].startswith("unused_")]
-    if yosys_equiv(work, both, name, dead, timeout):
+    # Paired: the ports and the RTL's named signals. Left out: mutsel (meant to differ),
+    # the wires the RTL names unused_* (lint confirms nothing reads them), and the
+    # netlist's own wires _N_ (a mutated cell's output is one: it may differ where it
+    # is not selected). Leaving a signal out only drops it from the proof's
+    # hypotheses: every port and register is still proved equal.
+    left_out = [n for n in mod["netnames"] if n.split(".")[-1] == MUTSEL
+                or n.split(".")[-1].startswith("unused_")
+                or re.fullmatch(r"_\d+_", n.split(".")[-1])]
+    if yosys_equiv(work, both, name, left_out, timeout):
         return "equivalent"
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     # a module without a reset (dispatch: no state; sync_ram: memory only) starts from
