@@ -436,12 +436,31 @@ def not_state(mod: dict) -> list[str]:
                   or n == MUTSEL)
 
 
+def mutsel_port_width(netlist: Path, top: str) -> int:
+    """The width of `top`'s mutsel port in the netlist, 0 if it has none (the top of a
+    mutant netlist takes mutsel from the MUTSEL define instead)."""
+    text = netlist.read_text()
+    head = re.search(r"^module \\?" + re.escape(top.lstrip("\\")) + r" ?\(", text, re.M)
+    if not head:
+        return 0
+    body = text[head.end():text.find("endmodule", head.end())]
+    m = re.search(r"^\s*input (?:\[(\d+):0\] )?" + MUTSEL + ";", body, re.M)
+    return (int(m.group(1) or 0) + 1) if m else 0
+
+
+# the base case of yosys_equiv's induction step (equal for 5 clocks, then for ever):
+# the pairs equal in this many clocks from reset, more than the step's 5
+EQ_BASE_DEPTH = 8
+
+
 def yosys_equiv(work: Path, both: str, name: str, blacklist, timeout: float) -> bool:
     """Yosys's own equivalence checker on the two copies of `both`: every named signal
     of one paired with the same of the other ($equiv cells; those in `blacklist` left
     out), each proved by SAT over 5 clocks (equiv_simple) and then by temporal
-    induction (equiv_induct); True only when every one is proved. The named wires
-    inside are what lets equiv_simple cut the proof into small cones."""
+    induction (equiv_induct); True only when every one is proved. That is the
+    induction step alone (pairs equal for 5 clocks stay equal): the caller checks the
+    base case from reset. The named wires inside let equiv_simple cut the proof into
+    small cones."""
     (work / f"{name}_eqbl").write_text("".join(n + "\n" for n in blacklist))
     (work / f"{name}_equiv.ys").write_text(
         both + f"equiv_make -blacklist {name}_eqbl gold gate equiv\nhierarchy -top equiv\n"
@@ -473,9 +492,14 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
     name = f"eq{mut_id}"
     work = prepare_dir(work)
     shutil.copy2(netlist, work / netlist.name)
+    # a module below the netlist's top (a campaign's small module checked alone, e.g.
+    # sync_ram in the cpu campaign) has mutsel as a port: tied to the mutant's number
+    sel = mutsel_port_width(netlist, top)
+    tie = ("cd {copy}\ndelete -port w:" + MUTSEL + f"\nconnect -set {MUTSEL} {sel}'d{{k}}\n"
+           "cd ..\n") if sel else ""
     read = (f"read_verilog -sv -DMUTSEL={{k}} {netlist.name}\nhierarchy -top {top}\n"
             "proc\nflatten\nmemory -nomap\nmemory_map\nopt_clean\nsetundef -zero -init\n"
-            "rename {top} {copy}\ndesign -stash {copy}\n")
+            "rename {top} {copy}\n" + tie + "design -stash {copy}\n")
     both = (read.format(k=0, top=top, copy="gold") + read.format(k=mut_id, top=top, copy="gate")
             + "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n")
     run_yosys(work, both + "select gold\nwrite_json -selected ports.json\n", name + "_gold")
@@ -488,36 +512,45 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
               f"hierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
     # First Yosys's equivalence checker: it proves what the checks below leave UNKNOWN
     # when the mutation changes no register at all (a compare against a constant the
-    # inputs can never tell apart: the read multiplexer's decode; a RAM's peek port
-    # that drives a wire nothing reads)
+    # inputs can never tell apart: the read multiplexer's decode) or changes one only
+    # where the design never goes (a hold value of registers that are all 0 then).
     # Paired: the ports and the RTL's named signals. Left out: mutsel (meant to differ),
-    # the wires the RTL names unused_* (lint confirms nothing reads them), and the
-    # netlist's own wires _N_ (a mutated cell's output is one: it may differ where it
-    # is not selected). Leaving a signal out only drops it from the proof's
-    # hypotheses: every port and register is still proved equal.
+    # the wires the RTL names unused_*, and the netlist's own wires _N_ (a mutated
+    # cell's output is one: it may differ where it is not selected). Leaving a signal
+    # out drops it from the proof's hypotheses as well as from what it proves.
+    # equiv_induct proves the induction step only (equal for 5 clocks, then for ever):
+    # the base case, the same pairs equal in the first 8 clocks from reset, is a
+    # bounded check below (EQ_BASE_DEPTH).
     left_out = [n for n in mod["netnames"] if n.split(".")[-1] == MUTSEL
                 or n.split(".")[-1].startswith("unused_")
                 or re.fullmatch(r"_\d+_", n.split(".")[-1])]
-    if yosys_equiv(work, both, name, left_out, timeout):
-        return "equivalent"
+    step = yosys_equiv(work, both, name, left_out, timeout)
+    if step:
+        run_yosys(work, both + f"equiv_make -make_assert -blacklist {name}_eqbl gold gate "
+                  f"paired\nhierarchy -top paired\nwrite_rtlil {name}_paired.il\n",
+                  name + "_paired")
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     # a module without a reset (dispatch: no state; sync_ram: memory only) starts from
     # its zero initial values
     has_reset = any(n == reset for n, _ in inputs)
     decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
 
-    def check(kind: str, module: str, prefix: str, what: str, k: int) -> str:
+    def check(kind: str, module: str, prefix: str, what: str, k: int,
+              mode: str = "prove") -> str:
         conns = ", ".join(f".{prefix}{n}({n})" for n, _ in inputs)
         (work / f"{name}_{kind}_top.sv").write_text(
             EQ_TOP.format(ports=decl, module=module, conns=conns, what=what,
                           from_=" from reset: reset is held in the first clock" if has_reset
                           else "", reset=EQ_RESET.format(reset=reset) if has_reset else ""))
-        text = (f"[options]\nmode prove\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
+        text = (f"[options]\nmode {mode}\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
                 f"[script]\nread_rtlil {name}_{kind}.il\nread -formal {name}_{kind}_top.sv\n"
                 f"prep -top eq_top\n\n[files]\n{work / (name + '_' + kind + '.il')}\n"
                 f"{work / (name + '_' + kind + '_top.sv')}\n")
         return run_sby(work, text, f"{name}_{kind}", timeout)
 
+    if step and check("paired", "paired", "", "the pairs equal in the first clocks",
+                      EQ_BASE_DEPTH, mode="bmc") == "pass":
+        return "equivalent"
     if check("strong", "strong", "", "every named signal equal in both copies", 2) == "pass":
         return "equivalent"
     result = check("miter", "miter", "in_", "the outputs equal", depth)

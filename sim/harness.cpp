@@ -304,6 +304,12 @@ extern "C" uint32_t hal_bus_read(void* ctx, uint16_t addr) {
     const uint32_t data = r.top->bus_rdata_o;
     const bool ready = r.top->bus_ready_o;
     if (ready) r.log_byte_exchange(addr, data, false);
+    // DISPATCH_CTX's scan number (for observation: the firmware does not use it) is
+    // the scan the dispatch came from, low 16 bits
+    if (ready && addr == BB_BUS_DISPATCH_CTX && !r.rf->free_running &&
+        (data >> BB_CTX_SCAN_SHIFT) != (r.scans & 0xFFFFu))
+      die("DISPATCH_CTX names scan %u in scan %llu", unsigned(data >> BB_CTX_SCAN_SHIFT),
+          (unsigned long long)r.scans);
     r.end_clock();
     if (ready) return data;  // else: a byte-side stall, the access repeats
   }

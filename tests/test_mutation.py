@@ -56,3 +56,41 @@ def test_deep_difference_is_not_called_equivalent(queue_netlist, tmp_path):
 
 def test_difference_is_found(queue_netlist, tmp_path):
     assert mutlib.equivalence(tmp_path, queue_netlist, "cond_queue", 3, 8, 300) == "different"
+
+
+# A difference in the first clocks after power-up only: a register without reset
+# counts the clocks, and the mutant drops the one clock in which the output flop
+# took the count's pulse. Yosys's equiv_induct proves the induction step alone (pairs
+# equal for 5 clocks stay equal), which holds here: the check must not call it
+# equivalent for that (the base case from reset is checked; found by review).
+EARLY_DIFFERENCE = """\
+module early (input clk_i, input rst_ni, input d_i, output reg q_o);
+  wire [1:0] mutsel = `MUTSEL;
+  reg [2:0] count;                       // no reset: from its zero initial value
+  always @(posedge clk_i) if (count != 3'd7) count <= count + 3'd1;
+  wire pulse = (mutsel == 2'd1) ? 1'b0 : count == 3'd1;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) q_o <= 1'b0; else q_o <= d_i ^ pulse;
+endmodule
+"""
+
+
+def test_an_early_difference_is_not_called_equivalent(tmp_path):
+    netlist = tmp_path / "early.v"
+    netlist.write_text(EARLY_DIFFERENCE)
+    assert mutlib.equivalence(tmp_path / "eq", netlist, "early", 1, 8, 300) == "different"
+
+
+def test_yosys_equivalence_step(queue_netlist, tmp_path):
+    """The step by itself: it proves the no-op mutation, not the visible one."""
+    def step(mut):
+        work = mutlib.prepare_dir(tmp_path / str(mut))   # Yosys sees this folder only
+        (work / "q.v").write_text(queue_netlist.read_text())
+        both = "".join(
+            f"read_verilog -sv -DMUTSEL={k} q.v\nhierarchy -top cond_queue\n"
+            "proc\nflatten\nmemory -nomap\nmemory_map\nopt_clean\nsetundef -zero -init\n"
+            f"rename cond_queue {copy}\ndesign -stash {copy}\n"
+            for k, copy in ((0, "gold"), (mut, "gate")))
+        both += "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n"
+        return mutlib.yosys_equiv(work, both, f"s{mut}", [mutlib.MUTSEL], 300)
+    assert step(1) and not step(3)
