@@ -495,6 +495,8 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
     # a module below the netlist's top (a campaign's small module checked alone, e.g.
     # sync_ram in the cpu campaign) has mutsel as a port: tied to the mutant's number
     sel = mutsel_port_width(netlist, top)
+    if top.startswith("$"):   # a parametrised module: a public name in Yosys's scripts
+        top = "\\" + top
     tie = ("cd {copy}\ndelete -port w:" + MUTSEL + f"\nconnect -set {MUTSEL} {sel}'d{{k}}\n"
            "cd ..\n") if sel else ""
     read = (f"read_verilog -sv -DMUTSEL={{k}} {netlist.name}\nhierarchy -top {top}\n"
