@@ -304,6 +304,15 @@ def _harness_equals_reference(il, stim, columns, scans, *extra) -> list[list[int
     return expected
 
 
+# the runs of the status-buffer tests: serial, and parallel with each timer/counter path
+TC_MODES = ["serial", "parallel-channel", "parallel-status"]
+
+
+def _mode_options(mode: str) -> list[str]:
+    """`bitbyte run` options of one of TC_MODES."""
+    return [] if mode == "serial" else ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
+
+
 # Every timer and counter index (make mutate: a status, enable, updated or written bit
 # of a high index could be stuck unseen, the other tests use few): timer n a 0 ms
 # on-delay of I0.0, counter n counting I0.1 and reset by I0.2, each status copied to a
@@ -317,14 +326,14 @@ STATUS_PROGRAM = "".join(
 STATUS_WATCH = [f"M{b}.{i}" for b in range(16) for i in range(8)]
 
 
-@pytest.mark.parametrize("mode", ["serial", "parallel-channel", "parallel-status"])
+@pytest.mark.parametrize("mode", TC_MODES)
 def test_every_status_index_harness(mode, tmp_path):
     il, stim = tmp_path / "status.il", tmp_path / "status.csv"
     il.write_text(STATUS_PROGRAM)
     scans = 10
     stim.write_text("scan,I0.0,I0.1,I0.2\n" + "".join(
         f"{k},{k % 2},{k // 2 % 2},{int(k % 5 == 4)}\n" for k in range(scans)))
-    extra = [] if mode == "serial" else ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
+    extra = _mode_options(mode)
     expected = _harness_equals_reference(il, stim, STATUS_WATCH, scans, *extra)
     assert all(len({row[c] for row in expected}) == 2 for c in range(128))  # all toggle
 
@@ -340,14 +349,14 @@ COUNTER_SET_PROGRAM = "".join(
 COUNTER_SET_WATCH = [f"M{b}.{i}" for b in range(8) for i in range(8)]
 
 
-@pytest.mark.parametrize("mode", ["serial", "parallel-channel", "parallel-status"])
+@pytest.mark.parametrize("mode", TC_MODES)
 def test_every_counter_through_the_status_buffer_harness(mode, tmp_path):
     il, stim = tmp_path / "counters.il", tmp_path / "counters.csv"
     il.write_text(COUNTER_SET_PROGRAM)
     scans = 10
     stim.write_text("scan,I0.1,IW0\n" + "".join(
         f"{k},{k % 2},{3 if k // 2 % 2 == 0 else 0}\n" for k in range(scans)))
-    extra = [] if mode == "serial" else ["--mode", "parallel", "--tc-path", mode.split("-")[1]]
+    extra = _mode_options(mode)
     if mode == "parallel-status":   # the program takes the path this test is about
         out = tmp_path / "asm"
         assert cli.main(["asm", str(il), "--mode", "parallel", "--tc-path", "status",
