@@ -343,9 +343,14 @@ def test_every_status_index_harness(mode, tmp_path):
 # updates (CU, R), so the partition sends its inputs through the channels; here each
 # has one, `S C n` loading IW0 (3 or 0 by turns) at every rising I0.1, so with
 # --tc-path status every counter's pulse goes through C_PULSE (its written bit) and
-# `LD C n` waits for the update (its updated bit, docs/isa.md bit 16).
+# `LD C n` waits for the update (its updated bit, docs/isa.md bit 16). 32 bit
+# instructions between `S C n` and `LD C n` keep the bit side behind the byte side, so
+# that both waits end on the registered bits, not on a write in the same clock:
+# without them, counter 58's updated bit never set and counter 39's written bit
+# stuck at 1 both passed; with them each fails (shown by hand on the RTL).
 COUNTER_SET_PROGRAM = "".join(
-    f"L IW0\nLD I0.1\nS C{n}\nLD C{n}\n= M{n // 8}.{n % 8}\n" for n in range(STATUS))
+    f"L IW0\nLD I0.1\nS C{n}\n" + "LD I0.2\n= M20.0\n" * 16 +
+    f"LD C{n}\n= M{n // 8}.{n % 8}\n" for n in range(STATUS))
 COUNTER_SET_WATCH = [f"M{b}.{i}" for b in range(8) for i in range(8)]
 
 
