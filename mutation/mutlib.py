@@ -126,6 +126,20 @@ class Mutation:
         return cls(**d)
 
 
+def noop(mut: Mutation, design: dict) -> str | None:
+    """Why `mut` changes nothing, found in the netlist it was drawn from (`design`: the
+    modules of Yosys's write_json): a stuck-at mutation of an input bit that already is
+    that constant (`mutate -list` draws such bits too: a case item's compare against
+    a state's encoding). None when it may change something; the checks decide then."""
+    if mut.mode not in ("const0", "const1"):
+        return None
+    cell = design.get(mut.module, {}).get("cells", {}).get(mut.cell)
+    bits = cell["connections"].get(mut.port, []) if cell else []
+    if mut.portbit < len(bits) and bits[mut.portbit] == mut.mode[-1]:
+        return f"{mut.port}[{mut.portbit}] is the constant {mut.mode[-1]} already"
+    return None
+
+
 def base_module(name: str) -> str:
     r"""`$paramod\cond_queue\Depth=...` and `$paramod$<hash>\cond_queue` -> cond_queue."""
     name = name.lstrip("\\")

@@ -4,6 +4,7 @@ while the unmutated netlist (mutsel 0) passes; and the miter check proves a muta
 that cannot change anything equivalent, and finds the difference a real one makes."""
 from __future__ import annotations
 
+import json
 import re
 import sys
 from pathlib import Path
@@ -43,6 +44,26 @@ def queue_netlist(tmp_path_factory):
         m.id = len(picked) + 1
         picked.append(m)
     return mutlib.write_netlist(work, script, "cond_queue", picked, "mutants")
+
+
+def test_a_bit_stuck_at_its_own_constant_is_a_no_op(tmp_path):
+    """mutlib.noop reads the netlist the sample was drawn from: of the three
+    mutations of queue_netlist, only the first (bit 13 of 16'hFFFF stuck at 1) leaves
+    every bit as it was; stuck at 0 and the inverted compare do not."""
+    work = mutlib.prepare_dir(tmp_path / "elab")
+    script = mutlib.elab_script("cond_queue", {"Depth": 4})
+    cands = mutlib.candidates(work, script, ["cond_queue"], "all")
+    mutlib.run_yosys(work, script + "write_json d.json\n", "d")
+    design = json.loads((work / "d.json").read_text())["modules"]
+    src = (mutlib.RTL / "cond_queue.v").read_text().splitlines()
+    line = next(i for i, t in enumerate(src, 1) if "underflows_o != 16'hFFFF" in t)
+    found = {}
+    for mode, port, bit in (("const1", "B", 13), ("const0", "B", 13), ("inv", "Y", 0)):
+        (m,) = [c for c in cands if c.mode == mode and c.cell.startswith("$ne$")
+                and c.port == port and c.portbit == bit
+                and any(re.match(rf"cond_queue\.v:{line}\.", s) for s in c.srcs)]
+        found[mode] = mutlib.noop(m, design)
+    assert found == {"const1": "B[13] is the constant 1 already", "const0": None, "inv": None}
 
 
 def test_no_op_mutant_is_proved_equivalent(queue_netlist, tmp_path):
