@@ -389,6 +389,20 @@ module core_seq #(
     if ($past(grant_i)) assert (f_owned && copying);
   end
 
+  // ---- (h) SEM_WAIT counts what hsem saw: the clocks this core asked for the lock
+  // and was not granted it, over the cycle a cycle_done_o reports (none are asked for
+  // in StWait, so counting from the last report is counting from the precycle's start).
+  // Counted here from the ports alone; the helper invariants tie it to the register.
+  reg [31:0] f_wait;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) f_wait <= 32'd0;
+    else         f_wait <= (cycle_done_o ? 32'd0 : f_wait) + {31'd0, lock_req_o && !grant_i};
+  always @(*) if (rst_ni) begin
+    if (cycle_done_o) assert (sem_wait_o == f_wait);
+    if (state_q != StWait) f_inv_wait: assert (wait_cnt_q == f_wait);
+    if (state_q == StWait && !cycle_done_o) f_inv_wait_none: assert (f_wait == 32'd0);
+  end
+
   // the interesting runs exist (formal/core_seq.sby, task cover; copy_engine.v has
   // the gathered postcycle write)
   always @(posedge clk_i) if (rst_ni) begin

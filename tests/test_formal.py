@@ -206,6 +206,10 @@ MUTATIONS = [
      "assert (cpu_run_o && !lock_req_o && copy_fail_o"),  # forgets the postcycle: late
     ("core_seq", "core_seq.v", "if (!started_q || period_i == 64'd0) nominal_q <= now_m;",
      "nominal_q <= now_m;", "assert (lock_req_o && !cpu_run_o"),  # a late scan shifts the plan
+    # SEM_WAIT against the ports' count of refused requests
+    ("core_seq", "core_seq.v", "      if (waiting) wait_cnt_q <= wait_cnt_q + 32'd1;",
+     "      if (lock_req_o) wait_cnt_q <= wait_cnt_q + 32'd1;",
+     "assert (sem_wait_o == f_wait)"),          # counts the granting clock too
     # bit_proc (issue 16 item 2): the marker exchange's cells
     ("bit_proc", "bit_proc.v", "      if (e_first_q) cell_hold_q <= cell_rdata_i;",
      "      cell_hold_q <= cell_rdata_i;", "rlo_d == f_rlo_nx"),   # a held read sees another's
