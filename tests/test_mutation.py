@@ -66,6 +66,35 @@ def test_a_bit_stuck_at_its_own_constant_is_a_no_op(tmp_path):
     assert found == {"const1": "B[13] is the constant 1 already", "const0": None, "inv": None}
 
 
+def test_a_mutation_no_output_reads_is_dead(tmp_path):
+    """mutlib.dead on shared_mem's read select `bank_rdata[(rbank * Cores + r) * 32 +: 32]`
+    and clearing counter (3 cores, 16 words): bit 31 of the inner product, which the
+    product with 32 shifts out of the 32-bit index, is dead; bit 31 of the outer one
+    sends the read out of range (an undefined word, not a value the optimiser may
+    pick), bit 1 of the clearing counter's next value clears the words in another
+    order: neither is dead."""
+    work = mutlib.prepare_dir(tmp_path / "elab")
+    script = mutlib.elab_script("shared_mem", {"Cores": 3, "SharedWords": 16})
+    cands = mutlib.candidates(work, script, ["shared_mem"], "all")
+    src = (mutlib.RTL / "shared_mem.v").read_text().splitlines()
+    sel = next(i for i, t in enumerate(src, 1) if "bank_rdata[({{(32-IdW)" in t)
+    clr = next(i for i, t in enumerate(src, 1) if "clear_q <= clear_q + 1'b1" in t)
+
+    def span(m):   # columns of the expression: the outer product is the longer
+        a, b = re.search(r":\d+\.(\d+)-\d+\.(\d+)", m.srcs[0]).groups()
+        return int(b) - int(a)
+
+    def pick(kind, line, port, bit, longest=False):
+        ms = [c for c in cands if c.cell.startswith(kind) and c.port == port
+              and c.portbit == bit and c.mode == "inv"
+              and any(re.match(rf"shared_mem\.v:{line}\.", s) for s in c.srcs)]
+        return (max if longest else min)(ms, key=span)
+    picked = (pick("$mul$", sel, "Y", 31), pick("$mul$", sel, "Y", 31, longest=True),
+              pick("$add$", clr, "A", 1))
+    assert [mutlib.dead(tmp_path / f"d{k}", script, m, 300)
+            for k, m in enumerate(picked)] == [True, False, False]
+
+
 def test_no_op_mutant_is_proved_equivalent(queue_netlist, tmp_path):
     assert mutlib.equivalence(tmp_path, queue_netlist, "cond_queue", 1, 8, 300) == "equivalent"
 
