@@ -688,6 +688,28 @@ async def long_burst_one_item_per_clock(dut):
     await run_scenario(dut, sc)
 
 
+@cocotb.test()
+async def the_whole_plan_as_one_list(dut):
+    """A precycle, then a postcycle, of all PLAN_WORDS entries: the issue count's top
+    bit set at the end of a list (make mutate: the done compare's bit 4 flipped when
+    bit 8 is set, and the count's bit 4 flipped from entry 64 on, both went unseen;
+    the longest list before was 61 entries)."""
+    await start_clock(dut)
+    rng = random.Random(16)
+
+    def items(n):
+        return [word_item(rng.randrange(SHARED_WORDS), rng.randrange(MW_WORDS))
+                if rng.random() < 0.3 else
+                bit_item(rng.randrange(SHARED_WORDS), rng.randrange(32),
+                         rng.randrange(MARKER_BITS)) for _ in range(n)]
+    for writer, pre in ((1, True), (OWN, False)):
+        lst = [desc(writer)] + items(PLAN_WORDS - 1)
+        sc = Scenario(protect=SEM, period=0, entries=lst,
+                      pre_len=len(lst) if pre else 0, post_base=0,
+                      post_len=0 if pre else len(lst), scan_len=[7, 3], seed=16 + pre)
+        await run_scenario(dut, sc)
+
+
 # --------------------------------------------------------------------- timing
 
 def burst_plan():
