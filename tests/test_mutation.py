@@ -66,7 +66,8 @@ def test_a_bit_stuck_at_its_own_constant_is_a_no_op(tmp_path):
     assert found == {"const1": "B[13] is the constant 1 already", "const0": None, "inv": None}
 
 
-def test_a_mutation_no_output_reads_is_dead(tmp_path):
+@pytest.mark.parametrize("memories", [True, False], ids=["through_memories", "words"])
+def test_a_mutation_no_output_reads_is_dead(memories, tmp_path):
     """mutlib.dead on shared_mem's read select `bank_rdata[(rbank * Cores + r) * 32 +: 32]`
     and clearing counter (3 cores, 16 words): bit 31 of the inner product, which the
     product with 32 shifts out of the 32-bit index, is dead; bit 31 of the outer one
@@ -91,7 +92,7 @@ def test_a_mutation_no_output_reads_is_dead(tmp_path):
         return (max if longest else min)(ms, key=span)
     picked = (pick("$mul$", sel, "Y", 31), pick("$mul$", sel, "Y", 31, longest=True),
               pick("$add$", clr, "A", 1))
-    assert [mutlib.dead(tmp_path / f"d{k}", script, m, 300)
+    assert [mutlib.dead(tmp_path / f"d{k}", script, m, 300, memories=memories)
             for k, m in enumerate(picked)] == [True, False, False]
 
 
