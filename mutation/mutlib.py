@@ -541,21 +541,10 @@ def yosys_equiv(work: Path, both: str, name: str, blacklist, timeout: float) -> 
         re.search(r"Of those cells \d+ are proven and 0 are unproven", proc.stdout))
 
 
-def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
-                timeout: float, reset: str = "rst_ni") -> str:
-    """Prove mutant `mut_id` of `netlist` equivalent to the original (mutsel 0) from
-    reset: 'equivalent', 'different' (a trace from reset where an output differs) or
-    'unknown' / 'timeout' / 'error'.
-
-    Checks on two copies of the netlist (mutsel a constant in each), memories and
-    registers without reset starting equal (zero). First Yosys's equivalence checker
-    (yosys_equiv), then the strong one: every
-    register and port equal in both (equiv_make -make_assert on those names only), by
-    2-induction; it holds when the mutation never changes the next state, and then
-    its proof is quick. Else the miter of the outputs (miter -equiv) by k-induction
-    to `depth`: a mutation that changes state the outputs never show needs the deeper
-    proof, and a failing base case is a real difference."""
-    name = f"eq{mut_id}"
+def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str):
+    """The Yosys script that puts the original (gold) and mutant `mut_id` (gate) of
+    `netlist` side by side, flattened, memories as registers, registers without reset
+    starting at zero; with the work directory and gold's write_json module."""
     work = prepare_dir(work)
     shutil.copy2(netlist, work / netlist.name)
     # a module below the netlist's top (a campaign's small module checked alone, e.g.
@@ -571,7 +560,25 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
     both = (read.format(k=0, top=top, copy="gold") + read.format(k=mut_id, top=top, copy="gate")
             + "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n")
     run_yosys(work, both + "select gold\nwrite_json -selected ports.json\n", name + "_gold")
-    mod = json.loads((work / "ports.json").read_text())["modules"]["gold"]
+    return work, both, json.loads((work / "ports.json").read_text())["modules"]["gold"]
+
+
+def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
+                timeout: float, reset: str = "rst_ni") -> str:
+    """Prove mutant `mut_id` of `netlist` equivalent to the original (mutsel 0) from
+    reset: 'equivalent', 'different' (a trace from reset where an output differs) or
+    'unknown' / 'timeout' / 'error'.
+
+    Checks on two copies of the netlist (mutsel a constant in each), memories and
+    registers without reset starting equal (zero). First Yosys's equivalence checker
+    (yosys_equiv), then the strong one: every
+    register and port equal in both (equiv_make -make_assert on those names only), by
+    2-induction; it holds when the mutation never changes the next state, and then
+    its proof is quick. Else the miter of the outputs (miter -equiv) by k-induction
+    to `depth`: a mutation that changes state the outputs never show needs the deeper
+    proof, and a failing base case is a real difference."""
+    name = f"eq{mut_id}"
+    work, both, mod = two_copies(work, netlist, top, mut_id, name)
     (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod)))
     run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
               "hierarchy -top strong\n"
@@ -623,3 +630,106 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
         return "equivalent"
     result = check("miter", "miter", "in_", "the outputs equal", depth)
     return {"pass": "equivalent", "fail": "different"}.get(result, result)
+
+
+# ------------------------------------------------------------- equivalence once settled
+@dataclass
+class Settle:
+    """A module's contract after reset: `signal` (an output) rises within `clocks` of
+    reset and stays up until the next reset; before that, and in the clock it rises,
+    the outputs in `undefined` promise nothing (a memory still being cleared)."""
+    signal: str
+    clocks: int
+    undefined: tuple = ()
+
+
+SETTLE_TOP = """\
+// Equivalence once settled ({what}); reset is held in the first clock.
+module eq_top (
+{ports}
+);
+{body}
+  reg f_first = 1'b1;
+  always @(posedge clk_i) f_first <= 1'b0;
+  always @(*) if (f_first) assume (!{reset});
+{once}{props}
+endmodule
+"""
+
+
+def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle: Settle,
+                        timeout: float, reset: str = "rst_ni") -> str:
+    """Mutant `mut_id` equivalent to the original under `settle`'s contract, for
+    mutations that change only how a module gets ready (the order a clearing visits
+    the words): 'equivalent' when all four hold, else the first failing check's
+    outcome ('different' for a real difference from reset).
+    1. From reset, for settle.clocks + 2 clocks: every output equal, those in
+       settle.undefined only from the clock after gold's settle.signal is up; it is up
+       at settle.clocks.
+    2. From reset: every register (memories too) and port equal in the copies at clock
+       settle.clocks and after.
+    3. In any state with the registers equal and settle.signal up (or in reset), they
+       stay equal (k-induction with that assumed: the mutated cell then no longer
+       matters).
+    4. The original's settle.signal, once up, stays up until a reset.
+    With 2 the copies are in one state once settled; 3 and 4 keep them there."""
+    name = f"st{mut_id}"
+    work, both, mod = two_copies(work, netlist, top, mut_id, name)
+    (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod)))
+    inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
+    outputs = [(n, len(p["bits"])) for n, p in mod["ports"].items()
+               if p["direction"] == "output"]
+    if settle.signal not in dict(outputs) or not any(n == reset for n, _ in inputs):
+        return "error"
+    decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
+    run_yosys(work, both + "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate "
+              f"miter\nhierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
+    run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
+              f"hierarchy -top strong\nwrite_rtlil {name}_strong.il\n", name + "_strong")
+    run_yosys(work, both + f"hierarchy -top gold\nwrite_rtlil {name}_gold.il\n",
+              name + "_goldonly")
+
+    def run(kind: str, module: str, body: str, props: str, mode: str, k: int,
+            script: str = "") -> str:
+        # 1 and 2 follow one reset (a later one starts the same clearing again, from
+        # memories equal in both copies); 3 and 4 hold in any state
+        once = f"  always @(*) if (!f_first) assume ({reset});\n" if mode == "bmc" else ""
+        (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
+            what=kind, ports=decl, body=body, reset=reset, props=props, once=once))
+        il = work / f"{name}_{module}.il"
+        text = (f"[options]\nmode {mode}\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
+                f"[script]\nread_rtlil {il.name}\nread -formal {name}_{kind}_top.sv\n"
+                f"prep -top eq_top\n{script}\n[files]\n{il}\n"
+                f"{work / (name + '_' + kind + '_top.sv')}\n")
+        return run_sby(work, text, f"{name}_{kind}", timeout)
+
+    d = settle.clocks
+    wires = "".join(f"  wire [{w - 1}:0] gold_{n}, gate_{n};\n" for n, w in outputs)
+    conns = ", ".join([f".in_{n}({n})" for n, _ in inputs]
+                      + [f".gold_{n}(gold_{n}), .gate_{n}(gate_{n})" for n, _ in outputs]
+                      + [".trigger()"])
+    s = settle.signal
+    props = (f"  reg [15:0] f_clock = 16'd0;\n  reg f_was = 1'b0;\n"
+             f"  always @(posedge clk_i) begin\n    f_clock <= f_clock + 16'd1;\n"
+             f"    f_was <= |gold_{s};\n  end\n  always @(*) if (!f_first) begin\n"
+             + "".join(f"    assert ({'!(f_was && |gold_' + s + ') || ' if n in settle.undefined else ''}"
+                       f"gold_{n} == gate_{n});\n" for n, _ in outputs)
+             + f"    if (f_clock == 16'd{d}) assert (|gold_{s});\n  end\n")
+    steps = [
+        ("outputs", "miter", wires + f"  miter u_check ({conns});\n", props, "bmc", d + 2, ""),
+        ("state", "strong", "  strong u_check (" + ", ".join(f".{n}({n})" for n, _ in inputs)
+         + ");\n", "", "bmc", d + 1, f"chformal -assert -delay {d}\n"),
+        ("step", "strong", f"  wire [{dict(outputs)[s] - 1}:0] f_settled;\n  strong u_check ("
+         + ", ".join([f".{n}({n})" for n, _ in inputs] + [f".{s}(f_settled)"]) + ");\n",
+         # in reset or settled (the base case holds the reset: an assumption it can meet)
+         f"  always @(*) assume (!{reset} || |f_settled);\n", "prove", 2, ""),
+        ("stays", "gold", f"  wire [{dict(outputs)[s] - 1}:0] f_settled;\n  gold u_check ("
+         + ", ".join([f".{n}({n})" for n, _ in inputs] + [f".{s}(f_settled)"]) + ");\n",
+         f"  reg f_up = 1'b0;\n  always @(posedge clk_i) f_up <= |f_settled && {reset};\n"
+         f"  always @(*) if (f_up && {reset}) assert (|f_settled);\n", "prove", 2, ""),
+    ]
+    for kind, module, body, pr, mode, k, script in steps:
+        out = run(kind, module, body, pr, mode, k, script)
+        if out != "pass":
+            return {"fail": "different"}.get(out, out) if kind == "outputs" else out
+    return "equivalent"

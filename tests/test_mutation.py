@@ -145,3 +145,38 @@ def test_yosys_equivalence_step(queue_netlist, tmp_path):
         both += "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n"
         return mutlib.yosys_equiv(work, both, f"s{mut}", [mutlib.MUTSEL], 300)
     assert step(1) and not step(3)
+
+
+@pytest.fixture(scope="module")
+def clearing_netlist(tmp_path_factory):
+    """shared_mem (2 cores, 2 words a buffer: 4 words cleared after reset) with
+    1 = bit 1 of the clearing counter's next value inverted (the words cleared in the
+    order 0, 3, 2, 1), 2 = the clearing's data bit 0 stuck at 1 (every word reads 1
+    once ready)."""
+    work = mutlib.prepare_dir(tmp_path_factory.mktemp("settle") / "elab")
+    script = mutlib.elab_script("shared_mem", {"Cores": 2, "SharedWords": 2})
+    cands = mutlib.candidates(work, script, ["shared_mem"], "all")
+    src = (mutlib.RTL / "shared_mem.v").read_text().splitlines()
+    clr = next(i for i, t in enumerate(src, 1) if "clear_q <= clear_q + 1'b1" in t)
+    zero = next(i for i, t in enumerate(src, 1) if "clearing ? 32'd0 :" in t)
+    picked = [next(c for c in cands if c.cell.startswith("$add$") and c.port == "A"
+                   and c.portbit == 1 and c.mode == "inv"
+                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
+              next(c for c in cands if c.cell.startswith("$ternary$") and c.port == "B"
+                   and c.portbit == 0 and c.mode == "const1"
+                   and any(s.startswith(f"shared_mem.v:{zero}.") for s in c.srcs))]
+    for k, m in enumerate(picked, 1):
+        m.id = k
+    return mutlib.write_netlist(work, script, "shared_mem", picked, "mutants")
+
+
+def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp_path):
+    settle = mutlib.Settle("ready_o", 8, ("rdata_o",))
+    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "shared_mem", 1,
+                                      settle, 300) == "equivalent"
+    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 2,
+                                      settle, 300) == "different"
+    # a contract the original does not keep (ready after 3 clocks) proves nothing
+    early = mutlib.Settle("ready_o", 3, ("rdata_o",))
+    assert mutlib.settled_equivalence(tmp_path / "c", clearing_netlist, "shared_mem", 1,
+                                      early, 300) == "different"
