@@ -143,11 +143,16 @@ def noop(mut: Mutation, design: dict) -> str | None:
 # Flattened, memories as registers, logic and registers as single-bit gates, the
 # arithmetic narrowed to the bits used (wreduce), then Yosys's own clean-up: what no
 # output depends on is removed (bit by bit, through the memories too). Undriven wires
-# become free inputs (setundef -anyseq), and no pass that treats an undefined value as
-# a choice runs: `techmap` would build an index select from the bits in range only,
-# and a mutated index bit that sends the read out of its word would look dead.
+# (and a mapped memory's words out of range) become free inputs (setundef -anyseq),
+# and no pass may treat an undefined value as a free choice: registers are kept as
+# they are (opt -noff, opt_dff -keepdc: a register never loaded and never reset is
+# not 'x', which opt_expr would fold `x ^ a` to 0 with), wreduce keeps don't-cares
+# (-keepdc), and no techmap (its index select uses the bits in range only, so a
+# mutated index bit that sends the read out of its word would look dead).
+_DEAD_OPT = "opt -fine -noff\nopt_dff -keepdc\nopt -fine -noff\n"
 DEAD_FLOW = ("proc\nflatten\nsetundef -undriven -anyseq\nmemory -nomap\n{map}"
-             "opt -fine\nwreduce\nsimplemap\nopt -fine\nwreduce\nopt_clean -purge\n")
+             "setundef -undriven -anyseq\n" + _DEAD_OPT + "wreduce -keepdc\nsimplemap\n"
+             + _DEAD_OPT + "wreduce -keepdc\nopt_clean -purge\n")
 
 
 def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None = None,
@@ -180,12 +185,16 @@ def dead(work: Path, script: str, mut: Mutation, timeout: float, top: str | None
     if proc.returncode != 0:
         return False
     design = json.loads((work / f"{name}.json").read_text())["modules"]
-    (mod,) = [m for m in design.values() if "mut_en" in m["ports"]
-              and m.get("attributes", {}).get("top")]
+    tops = [m for m in design.values() if "mut_en" in m["ports"]
+            and m.get("attributes", {}).get("top")]
+    if len(tops) != 1:
+        return False
+    mod = tops[0]
     switch = set(mod["ports"]["mut_en"]["bits"])
+    # a port of unknown direction (a blackbox's) counts as a read
     read = any(set(bits) & switch for cell in mod["cells"].values()
                for p, bits in cell["connections"].items()
-               if cell["port_directions"].get(p) == "input")
+               if cell.get("port_directions", {}).get(p, "input") == "input")
     shown = any(set(p["bits"]) & switch for n, p in mod["ports"].items() if n != "mut_en")
     return not read and not shown
 

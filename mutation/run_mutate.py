@@ -209,10 +209,10 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
             # whole CPU is too large for that: its modules alone)
             script = mutlib.elab_script(home["top"], home.get("params"))
             drawn = Path(home["dir"])   # the RTL the sample was drawn from
+            alone = None if c.equivalence else by_id[i].module
             if mutlib.dead(work / "equiv", script, by_id[i], timeout, memories=False,
-                           rtl=drawn) or \
-                    mutlib.dead(work / "equiv", script, by_id[i], timeout,
-                                None if c.equivalence else by_id[i].module, rtl=drawn):
+                           rtl=drawn) or (alone != home["top"] and mutlib.dead(
+                               work / "equiv", script, by_id[i], timeout, alone, rtl=drawn)):
                 equiv[i] = "no-op: Yosys's clean-up removes it (no output reads it)"
                 continue
             if not c.equivalence and by_id[i].home not in c.equiv_modules:

@@ -96,6 +96,36 @@ def test_a_mutation_no_output_reads_is_dead(memories, tmp_path):
             for k, m in enumerate(picked)] == [True, False, False]
 
 
+NEVER_LOADED = """\
+module never_loaded (input wire clk, input wire [3:0] a, input wire [3:0] d,
+                     output wire y, output wire z);
+  reg [3:0] q;                 // no reset, never loaded: a value, not a don't-care
+  wire load = 1'b0;
+  always @(posedge clk) if (load) q <= d;
+  assign y = q[0] ^ a[0];
+  assign z = q[1] & a[1];
+endmodule
+"""
+
+
+def test_a_register_never_loaded_is_not_a_dont_care(tmp_path):
+    """Found by review: with opt_dff removing the register's D path, q became 'x and
+    opt_expr folded `x ^ a` and `x & a` to 0, so inverting a[0] or a[1] looked dead
+    while y and z do change with it (a miter and both simulators show it)."""
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "never_loaded.v").write_text(NEVER_LOADED)
+    script = "read_verilog -sv never_loaded.v\n" + mutlib.light_elab("never_loaded")
+    work = mutlib.prepare_dir(tmp_path / "elab", src)
+    cands = mutlib.candidates(work, script, ["never_loaded"], "all")
+    xor_a = next(c for c in cands if c.cell.startswith("$xor$") and c.port == "B"
+                 and c.mode == "inv")
+    and_a = next(c for c in cands if c.cell.startswith("$and$") and c.port == "B"
+                 and c.mode == "inv")
+    assert [mutlib.dead(tmp_path / f"d{k}", script, m, 300, rtl=src)
+            for k, m in enumerate((xor_a, and_a))] == [False, False]
+
+
 def test_no_op_mutant_is_proved_equivalent(queue_netlist, tmp_path):
     assert mutlib.equivalence(tmp_path, queue_netlist, "cond_queue", 1, 8, 300) == "equivalent"
 
