@@ -731,7 +731,7 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
         ("step", "strong", f"  wire [{dict(outputs)[s] - 1}:0] f_settled;\n  strong u_check ("
          + ", ".join([f".{n}({n})" for n, _ in inputs] + [f".{s}(f_settled)"]) + ");\n",
          # in reset or settled (the base case holds the reset: an assumption it can meet)
-         f"  always @(*) assume (!{reset} || |f_settled);\n", "prove", 2, ""),
+         f"  always @(*) assume (!{reset} || |f_settled);\n", "prove", 1, ""),
         ("stays", "gold", f"  wire [{dict(outputs)[s] - 1}:0] f_settled;\n  gold u_check ("
          + ", ".join([f".{n}({n})" for n, _ in inputs] + [f".{s}(f_settled)"]) + ");\n",
          f"  reg f_up = 1'b0;\n  always @(posedge clk_i) f_up <= |f_settled && {reset};\n"
