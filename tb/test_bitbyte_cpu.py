@@ -37,14 +37,19 @@ async def clock(dut):
     await FallingEdge(dut.clk_i)
 
 
-@cocotb.test()
-async def copy_port_writes_and_reads_every_marker(dut):
+async def start(dut):
+    """Every input at 0 (the watchdog off), reset for one clock."""
     await start_in_reset(dut, dut.prog_we_i, dut.run_i, dut.time_start_i, dut.parallel_i,
                          dut.free_i, dut.marker_write_buffer_i, dut.exchange_i,
                          dut.in_pins_i, dut.in_words_i, dut.bus_we_i, dut.bus_re_i,
                          dut.mcopy_en_i, dut.mcopy_we_i, dut.mcopy_addr_i,
                          dut.mcopy_wdata_i, dut.dbg_m_addr_i,
                          watchdog_limit_i=100000)
+
+
+@cocotb.test()
+async def copy_port_writes_and_reads_every_marker(dut):
+    await start(dut)
     for _ in range(MARKER_BITS + 16):      # the marker RAM clears itself, a bit a clock
         if int(dut.ready_o.value):
             break
@@ -81,12 +86,7 @@ REGION_CLEAR = 4 * MARKER_CELLS // 16
 @cocotb.test()
 async def ready_waits_for_the_markers_and_the_marker_area(dut):
     marker_bits = int(os.environ.get("TB_MARKER_BYTES", str(MARKER_BITS // 8))) * 8
-    await start_in_reset(dut, dut.prog_we_i, dut.run_i, dut.time_start_i, dut.parallel_i,
-                         dut.free_i, dut.marker_write_buffer_i, dut.exchange_i,
-                         dut.in_pins_i, dut.in_words_i, dut.bus_we_i, dut.bus_re_i,
-                         dut.mcopy_en_i, dut.mcopy_we_i, dut.mcopy_addr_i,
-                         dut.mcopy_wdata_i, dut.dbg_m_addr_i,
-                         watchdog_limit_i=100000)
+    await start(dut)
     clocks = 0
     while not int(dut.ready_o.value):
         await clock(dut)
