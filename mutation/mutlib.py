@@ -646,10 +646,15 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
 class Settle:
     """A module's contract after reset: `signal` (an output) rises within `clocks` of
     reset and stays up until the next reset; before that, and in the clock it rises,
-    the outputs in `undefined` promise nothing (a memory still being cleared)."""
+    the outputs in `undefined` promise nothing (a memory still being cleared). The
+    registers in `free` (RTL names) are not compared once settled: state that only the
+    getting ready reads (a clearing counter's low bits once it is done). The check's
+    induction step holds them free in both copies, so a register named here that
+    anything still reads makes it fail: the name is a claim the proof checks."""
     signal: str
     clocks: int
     undefined: tuple = ()
+    free: tuple = ()
 
 
 SETTLE_TOP = """\
@@ -680,11 +685,20 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     3. In any state with the registers equal and settle.signal up (or in reset), they
        stay equal (k-induction with that assumed: the mutated cell then no longer
        matters).
+    Steps 2 and 3 leave settle.free out of "every register": free in both copies.
     4. The original's settle.signal, once up, stays up until a reset.
     With 2 the copies are in one state once settled; 3 and 4 keep them there."""
     name = f"st{mut_id}"
     work, both, mod = two_copies(work, netlist, top, mut_id, name)
-    (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod)))
+    # a free register by its RTL name, at any level of the flattened design; never a
+    # port (the outputs are what the contract compares)
+    free = [n for n in mod["netnames"]
+            if n.rsplit(".", 1)[-1] in settle.free and n not in mod["ports"]]
+    missing = set(settle.free) - {n.rsplit(".", 1)[-1] for n in free}
+    if missing:
+        raise MutationError(f"{top}: the contract's free registers {sorted(missing)} are "
+                            "not registers of the netlist")
+    (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod) + free))
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     outputs = [(n, len(p["bits"])) for n, p in mod["ports"].items()
                if p["direction"] == "output"]

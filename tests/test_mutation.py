@@ -182,7 +182,9 @@ def clearing_netlist(tmp_path_factory):
     """shared_mem (2 cores, 2 words a buffer: 4 words cleared after reset) with
     1 = bit 1 of the clearing counter's next value inverted (the words cleared in the
     order 0, 3, 2, 1), 2 = the clearing's data bit 0 stuck at 1 (every word reads 1
-    once ready)."""
+    once ready), 3 = bit 1 of the clearing counter's hold value inverted (once done,
+    that bit toggles every clock: the counter's low bits differ for ever, and nothing
+    reads them then)."""
     work = mutlib.prepare_dir(tmp_path_factory.mktemp("settle") / "elab")
     script = mutlib.elab_script("shared_mem", {"Cores": 2, "SharedWords": 2})
     cands = mutlib.candidates(work, script, ["shared_mem"], "all")
@@ -194,7 +196,10 @@ def clearing_netlist(tmp_path_factory):
                    and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
               next(c for c in cands if c.cell.startswith("$ternary$") and c.port == "B"
                    and c.portbit == 0 and c.mode == "const1"
-                   and any(s.startswith(f"shared_mem.v:{zero}.") for s in c.srcs))]
+                   and any(s.startswith(f"shared_mem.v:{zero}.") for s in c.srcs)),
+              next(c for c in cands if c.cell.startswith("$procmux$") and c.port == "B"
+                   and c.portbit == 1 and c.mode == "inv"
+                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs))]
     for k, m in enumerate(picked, 1):
         m.id = k
     return mutlib.write_netlist(work, script, "shared_mem", picked, "mutants")
@@ -210,3 +215,23 @@ def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp
     early = mutlib.Settle("ready_o", 3, ("rdata_o",))
     assert mutlib.settled_equivalence(tmp_path / "c", clearing_netlist, "shared_mem", 1,
                                       early, 300) == "different"
+
+
+def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path):
+    """Settle.free: the counter's low bits differ for ever after mutant 3, so the
+    copies are equal once settled only with them left free; leaving free a register the
+    outputs read (word 2 of every bank) proves nothing, and a name that is no register
+    is refused. (A register loaded from the inputs every clock, as rbank_q, may be left
+    free: it is equal again one clock later, which is what the induction step sees.)"""
+    strict = mutlib.Settle("ready_o", 8, ("rdata_o",))
+    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "shared_mem", 3,
+                                      strict, 300) != "equivalent"
+    free = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q",))
+    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 3,
+                                      free, 300) == "equivalent"
+    read = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q", "mem[2]"))
+    assert mutlib.settled_equivalence(tmp_path / "d", clearing_netlist, "shared_mem", 1,
+                                      read, 300) != "equivalent"
+    with pytest.raises(mutlib.MutationError, match="no_such_q"):
+        mutlib.settled_equivalence(tmp_path / "e", clearing_netlist, "shared_mem", 1,
+                                   mutlib.Settle("ready_o", 8, free=("no_such_q",)), 300)
