@@ -676,12 +676,13 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     """Mutant `mut_id` equivalent to the original under `settle`'s contract, for
     mutations that change only how a module gets ready (the order a clearing visits
     the words): 'equivalent' when all four hold, else the first failing check's
-    outcome ('different' for a real difference from reset).
+    outcome ('different' for a real difference of the outputs from reset; else the
+    outcome and the step, e.g. 'fail (state)').
     1. From reset, for settle.clocks + 2 clocks: every output equal, those in
        settle.undefined only from the clock after gold's settle.signal is up; it is up
        at settle.clocks.
     2. From reset: every register (memories too) and port equal in the copies at clock
-       settle.clocks and after.
+       settle.clocks and the two after it.
     3. In any state with the registers equal and settle.signal up (or in reset), they
        stay equal (k-induction with that assumed: the mutated cell then no longer
        matters).
@@ -741,7 +742,9 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     steps = [
         ("outputs", "miter", wires + f"  miter u_check ({conns});\n", props, "bmc", d + 2, ""),
         ("state", "strong", "  strong u_check (" + ", ".join(f".{n}({n})" for n, _ in inputs)
-         + ");\n", "", "bmc", d + 1, f"chformal -assert -delay {d}\n"),
+         # -skip, not -delay: -delay moves the checked values along with the enable
+         # (clock d would compare the values of clock 0)
+         + ");\n", "", "bmc", d + 3, f"chformal -assert -skip {d}\n"),
         ("step", "strong", f"  wire [{dict(outputs)[s] - 1}:0] f_settled;\n  strong u_check ("
          + ", ".join([f".{n}({n})" for n, _ in inputs] + [f".{s}(f_settled)"]) + ");\n",
          # in reset or settled (the base case holds the reset: an assumption it can meet)
@@ -754,5 +757,5 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     for kind, module, body, pr, mode, k, script in steps:
         out = run(kind, module, body, pr, mode, k, script)
         if out != "pass":
-            return {"fail": "different"}.get(out, out) if kind == "outputs" else out
+            return {"fail": "different"}.get(out, out) if kind == "outputs" else f"{out} ({kind})"
     return "equivalent"
