@@ -550,10 +550,12 @@ def yosys_equiv(work: Path, both: str, name: str, blacklist, timeout: float) -> 
         re.search(r"Of those cells \d+ are proven and 0 are unproven", proc.stdout))
 
 
-def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str):
+def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str,
+               zero_init: bool = True):
     """The Yosys script that puts the original (gold) and mutant `mut_id` (gate) of
     `netlist` side by side, flattened, memories as registers, registers without reset
-    starting at zero; with the work directory and gold's write_json module."""
+    starting at zero (else anywhere, each copy on its own); with the work directory and
+    gold's write_json module."""
     work = prepare_dir(work)
     shutil.copy2(netlist, work / netlist.name)
     # a module below the netlist's top (a campaign's small module checked alone, e.g.
@@ -564,7 +566,8 @@ def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str):
     tie = ("cd {copy}\ndelete -port w:" + MUTSEL + f"\nconnect -set {MUTSEL} {sel}'d{{k}}\n"
            "cd ..\n") if sel else ""
     read = (f"read_verilog -sv -DMUTSEL={{k}} {netlist.name}\nhierarchy -top {top}\n"
-            "proc\nflatten\nmemory -nomap\nmemory_map\nopt_clean\nsetundef -zero -init\n"
+            "proc\nflatten\nmemory -nomap\nmemory_map\nopt_clean\n"
+            + ("setundef -zero -init\n" if zero_init else "") +
             "rename {top} {copy}\n" + tie + "design -stash {copy}\n")
     both = (read.format(k=0, top=top, copy="gold") + read.format(k=mut_id, top=top, copy="gate")
             + "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\n")
@@ -682,15 +685,22 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
        settle.undefined only from the clock after gold's settle.signal is up; it is up
        at settle.clocks.
     2. From reset: every register (memories too) and port equal in the copies at clock
-       settle.clocks and the two after it.
-    3. In any state with the registers equal and settle.signal up (or in reset), they
-       stay equal (k-induction with that assumed: the mutated cell then no longer
-       matters).
+       settle.clocks and the two after it (the ports in settle.undefined are left to 1:
+       unpaired, so that nothing the mutant computes from them reads the original's).
+    Both start from any state of each copy, memories included, with reset held in the
+    first clock: a reset at any time of a run, data in the memories, a clearing cut
+    short by a reset.
+    3. In any state with the registers and ports equal and settle.signal up (or in
+       reset), they stay equal (1-induction with that assumed: the mutated cell then no
+       longer matters).
     Steps 2 and 3 leave settle.free out of "every register": free in both copies.
     4. The original's settle.signal, once up, stays up until a reset.
-    With 2 the copies are in one state once settled; 3 and 4 keep them there."""
+    With 2 the copies are in one state once settled; 3 and 4 keep them there until the
+    next reset, after which 1 and 2 hold again."""
     name = f"st{mut_id}"
-    work, both, mod = two_copies(work, netlist, top, mut_id, name)
+    # 1 and 2 from any state; the induction's base case from power-up (zero memories)
+    work, anywhere, mod = two_copies(work, netlist, top, mut_id, name, zero_init=False)
+    _, both, _ = two_copies(work, netlist, top, mut_id, name)
     # a free register by its RTL name, at any level of the flattened design; never a
     # port (the outputs are what the contract compares)
     free = [n for n in mod["netnames"]
@@ -698,25 +708,32 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     missing = set(settle.free) - {n.rsplit(".", 1)[-1] for n in free}
     if missing:
         raise MutationError(f"{top}: the contract's free registers {sorted(missing)} are "
-                            "not registers of the netlist")
-    (work / "blacklist").write_text("".join(n + "\n" for n in not_state(mod) + free))
+                            "not in the netlist")
+    wires = set(not_state(mod))
+    if wires & set(free):
+        raise MutationError(f"{top}: the contract's free names {sorted(wires & set(free))} "
+                            "are no registers")
+    (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free))
+    (work / "blacklist2").write_text("".join(n + "\n" for n in sorted(wires) + free
+                                             + list(settle.undefined)))
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     outputs = [(n, len(p["bits"])) for n, p in mod["ports"].items()
                if p["direction"] == "output"]
     if settle.signal not in dict(outputs) or not any(n == reset for n, _ in inputs):
         return "error"
     decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
-    run_yosys(work, both + "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate "
+    run_yosys(work, anywhere + "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate "
               f"miter\nhierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
     run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
               f"hierarchy -top strong\nwrite_rtlil {name}_strong.il\n", name + "_strong")
+    run_yosys(work, anywhere + "equiv_make -make_assert -blacklist blacklist2 gold gate strong\n"
+              f"hierarchy -top strong\nwrite_rtlil {name}_strong2.il\n", name + "_strong2")
     run_yosys(work, both + f"hierarchy -top gold\nwrite_rtlil {name}_gold.il\n",
               name + "_goldonly")
 
     def run(kind: str, module: str, body: str, props: str, mode: str, k: int,
             script: str = "") -> str:
-        # 1 and 2 follow one reset (a later one starts the same clearing again, from
-        # memories equal in both copies); 3 and 4 hold in any state
+        # 1 and 2 follow one reset, from any state; 3 and 4 hold in any state
         once = f"  always @(*) if (!f_first) assume ({reset});\n" if mode == "bmc" else ""
         (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
             what=kind, ports=decl, body=body, reset=reset, props=props, once=once))
@@ -741,7 +758,7 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
              + f"    if (f_clock == 16'd{d}) assert (|gold_{s});\n  end\n")
     steps = [
         ("outputs", "miter", wires + f"  miter u_check ({conns});\n", props, "bmc", d + 2, ""),
-        ("state", "strong", "  strong u_check (" + ", ".join(f".{n}({n})" for n, _ in inputs)
+        ("state", "strong2", "  strong u_check (" + ", ".join(f".{n}({n})" for n, _ in inputs)
          # -skip, not -delay: -delay moves the checked values along with the enable
          # (clock d would compare the values of clock 0)
          + ");\n", "", "bmc", d + 3, f"chformal -assert -skip {d}\n"),

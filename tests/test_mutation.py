@@ -184,13 +184,16 @@ def clearing_netlist(tmp_path_factory):
     order 0, 3, 2, 1), 2 = the clearing's data bit 0 stuck at 1 (every word reads 1
     once ready), 3 = bit 1 of the clearing counter's hold value inverted (once done,
     that bit toggles every clock: the counter's low bits differ for ever, and nothing
-    reads them then)."""
+    reads them then), 4 = bit 0 of one bank's clearing address stuck at 0 (words 1 and 3
+    of that bank are never cleared: after reset from power-up they are 0 anyway, after
+    a later reset they keep what was written)."""
     work = mutlib.prepare_dir(tmp_path_factory.mktemp("settle") / "elab")
     script = mutlib.elab_script("shared_mem", {"Cores": 2, "SharedWords": 2})
     cands = mutlib.candidates(work, script, ["shared_mem"], "all")
     src = (mutlib.RTL / "shared_mem.v").read_text().splitlines()
     clr = next(i for i, t in enumerate(src, 1) if "clear_q <= clear_q + 1'b1" in t)
     zero = next(i for i, t in enumerate(src, 1) if "clearing ? 32'd0 :" in t)
+    addr = next(i for i, t in enumerate(src, 1) if "clearing ? clear_q[AW-1:0] :" in t)
     picked = [next(c for c in cands if c.cell.startswith("$add$") and c.port == "A"
                    and c.portbit == 1 and c.mode == "inv"
                    and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
@@ -199,7 +202,9 @@ def clearing_netlist(tmp_path_factory):
                    and any(s.startswith(f"shared_mem.v:{zero}.") for s in c.srcs)),
               next(c for c in cands if c.cell.startswith("$procmux$") and c.port == "B"
                    and c.portbit == 1 and c.mode == "inv"
-                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs))]
+                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
+              next(c for c in cands if c.cell.startswith(f"$ternary$shared_mem.v:{addr}$")
+                   and c.port == "A" and c.portbit == 0 and c.mode == "const0")]
     for k, m in enumerate(picked, 1):
         m.id = k
     return mutlib.write_netlist(work, script, "shared_mem", picked, "mutants")
@@ -211,6 +216,10 @@ def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp
                                       settle, 300) == "equivalent"
     assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 2,
                                       settle, 300) == "different"
+    # a clearing that misses words: equal after the power-up reset (every word starts
+    # at 0 there), different after a later one; the check starts anywhere
+    assert mutlib.settled_equivalence(tmp_path / "m", clearing_netlist, "shared_mem", 4,
+                                      settle, 300) == "different"
     # a contract the original does not keep (ready after 3 clocks) proves nothing
     early = mutlib.Settle("ready_o", 3, ("rdata_o",))
     assert mutlib.settled_equivalence(tmp_path / "c", clearing_netlist, "shared_mem", 1,
@@ -221,7 +230,7 @@ def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path)
     """Settle.free: the counter's low bits differ for ever after mutant 3, so the
     copies are equal once settled only with them left free; leaving free a register the
     outputs read (word 2 of every bank) proves nothing, and a name that is no register
-    is refused: the induction step fails (SBY's UNKNOWN). (A register loaded from the inputs every clock, as rbank_q, may be left
+    is refused. (A register loaded from the inputs every clock, as rbank_q, may be left
     free: it is equal again one clock later, which is what the induction step sees.)"""
     strict = mutlib.Settle("ready_o", 8, ("rdata_o",))
     assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "shared_mem", 3,
@@ -229,9 +238,13 @@ def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path)
     free = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q",))
     assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 3,
                                       free, 300) == "equivalent"
+    # freeing a read memory word: the induction step fails (SBY's UNKNOWN)
     read = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q", "mem[2]"))
     assert mutlib.settled_equivalence(tmp_path / "d", clearing_netlist, "shared_mem", 1,
                                       read, 300) == "unknown (step)"
     with pytest.raises(mutlib.MutationError, match="no_such_q"):
         mutlib.settled_equivalence(tmp_path / "e", clearing_netlist, "shared_mem", 1,
                                    mutlib.Settle("ready_o", 8, free=("no_such_q",)), 300)
+    with pytest.raises(mutlib.MutationError, match="clearing.*no registers"):
+        mutlib.settled_equivalence(tmp_path / "f", clearing_netlist, "shared_mem", 1,
+                                   mutlib.Settle("ready_o", 8, free=("clearing",)), 300)
