@@ -551,11 +551,11 @@ def yosys_equiv(work: Path, both: str, name: str, blacklist, timeout: float) -> 
 
 
 def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str,
-               zero_init: bool = True):
+               zero_init: bool = True, map_memory: bool = True):
     """The Yosys script that puts the original (gold) and mutant `mut_id` (gate) of
-    `netlist` side by side, flattened, memories as registers, registers without reset
-    starting at zero (else anywhere, each copy on its own); with the work directory and
-    gold's write_json module."""
+    `netlist` side by side, flattened, memories as registers (else memories: arrays for
+    the solver), registers without reset starting at zero (else anywhere, each copy on
+    its own); with the work directory and gold's write_json module."""
     work = prepare_dir(work)
     shutil.copy2(netlist, work / netlist.name)
     # a module below the netlist's top (a campaign's small module checked alone, e.g.
@@ -566,7 +566,8 @@ def two_copies(work: Path, netlist: Path, top: str, mut_id: int, name: str,
     tie = ("cd {copy}\ndelete -port w:" + MUTSEL + f"\nconnect -set {MUTSEL} {sel}'d{{k}}\n"
            "cd ..\n") if sel else ""
     read = (f"read_verilog -sv -DMUTSEL={{k}} {netlist.name}\nhierarchy -top {top}\n"
-            "proc\nflatten\nmemory -nomap\nmemory_map\nopt_clean\n"
+            "proc\nflatten\nmemory -nomap\n" + ("memory_map\n" if map_memory else "")
+            + "opt_clean\n"
             + ("setundef -zero -init\n" if zero_init else "") +
             "rename {top} {copy}\n" + tie + "design -stash {copy}\n")
     both = (read.format(k=0, top=top, copy="gold") + read.format(k=mut_id, top=top, copy="gate")
@@ -701,6 +702,9 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     # 1 and 2 from any state; the induction's base case from power-up (zero memories)
     work, anywhere, mod = two_copies(work, netlist, top, mut_id, name, zero_init=False)
     _, both, _ = two_copies(work, netlist, top, mut_id, name)
+    # the outputs' BMC compares ports only: the memories stay arrays (quicker to solve)
+    _, arrays, _ = two_copies(work, netlist, top, mut_id, name, zero_init=False,
+                              map_memory=False)
     # a free register by its RTL name, at any level of the flattened design; never a
     # port (the outputs are what the contract compares)
     free = [n for n in mod["netnames"]
@@ -722,7 +726,7 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     if settle.signal not in dict(outputs) or not any(n == reset for n, _ in inputs):
         return "error"
     decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
-    run_yosys(work, anywhere + "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate "
+    run_yosys(work, arrays + "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate "
               f"miter\nhierarchy -top miter\nwrite_rtlil {name}_miter.il\n", name + "_miter")
     run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
               f"hierarchy -top strong\nwrite_rtlil {name}_strong.il\n", name + "_strong")

@@ -223,9 +223,18 @@ def over_capacity(log_text: str) -> list[str]:
             if int(m.group(2)) > int(m.group(3))]
 
 
+# A nextpnr run still routing after this long is stopped and reported as not routed
+# (the 2-core plant on ECP5-25, its block RAMs all used, once routed for over an hour
+# on a loaded machine without converging): `make synth` ends in bounded time.
+PNR_LIMIT_MIN = 30
+PNR_STOPPED = 124   # run_pnr's return code for a run stopped at the limit
+
+
 def run_pnr(cmd: list[str], stdout: Path, logf: Path) -> int:
     """nextpnr, stopped as soon as its log shows the design over the device's capacity
-    (nextpnr-himbaechel would otherwise try to place it for many minutes)."""
+    (nextpnr-himbaechel would otherwise try to place it for many minutes), or after
+    PNR_LIMIT_MIN minutes (PNR_STOPPED)."""
+    t0 = time.monotonic()
     with open(stdout, "w") as fh:
         p = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.STDOUT, cwd=ROOT)
         while p.poll() is None:
@@ -234,6 +243,10 @@ def run_pnr(cmd: list[str], stdout: Path, logf: Path) -> int:
                 p.kill()
                 p.wait()
                 return 1
+            if time.monotonic() - t0 > 60 * PNR_LIMIT_MIN:
+                p.kill()
+                p.wait()
+                return PNR_STOPPED
     return p.returncode
 
 
@@ -326,6 +339,11 @@ def pnr(tgt: Target, netlist: Path, out: Path, label: str, seed: int) -> dict:
     util = {m.group(1): (int(m.group(2)), int(m.group(3))) for m in UTIL_RE.finditer(text)}
     res["util"] = util
     over = [f"{k} {u}/{a}" for k, (u, a) in util.items() if u > a]
+    if rc == PNR_STOPPED:
+        res["error"] = f"not routed: nextpnr stopped after {PNR_LIMIT_MIN} min (seed {seed})"
+        res["stopped"] = True
+        res["overfull"] = res["bram_over"] = False
+        return res
     if rc != 0 or not rep.exists():
         err = re.findall(r"ERROR: (.*)", text)
         res["error"] = (("over capacity: " + ", ".join(over) + "; ") if over else "") + \
@@ -623,7 +641,8 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
       f") on {datetime.date.today().isoformat()} from rtl/ at `{args.rev}`; do not edit by hand. "
       f"Run time {elapsed / 60:.1f} min with {args.jobs} parallel jobs. Fmax is the median of "
       f"nextpnr placement seeds {', '.join(map(str, args.seeds))} (each seed's figure in the "
-      f"table; the parameter sweep places seed {args.seeds[0]} only).")
+      f"table; the parameter sweep places seed {args.seeds[0]} only). A nextpnr run still "
+      f"routing after {PNR_LIMIT_MIN} min is stopped and reported as not routed.")
     w("")
     w("Tools (pinned in `requirements.txt`, installed in `.venv/` by `make venv`): " +
       "; ".join(f"{k}: {v}" for k, v in vs.items()) + ".")
@@ -669,7 +688,7 @@ def write_report(results: dict, sweep: list[Job], present: list[str], params: li
         placed, fm, crit = "Yosys only", "–", ""
         if p:
             if "error" in p:
-                placed = "does not fit: " + p["error"]
+                placed = p["error"] if p.get("stopped") else "does not fit: " + p["error"]
             else:
                 placed = ", ".join(f"{k} {u}/{a}" for k, (u, a) in p["util"].items()
                                    if u and k in PLACED_KINDS)

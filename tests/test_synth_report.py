@@ -115,3 +115,15 @@ def test_over_capacity_reads_nextpnr_utilisation():
            "Info: \t               BSRAM:       9/     26    34%\n")
     assert run_synth.over_capacity(log) == ["LUT4 8702/8640"]
     assert run_synth.over_capacity(log.replace("8702", "8600")) == []
+
+
+def test_a_run_that_does_not_finish_is_stopped(tmp_path, monkeypatch):
+    """A nextpnr run past PNR_LIMIT_MIN is killed: pnr() reports it as not routed (not
+    as a design that does not fit, so no smaller build is tried)."""
+    monkeypatch.setattr(run_synth, "PNR_LIMIT_MIN", 0.05)       # 3 s
+    monkeypatch.setattr(run_synth, "tool", lambda name: sys.executable)
+    tgt = run_synth.Target("slow", "a slow target", "ecp5", "synth_ecp5",
+                           ["nextpnr", "-c", "import time; time.sleep(60)"], 100)
+    r = run_synth.pnr(tgt, tmp_path / "n.json", tmp_path, "slow.seed1", 1)
+    assert r["rc"] == run_synth.PNR_STOPPED and r["pnr_s"] < 30
+    assert r["error"].startswith("not routed: nextpnr stopped after") and not r["overfull"]
