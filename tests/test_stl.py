@@ -1174,8 +1174,14 @@ def test_random_programs_with_symbols_against_awlsim(tmp_path):
     """Random programs with half of their operands as quoted symbols of a STEP 7
     symbol table (stlgen.with_symbols): awlsim reads the .asc export, bitbyte each of
     .asc, .sdf and .seq; equal scan for scan."""
+    # about one program in six uses a construct bitbyte refuses (`unsupported:`); the
+    # share varies with the seed (22 of 100 at BITBYTE_SEED=629080), so programs past
+    # SYMBOL_PROGRAMS are drawn until 80 % of it are compared (at most twice as many)
+    wanted = int(SYMBOL_PROGRAMS * 0.8)
     compared = 0
-    for index in range(SYMBOL_PROGRAMS):
+    index = -1
+    while index + 1 < SYMBOL_PROGRAMS or (compared < wanted and index + 1 < 2 * SYMBOL_PROGRAMS):
+        index += 1
         seed = BASE_SEED * 10_000 + 30_000 + index
         text, lang = random_program(seed)
         text, rows = with_symbols(text, lang, seed)
@@ -1200,7 +1206,7 @@ def test_random_programs_with_symbols_against_awlsim(tmp_path):
                 assert got == bitbyte_scans(path, inputs, tmp_path, words=WORDS,
                                             in_words=IN_WORDS, symbols=tables[fmt])
         compared += 1
-    assert compared >= SYMBOL_PROGRAMS * 0.8
+    assert compared >= wanted, (compared, index + 1)
     print(f"{compared} random STL programs with symbol tables equal awlsim's")
 
 
