@@ -686,8 +686,9 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
        settle.undefined only from the clock after gold's settle.signal is up; it is up
        at settle.clocks.
     2. From reset: every register (memories too) and port equal in the copies at clock
-       settle.clocks and the two after it (the ports in settle.undefined are left to 1:
-       unpaired, so that nothing the mutant computes from them reads the original's).
+       settle.clocks and the two after it (the ports in settle.undefined left unpaired,
+       so that nothing the mutant computes from them reads the original's; 1 compares
+       them).
     Both start from any state of each copy, memories included, with reset held in the
     first clock: a reset at any time of a run, data in the memories, a clearing cut
     short by a reset.
@@ -701,10 +702,6 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     name = f"st{mut_id}"
     # 1 and 2 from any state; the induction's base case from power-up (zero memories)
     work, anywhere, mod = two_copies(work, netlist, top, mut_id, name, zero_init=False)
-    _, both, _ = two_copies(work, netlist, top, mut_id, name)
-    # the outputs' BMC compares ports only: the memories stay arrays (quicker to solve)
-    _, arrays, _ = two_copies(work, netlist, top, mut_id, name, zero_init=False,
-                              map_memory=False)
     # a free register by its RTL name, at any level of the flattened design; never a
     # port (the outputs are what the contract compares)
     free = [n for n in mod["netnames"]
@@ -720,6 +717,10 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free))
     (work / "blacklist2").write_text("".join(n + "\n" for n in sorted(wires) + free
                                              + list(settle.undefined)))
+    _, both, _ = two_copies(work, netlist, top, mut_id, name)
+    # the outputs' BMC compares ports only: the memories stay arrays (quicker to solve)
+    _, arrays, _ = two_copies(work, netlist, top, mut_id, name, zero_init=False,
+                              map_memory=False)
     inputs = [(n, len(p["bits"])) for n, p in mod["ports"].items() if p["direction"] == "input"]
     outputs = [(n, len(p["bits"])) for n, p in mod["ports"].items()
                if p["direction"] == "output"]
