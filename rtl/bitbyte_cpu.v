@@ -317,10 +317,13 @@ module bitbyte_cpu #(
     .exchange_i    (exchange_i),
     .bit_start_i   (latch),
     .bit_end_i     (end_exec),
-    // the byte side's scans: at the latch in parallel mode, its own SCAN_DONE writes
-    // (one scan ends, the next begins) when it runs free
+    // the byte side's scans: they start at the latch in parallel mode, at its own
+    // SCAN_DONE write (one scan ends, the next begins) when it runs free; they end at
+    // its SCAN_DONE write in every mode (in parallel mode END waits for it), so the
+    // cells it publishes there reach the bit side's next snapshot (taken in the clock
+    // END executes)
     .byte_start_i  (free_i ? byte_scan_end : latch),
-    .byte_end_i    (free_i ? byte_scan_end : end_exec),
+    .byte_end_i    (byte_scan_end),
     .marker_write_buffer_i(marker_write_buffer_i),
     .fby_wr_req_i  (fby_wr_req),
     .fby_wr_data_i (fby_wr_data),
