@@ -500,14 +500,19 @@ EQ_RESET = """\
 
 def not_state(mod: dict) -> list[str]:
     """The named wires of a write_json module that are neither a port nor a register's
-    output (the netlist's _012_ wires included; mutsel too, meant to differ)."""
+    output (the netlist's _012_ wires and constants included; mutsel too, meant to
+    differ)."""
     state = set()
     for cell in mod["cells"].values():
         if "Q" in cell["connections"] and ("ff" in cell["type"] or "latch" in cell["type"]):
             state.update(b for b in cell["connections"]["Q"] if isinstance(b, int))
+    def wire(info) -> bool:
+        # (a name whose bits are all constants is no register either: a mutated
+        # signal stuck at a constant, in the mutant's copy)
+        bits = {b for b in info["bits"] if isinstance(b, int)}
+        return not bits or not bits <= state
     return sorted(n for n, info in mod["netnames"].items()
-                  if n not in mod["ports"] and not info.get("hide_name")
-                  and not set(b for b in info["bits"] if isinstance(b, int)) <= state
+                  if n not in mod["ports"] and not info.get("hide_name") and wire(info)
                   or n == MUTSEL)
 
 
@@ -662,7 +667,7 @@ class Settle:
 
 
 SETTLE_TOP = """\
-// Equivalence once settled ({what}); reset is held in the first clock.
+// Equivalence {what}; reset is held in the first clock.
 module eq_top (
 {ports}
 );
@@ -741,7 +746,8 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
         # 1 and 2 follow one reset, from any state; 3 and 4 hold in any state
         once = f"  always @(*) if (!f_first) assume ({reset});\n" if mode == "bmc" else ""
         (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
-            what=kind, ports=decl, body=body, reset=reset, props=props, once=once))
+            what=f"once settled ({kind})", ports=decl, body=body, reset=reset, props=props,
+            once=once))
         il = work / f"{name}_{module}.il"
         text = (f"[options]\nmode {mode}\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
                 f"[script]\nread_rtlil {il.name}\nread -formal {name}_{kind}_top.sv\n"
@@ -781,3 +787,119 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
         if out != "pass":
             return {"fail": "different"}.get(out, out) if kind == "outputs" else f"{out} ({kind})"
     return "equivalent"
+
+
+# ------------------------------------------------------------- equivalence by contract
+@dataclass
+class Contract:
+    """What a module's users may rely on, where it is less than "every output equal in
+    every clock": `valid` maps an output to an input after which it is read (a block
+    RAM's read data: valid in the clock after its read request, and only then); `free`
+    names the registers (RTL names) only those outputs read (the RAM's output
+    register), left unpaired; `same` pairs registers (RTL names, dotted paths in the
+    flattened module) equal in every state the original reaches (two counters that
+    always step together), proved first on the original and then assumed. Each of
+    them is a claim the proof checks: a free register something else reads (where the
+    paired signals do not pin it down), or an output read where the contract says it
+    is not valid, makes it fail."""
+    valid: dict = field(default_factory=dict)
+    free: tuple = ()
+    same: tuple = ()
+
+
+def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
+                         contract: Contract, timeout: float, reset: str = "rst_ni") -> str:
+    """Mutant `mut_id` equivalent to the original as the module's users see it under
+    `contract`: 'equivalent' when both checks pass, else the failing one's outcome and
+    its name ('fail (same)', 'fail (outputs)', ...).
+    1. same: in the original, from reset, each pair of contract.same equal in every
+       clock (2-induction).
+    2. outputs: both copies from reset (zero power-up state), every register and port
+       paired (Yosys equiv_make: equal in both copies) except contract.free and the
+       outputs of contract.valid, which are compared only in the clock after their
+       input was 1; with the pairs of 1 assumed in the original: 2-induction. The
+       induction step starts from any state with the pairs equal, memories included,
+       so a mutation that shows only in a register the contract leaves free, and only
+       while nothing reads it, passes; one that reaches a paired register or a valid
+       output fails."""
+    name = f"ct{mut_id}"
+    work, both, mod = two_copies(work, netlist, top, mut_id, name)
+    ports = mod["ports"]
+    for out, inp in contract.valid.items():
+        if ports.get(out, {}).get("direction") != "output" or \
+                ports.get(inp, {}).get("direction") != "input":
+            raise MutationError(f"{top}: contract: {out} is no output or {inp} no input")
+    free = [n for n in mod["netnames"] if n.rsplit(".", 1)[-1] in contract.free
+            and n not in ports]
+    missing = set(contract.free) - {n.rsplit(".", 1)[-1] for n in free}
+    # the netlist may hold a free register under its own name (_361_) and assign the
+    # RTL name from it: every name sharing a bit with a free one is free
+    bits = {b for n in free for b in mod["netnames"][n]["bits"] if isinstance(b, int)}
+    free = sorted(n for n, info in mod["netnames"].items() if n not in ports
+                  and bits & {b for b in info["bits"] if isinstance(b, int)})
+    pairs = [p for pair in contract.same for p in pair]
+    missing |= {p for p in pairs if p not in mod["netnames"]}
+    if missing:
+        raise MutationError(f"{top}: contract: {sorted(missing)} not in the netlist")
+    # a wire in either copy (the mutant's mutated signal may be a register's alias in
+    # the original only)
+    run_yosys(work, both + "select gate\nwrite_json -selected gate.json\n", name + "_gate")
+    gate = json.loads((work / "gate.json").read_text())["modules"]["gate"]
+    wires = set(not_state(mod)) | set(not_state(gate))
+    if wires & (set(free) | set(pairs)):
+        raise MutationError(f"{top}: contract: {sorted(wires & (set(free) | set(pairs)))} "
+                            "are no registers")
+    (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free
+                                            + list(contract.valid)))
+    # the pairs of `same` as ports f_same<i>_a/_b (gold's registers; in the strong
+    # module its paired registers carry gold's value)
+    def expose(module: str, suffix: str) -> str:
+        return f"cd {module}\n" + "".join(
+            f"rename {a}{suffix} f_same{i}_a\nrename {b}{suffix} f_same{i}_b\n"
+            f"expose w:f_same{i}_a w:f_same{i}_b\n"
+            for i, (a, b) in enumerate(contract.same)) + "cd ..\n"
+    run_yosys(work, both + "equiv_make -make_assert -blacklist blacklist gold gate strong\n"
+              "hierarchy -top strong\n" + expose("strong", "_gold") +
+              f"write_rtlil {name}_strong.il\n", name + "_strong")
+    run_yosys(work, both + "hierarchy -top gold\n" + expose("gold", "") +
+              f"write_rtlil {name}_gold.il\n", name + "_goldonly")
+    inputs = [(n, len(p["bits"])) for n, p in ports.items() if p["direction"] == "input"]
+    if not any(n == reset for n, _ in inputs):
+        return "error"
+    widths = {n: len(p["bits"]) for n, p in ports.items()}
+    reg_w = {n: len(mod["netnames"][n]["bits"]) for n in pairs}
+    decl = ",\n".join(f"  input wire [{w - 1}:0] {n}" for n, w in inputs)
+    same_wires = "".join(f"  wire [{reg_w[a] - 1}:0] f_same{i}_a;\n"
+                         f"  wire [{reg_w[b] - 1}:0] f_same{i}_b;\n"
+                         for i, (a, b) in enumerate(contract.same))
+    same_conns = [f".f_same{i}_{s}(f_same{i}_{s})" for i in range(len(contract.same))
+                  for s in "ab"]
+    same_eq = " && ".join(f"f_same{i}_a == f_same{i}_b" for i in range(len(contract.same)))
+
+    def run(kind: str, module: str, body: str, props: str) -> str:
+        (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
+            what=f"by contract ({kind})", ports=decl, body=body, reset=reset, props=props,
+            once=""))
+        il = work / f"{name}_{module}.il"
+        text = (f"[options]\nmode prove\ndepth 2\n\n[engines]\nsmtbmc yices\n\n"
+                f"[script]\nread_rtlil {il.name}\nread -formal {name}_{kind}_top.sv\n"
+                f"prep -top eq_top\n\n[files]\n{il}\n{work / (name + '_' + kind + '_top.sv')}\n")
+        return run_sby(work, text, f"{name}_{kind}", timeout)
+
+    conns = [f".{n}({n})" for n, _ in inputs]
+    if contract.same:
+        out = run("same", "gold", same_wires + f"  gold u_check ("
+                  + ", ".join(conns + same_conns) + ");\n",
+                  f"  always @(*) if (!f_first) assert ({same_eq});\n")
+        if out != "pass":
+            return f"{out} (same)"
+    valid_wires = "".join(f"  wire [{widths[o] - 1}:0] f_{o}_gold, f_{o}_gate;\n  reg f_{o}_ok = 1'b0;\n"
+                          for o in contract.valid)
+    valid_conns = [f".{o}_{c}(f_{o}_{c})" for o in contract.valid for c in ("gold", "gate")]
+    props = ("".join(f"  always @(posedge clk_i) f_{o}_ok <= |{i};\n"
+                     f"  always @(*) if (!f_first && f_{o}_ok) assert (f_{o}_gold == f_{o}_gate);\n"
+                     for o, i in contract.valid.items())
+             + (f"  always @(*) assume ({same_eq});\n" if contract.same else ""))
+    out = run("outputs", "strong", same_wires + valid_wires + "  strong u_check ("
+              + ", ".join(conns + same_conns + valid_conns) + ");\n", props)
+    return "equivalent" if out == "pass" else f"{out} (outputs)"

@@ -248,3 +248,93 @@ def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path)
     with pytest.raises(mutlib.MutationError, match="clearing.*no registers"):
         mutlib.settled_equivalence(tmp_path / "f", clearing_netlist, "shared_mem", 1,
                                    mutlib.Settle("ready_o", 8, free=("clearing",)), 300)
+
+
+# Equivalence by contract (mutlib.Contract): a read register a RAM's users read only in
+# the clock after their read, and two clearing counters that always step together.
+READ_PORT = """\
+module rport (input clk_i, input rst_ni, input we_i, input [1:0] wa_i, input [3:0] wd_i,
+              input re_i, input [1:0] ra_i, output [3:0] rd_o, output reads_o);
+  wire [1:0] mutsel = `MUTSEL;
+  reg [3:0] mem [0:3];
+  reg [3:0] q;                           // the RAM's output register: no reset
+  reg [3:0] reads;                       // reads so far (an output reads it)
+  always @(posedge clk_i) begin
+    if (we_i) mem[wa_i] <= wd_i;
+    // 1: the held word's bit 0 toggles while no read comes (nobody may look then);
+    // 2: a read's bit 0 inverted
+    if (re_i) q <= {mem[ra_i][3:1], mem[ra_i][0] ^ (mutsel == 2'd2)};
+    else      q <= {q[3:1], q[0] ^ (mutsel == 2'd1)};
+  end
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) reads <= 4'd0; else if (re_i) reads <= reads + 4'd1;
+  assign rd_o = q;
+  assign reads_o = reads[3];            // (not all of it: a paired port pins it)
+endmodule
+"""
+
+TWIN_COUNTERS = """\
+module twins (input clk_i, input rst_ni, output ready_o);
+  wire [1:0] mutsel = `MUTSEL;
+  reg [3:0] a_q, b_q;                    // two clearings of 8 clocks (bit 3: done)
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      a_q <= 4'd0;
+      b_q <= 4'd0;
+    end else begin
+      if (!a_q[3]) a_q <= a_q + 4'd1;
+      // 2: b counts in twos (done first)
+      if (!b_q[3]) b_q <= b_q + ((mutsel == 2'd2) ? 4'd2 : 4'd1);
+    end
+  // 1: ready from b alone (a_q always equals b_q)
+  assign ready_o = (mutsel == 2'd1) ? b_q[3] : (a_q[3] && b_q[3]);
+endmodule
+"""
+
+
+def test_a_read_register_is_compared_where_the_contract_reads_it(tmp_path):
+    """Contract.valid / free: mutant 1 changes the read register only where no user
+    reads it (equivalent under the contract, not without it); mutant 2 changes what a
+    read returns (different from reset); reading the output at other times (after a
+    write) or leaving free a register an output reads proves nothing."""
+    netlist = tmp_path / "rport.v"
+    netlist.write_text(READ_PORT)
+    ok = mutlib.Contract(valid={"rd_o": "re_i"}, free=("q",))
+    assert mutlib.contract_equivalence(tmp_path / "a", netlist, "rport", 1, ok,
+                                       300) == "equivalent"
+    assert mutlib.contract_equivalence(tmp_path / "b", netlist, "rport", 2, ok,
+                                       300) == "fail (outputs)"
+    assert mutlib.contract_equivalence(tmp_path / "c", netlist, "rport", 1,
+                                       mutlib.Contract(), 300) != "equivalent"
+    wrong = mutlib.Contract(valid={"rd_o": "we_i"}, free=("q",))
+    assert mutlib.contract_equivalence(tmp_path / "d", netlist, "rport", 1, wrong,
+                                       300) != "equivalent"
+    read = mutlib.Contract(valid={"rd_o": "re_i"}, free=("q", "reads"))
+    assert mutlib.contract_equivalence(tmp_path / "e", netlist, "rport", 1, read,
+                                       300) == "unknown (outputs)"
+    with pytest.raises(mutlib.MutationError, match="wd_i is no output or rd_o no input"):
+        mutlib.contract_equivalence(tmp_path / "f", netlist, "rport", 1,
+                                    mutlib.Contract(valid={"wd_i": "rd_o"}), 300)
+
+
+def test_registers_that_step_together_are_proved_then_assumed(tmp_path):
+    """Contract.same: mutant 1 (ready from one of two twin counters) is equivalent once
+    the twins are proved equal in the original, and not without that; a twin claim
+    the design does not keep (mutant 2 is not the original: the claim is about the
+    original, so a false claim is shown on a module whose counters differ) fails."""
+    netlist = tmp_path / "twins.v"
+    netlist.write_text(TWIN_COUNTERS)
+    same = mutlib.Contract(same=(("a_q", "b_q"),))
+    assert mutlib.contract_equivalence(tmp_path / "a", netlist, "twins", 1, same,
+                                       300) == "equivalent"
+    assert mutlib.contract_equivalence(tmp_path / "b", netlist, "twins", 1,
+                                       mutlib.Contract(), 300) != "equivalent"
+    # (b_q differs from the third clock: past the base case's two, the induction fails)
+    assert mutlib.contract_equivalence(tmp_path / "c", netlist, "twins", 2, same,
+                                       300) == "unknown (outputs)"
+    # the claim checked on the original: with the counters unequal there, it fails
+    skewed = tmp_path / "skewed.v"
+    skewed.write_text(TWIN_COUNTERS.replace("`MUTSEL;", "(`MUTSEL == 0) ? 2'd2 : `MUTSEL;"))
+    # (they part in the third clock: past the base case, the induction fails)
+    assert mutlib.contract_equivalence(tmp_path / "d", skewed, "twins", 1, same,
+                                       300) == "unknown (same)"
