@@ -516,6 +516,20 @@ def not_state(mod: dict) -> list[str]:
                   or n == MUTSEL)
 
 
+def free_names(mod: dict, names) -> tuple[list[str], list[str], set]:
+    """The netnames of write_json module `mod` that a contract's free registers name
+    (by the RTL name, the last component of a flattened path; never a port); the same
+    with every name sharing a bit with one of them (the netlist may hold a register
+    under a name of its own, `_231_`, and assign the RTL name from some of its bits:
+    all of them are left unpaired); the names not found."""
+    named = [n for n in mod["netnames"] if n.rsplit(".", 1)[-1] in names
+             and n not in mod["ports"]]
+    missing = set(names) - {n.rsplit(".", 1)[-1] for n in named}
+    bits = {b for n in named for b in mod["netnames"][n]["bits"] if isinstance(b, int)}
+    return named, sorted(n for n, info in mod["netnames"].items() if n not in mod["ports"]
+                         and bits & {b for b in info["bits"] if isinstance(b, int)}), missing
+
+
 def mutsel_port_width(netlist: Path, top: str) -> int:
     """The width of `top`'s mutsel port in the netlist, 0 if it has none (the top of a
     mutant netlist takes mutsel from the MUTSEL define instead)."""
@@ -709,15 +723,13 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
     work, anywhere, mod = two_copies(work, netlist, top, mut_id, name, zero_init=False)
     # a free register by its RTL name, at any level of the flattened design; never a
     # port (the outputs are what the contract compares)
-    free = [n for n in mod["netnames"]
-            if n.rsplit(".", 1)[-1] in settle.free and n not in mod["ports"]]
-    missing = set(settle.free) - {n.rsplit(".", 1)[-1] for n in free}
+    named, free, missing = free_names(mod, settle.free)
     if missing:
         raise MutationError(f"{top}: the contract's free registers {sorted(missing)} are "
                             "not in the netlist")
     wires = set(not_state(mod))
-    if wires & set(free):
-        raise MutationError(f"{top}: the contract's free names {sorted(wires & set(free))} "
+    if wires & set(named):
+        raise MutationError(f"{top}: the contract's free names {sorted(wires & set(named))} "
                             "are no registers")
     (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free))
     (work / "blacklist2").write_text("".join(n + "\n" for n in sorted(wires) + free
@@ -829,14 +841,7 @@ def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
         if ports.get(out, {}).get("direction") != "output" or \
                 ports.get(inp, {}).get("direction") != "input":
             raise MutationError(f"{top}: contract: {out} is no output or {inp} no input")
-    free = [n for n in mod["netnames"] if n.rsplit(".", 1)[-1] in contract.free
-            and n not in ports]
-    missing = set(contract.free) - {n.rsplit(".", 1)[-1] for n in free}
-    # the netlist may hold a free register under its own name (_361_) and assign the
-    # RTL name from it: every name sharing a bit with a free one is free
-    bits = {b for n in free for b in mod["netnames"][n]["bits"] if isinstance(b, int)}
-    free = sorted(n for n, info in mod["netnames"].items() if n not in ports
-                  and bits & {b for b in info["bits"] if isinstance(b, int)})
+    named, free, missing = free_names(mod, contract.free)
     pairs = [p for pair in contract.same for p in pair]
     missing |= {p for p in pairs if p not in mod["netnames"]}
     if missing:
@@ -846,8 +851,8 @@ def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
     run_yosys(work, both + "select gate\nwrite_json -selected gate.json\n", name + "_gate")
     gate = json.loads((work / "gate.json").read_text())["modules"]["gate"]
     wires = set(not_state(mod)) | set(not_state(gate))
-    if wires & (set(free) | set(pairs)):
-        raise MutationError(f"{top}: contract: {sorted(wires & (set(free) | set(pairs)))} "
+    if wires & (set(named) | set(pairs)):
+        raise MutationError(f"{top}: contract: {sorted(wires & (set(named) | set(pairs)))} "
                             "are no registers")
     (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free
                                             + list(contract.valid)))
