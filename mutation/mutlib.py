@@ -810,10 +810,12 @@ class Contract:
     names the registers (RTL names) only those outputs read (the RAM's output
     register), left unpaired; `same` pairs registers (RTL names, dotted paths in the
     flattened module) equal in every state the original reaches (two counters that
-    always step together), proved first on the original and then assumed. Each of
-    them is a claim the proof checks: a free register something else reads (where the
-    paired signals do not pin it down), or an output read where the contract says it
-    is not valid, makes it fail."""
+    always step together), proved first on the original and then assumed.
+    `same` and `free` are claims the proof checks: a false `same` fails its own proof;
+    a free register something else reads (where the paired signals do not pin it down)
+    leaves the outputs' induction unproved. `valid` is a premise about the module's
+    users, which the proof cannot see: the campaign that states it says where the
+    users keep it (and their own proofs may assume it)."""
     valid: dict = field(default_factory=dict)
     free: tuple = ()
     same: tuple = ()
@@ -856,8 +858,9 @@ def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
                             "are no registers")
     (work / "blacklist").write_text("".join(n + "\n" for n in sorted(wires) + free
                                             + list(contract.valid)))
-    # the pairs of `same` as ports f_same<i>_a/_b (gold's registers; in the strong
-    # module its paired registers carry gold's value)
+    # the pairs of `same` as ports f_same<i>_a/_b: gold's registers (equiv_make leaves
+    # both copies' registers in place, asserting the pairs equal; it rewires only the
+    # readers of paired output ports to gold's value)
     def expose(module: str, suffix: str) -> str:
         return f"cd {module}\n" + "".join(
             f"rename {a}{suffix} f_same{i}_a\nrename {b}{suffix} f_same{i}_b\n"
@@ -904,7 +907,8 @@ def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
     props = ("".join(f"  always @(posedge clk_i) f_{o}_ok <= |{i};\n"
                      f"  always @(*) if (!f_first && f_{o}_ok) assert (f_{o}_gold == f_{o}_gate);\n"
                      for o, i in contract.valid.items())
-             + (f"  always @(*) assume ({same_eq});\n" if contract.same else ""))
+             # (assumed where it is proved: from the clock after the first)
+             + (f"  always @(*) if (!f_first) assume ({same_eq});\n" if contract.same else ""))
     out = run("outputs", "strong", same_wires + valid_wires + "  strong u_check ("
               + ", ".join(conns + same_conns + valid_conns) + ");\n", props)
     return "equivalent" if out == "pass" else f"{out} (outputs)"

@@ -63,7 +63,11 @@ CPU_PROGRAMS = 60
 CAMPAIGNS = [
     bench("cond_ff"), bench("hsem"),
     # a read's cell is on rd_data_o in the clock after the read, only then (the block
-    # RAM's output register, read by nothing else)
+    # RAM's output register, read by nothing else). Its users keep that: the bit side
+    # takes cell_rdata_i only in its first execute clock, the one after the operand
+    # stage's read, and keeps its own copy (bit_proc.v e_first_q / cell_hold_q; its
+    # proof assumes the same, f_inv_cell_rd); the byte side in the clock after its
+    # request (byte_port.v mc_pend_q), answering not-ready in the request clock
     Campaign("marker_region", ["tb/test_marker_region.py"], ["marker_region"],
              keyword="icarus",
              contract=mutlib.Contract(valid={"rd_data_o": "rd_req_i"}, free=("ram_r_q",))),

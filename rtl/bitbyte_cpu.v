@@ -319,9 +319,9 @@ module bitbyte_cpu #(
     .bit_end_i     (end_exec),
     // the byte side's scans: they start at the latch in parallel mode, at its own
     // SCAN_DONE write (one scan ends, the next begins) when it runs free; they end at
-    // its SCAN_DONE write in every mode (in parallel mode END waits for it), so the
-    // cells it publishes there reach the bit side's next snapshot (taken in the clock
-    // END executes)
+    // its SCAN_DONE write in both (in parallel mode END waits for it), so the cells it
+    // publishes there reach the bit side's next snapshot (taken in the clock END
+    // executes). Serial mode has no exchange (the firmware writes no SCAN_DONE there)
     .byte_start_i  (free_i ? byte_scan_end : latch),
     .byte_end_i    (byte_scan_end),
     .marker_write_buffer_i(marker_write_buffer_i),

@@ -120,10 +120,10 @@ async def parallel_write_buffer_publishes_the_byte_cells_at_scan_done(dut):
     then; the bit side's snapshot for its next scan is taken in the clock END executes,
     later (END waits for SCAN_DONE). In scan 1 the byte side writes cell FBI 0 = 1 and
     SCAN_DONE: scan 2 reads it, Q 0.0 is 1 after scans 2 and 3. In scan 2 it writes
-    SCAN_DONE and then, in the next clock (END still waiting to see SCAN_DONE), cell
-    FBI 0 = 0: that write belongs to its scan 3, published at scan 3's SCAN_DONE, read
-    by scan 4 (Q 0.0 after scan 3: 1, after scan 4: 0). Publishing at END instead would
-    show each write a scan later."""
+    SCAN_DONE and then, in the next clock (the one END executes in, and the snapshot
+    is taken in), cell FBI 0 = 0: that write belongs to its scan 3, published at scan
+    3's SCAN_DONE, read by scan 4 (Q 0.0 after scan 3: 1, after scan 4: 0). Publishing
+    at END instead would show each write a scan later."""
     await start(dut)
     prog = [OP_LD << 24 | AREA_FB << 12, OP_ASSIGN << 24 | AREA_Q << 12, OP_END << 24]
     for addr, word in enumerate(prog):
