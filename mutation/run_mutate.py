@@ -191,7 +191,8 @@ def home_candidates(work: Path) -> list:
 
 
 def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
-              timeout: float, reuse: bool = False, keep: Path | None = None) -> dict:
+              timeout: float, reuse: bool = False, keep: Path | None = None,
+              eq_jobs: int = 1) -> dict:
     t0 = time.time()
     if reuse:   # the tests' results of an interrupted run (their time is not known)
         res = json.loads((work / "results.json").read_text())
@@ -213,46 +214,51 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
         home = res["elaborations"][0]
         by_id = {m.id: m for m in muts}
         design = json.loads((Path(home["dir"]) / "sigs.json").read_text())["modules"]
-        for i in sorted(survivors - proof_killed):
+
+        def check(i: int) -> str | None:
+            """The verdict on survivor i (None: no check applies), its files in
+            equiv/m<i>/ (the checks of different mutants run side by side)."""
             # a mutation that changes no bit of the netlist needs no proof (and the
             # whole CPU, too large for the checks below, has such mutants too)
             why = mutlib.noop(by_id[i], design)
             if why:
-                equiv[i] = "no-op: " + why
-                continue
+                return "no-op: " + why
+            here = work / "equiv" / f"m{i}"
             # the whole design with its memories as memories (in the CPU: sync_ram's
             # held word, its read enable tied to 1), then through the memories (the
             # whole CPU is too large for that: its modules alone)
             script = mutlib.elab_script(home["top"], home.get("params"))
             drawn = Path(home["dir"])   # the RTL the sample was drawn from
             alone = None if c.equivalence else by_id[i].module
-            if mutlib.dead(work / "equiv", script, by_id[i], timeout, memories=False,
+            if mutlib.dead(here, script, by_id[i], timeout, memories=False,
                            rtl=drawn) or (alone != home["top"] and mutlib.dead(
-                               work / "equiv", script, by_id[i], timeout, alone, rtl=drawn)):
-                equiv[i] = "no-op: Yosys's clean-up removes it (no output reads it)"
-                continue
+                               here, script, by_id[i], timeout, alone, rtl=drawn)):
+                return "no-op: Yosys's clean-up removes it (no output reads it)"
             if not c.equivalence and by_id[i].home not in c.equiv_modules:
-                continue
+                return None
             top = home["top"] if c.equivalence else by_id[i].module
+            netlist = Path(home["dir"]) / "mutants.v"
             try:
-                equiv[i] = mutlib.equivalence(work / "equiv", Path(home["dir"]) / "mutants.v",
-                                              top, i, eq_depth, timeout)
-                if equiv[i] != "equivalent" and c.settle:
+                verdict = mutlib.equivalence(here, netlist, top, i, eq_depth, timeout)
+                if verdict != "equivalent" and c.settle:
                     # a longer proof (a BMC through the clearing): four times the time
-                    settled = mutlib.settled_equivalence(
-                        work / "equiv", Path(home["dir"]) / "mutants.v", top, i, c.settle,
-                        4 * timeout)
-                    if settled == "equivalent":
-                        equiv[i] = f"settled: equivalent once {c.settle.signal} is up"
-                if equiv[i] != "equivalent" and not equiv[i].startswith("settled") \
-                        and c.contract:
-                    if mutlib.contract_equivalence(
-                            work / "equiv", Path(home["dir"]) / "mutants.v", top, i,
-                            c.contract, timeout) == "equivalent":
-                        equiv[i] = "contract: equivalent where its users look"
+                    if mutlib.settled_equivalence(here, netlist, top, i, c.settle,
+                                                  4 * timeout) == "equivalent":
+                        return f"settled: equivalent once {c.settle.signal} is up"
+                if verdict != "equivalent" and c.contract:
+                    if mutlib.contract_equivalence(here, netlist, top, i, c.contract,
+                                                   timeout) == "equivalent":
+                        return "contract: equivalent where its users look"
+                return verdict
             except mutlib.MutationError as e:
-                equiv[i] = "error"
                 (work / f"equiv-{i}.err").write_text(str(e))
+                return "error"
+
+        todo = sorted(survivors - proof_killed)
+        with ThreadPoolExecutor(max_workers=eq_jobs) as pool:
+            for i, verdict in zip(todo, pool.map(check, todo)):
+                if verdict is not None:
+                    equiv[i] = verdict
     t_eq = time.time() - t2
     cands = {}
     for f in sorted(home_dir(work).glob("all.*.list")):
@@ -403,6 +409,8 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--eq-depth", type=int, default=8)
     ap.add_argument("--timeout", type=float, default=120.0, help="per proof, seconds")
+    ap.add_argument("--eq-jobs", type=int, default=1,
+                    help="a campaign's equivalence checks run side by side (one mutant each)")
     ap.add_argument("--doc", default=str(DOC))
     ap.add_argument("--reuse-tests", action="store_true",
                     help="keep a campaign's test results (build/mutation/<c>/results.json) "
@@ -434,7 +442,7 @@ def main(argv=None) -> int:
         work.mkdir(parents=True, exist_ok=True)
         t = time.time()
         s = summarize(c, args.seed, args.count, work, args.eq_depth, args.timeout, reuse,
-                      keep)
+                      keep, args.eq_jobs)
         print(f"{c.name}: {len(s['mutants'])} mutants, {time.time() - t:.0f} s", flush=True)
         return s
     try:
