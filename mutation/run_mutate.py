@@ -99,6 +99,8 @@ CAMPAIGNS = [
                      "tests/test_cpu_directed.py::test_a_scan_longer_than_2_to_the_20_clocks",
                      "tests/test_cpu_directed.py::test_every_output_edge_harness",
                      "tests/test_cpu_directed.py::test_every_input_word_bit_harness",
+                     "tests/test_cpu_directed.py::test_every_output_word_bit_harness",
+                     "tests/test_cpu_directed.py::test_every_timer_status_column_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_after_refresh_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_within_the_scan_harness",
                      "tests/test_random_programs.py::test_verilator_harness",

@@ -439,6 +439,32 @@ def test_every_input_word_bit_harness(tmp_path):
     assert all(len({row[n] for row in expected}) == 32 for n in range(16))
 
 
+# Every bit of every output word and every timer's status as the trace reads them (the
+# QW and T columns, from out_words_o and dbg_timer_status_o; make mutate, cpu campaign:
+# bit 12 of QW 8 and the status of T 32 went unseen, the other tests read words and
+# timers through markers).
+def test_every_output_word_bit_harness(tmp_path):
+    il, stim = tmp_path / "qw.il", tmp_path / "qw.csv"
+    il.write_text("".join(f"L IW{n}\nT QW{n}\n" for n in range(16)))
+    values = [1 << k for k in range(16)] + [~(1 << k) & 0xFFFF for k in range(16)]
+    stim.write_text("scan," + ",".join(f"IW{n}" for n in range(16)) + "\n" + "".join(
+        f"{s}," + ",".join(str(to_int16(values[(s + n) % 32])) for n in range(16)) + "\n"
+        for s in range(32)))
+    expected = _harness_equals_reference(il, stim, [f"QW{n}" for n in range(16)], 32)
+    assert all(len({row[n] for row in expected}) == 32 for n in range(16))
+
+
+def test_every_timer_status_column_harness(tmp_path):
+    """STATUS_PROGRAM (timer n a 0 ms on-delay of I0.0) with the T n columns watched:
+    every timer's status goes 0, 1, 0 with I0.0."""
+    il, stim = tmp_path / "tcol.il", tmp_path / "tcol.csv"
+    il.write_text(STATUS_PROGRAM)
+    stim.write_text("scan,I0.0,I0.1,I0.2\n0,0,0,0\n1,1,0,0\n2,1,0,0\n3,0,0,0\n4,1,0,0\n")
+    columns = [f"T{n}" for n in range(STATUS)]
+    expected = _harness_equals_reference(il, stim, columns, 6)
+    assert all(len({row[n] for row in expected}) == 2 for n in range(STATUS))
+
+
 @pytest.mark.parametrize("view", ["IR", "IF"])
 def test_every_pending_edge_after_refresh_harness(view, tmp_path):
     il, stim = tmp_path / f"pend_{view}.il", tmp_path / "pend.csv"
