@@ -428,15 +428,21 @@ def test_every_output_edge_harness(tmp_path):
 # unseen): L IW n / T MW n for the 16 words, walking ones and zeros, against the
 # reference; and every pin's pending falling / rising edge right after a REFRESH (the
 # input unit's pending edges, which only the latch clock and REFRESH read).
-def test_every_input_word_bit_harness(tmp_path):
-    il, stim = tmp_path / "iw.il", tmp_path / "iw.csv"
-    il.write_text("".join(f"L IW{n}\nT MW{n}\n" for n in range(16)))
+def _words_walk(tmp_path, target: str) -> None:
+    """L IW n / T <target> n for the 16 words, each input word walking ones and zeros
+    (word n shifted by n scans), <target> columns against the reference."""
+    il, stim = tmp_path / f"{target}.il", tmp_path / f"{target}.csv"
+    il.write_text("".join(f"L IW{n}\nT {target}{n}\n" for n in range(16)))
     values = [1 << k for k in range(16)] + [~(1 << k) & 0xFFFF for k in range(16)]
     stim.write_text("scan," + ",".join(f"IW{n}" for n in range(16)) + "\n" + "".join(
         f"{s}," + ",".join(str(to_int16(values[(s + n) % 32])) for n in range(16)) + "\n"
         for s in range(32)))
-    expected = _harness_equals_reference(il, stim, [f"MW{n}" for n in range(16)], 32)
+    expected = _harness_equals_reference(il, stim, [f"{target}{n}" for n in range(16)], 32)
     assert all(len({row[n] for row in expected}) == 32 for n in range(16))
+
+
+def test_every_input_word_bit_harness(tmp_path):
+    _words_walk(tmp_path, "MW")
 
 
 # Every bit of every output word and every timer's status as the trace reads them (the
@@ -444,14 +450,7 @@ def test_every_input_word_bit_harness(tmp_path):
 # bit 12 of QW 8 and the status of T 32 went unseen, the other tests read words and
 # timers through markers).
 def test_every_output_word_bit_harness(tmp_path):
-    il, stim = tmp_path / "qw.il", tmp_path / "qw.csv"
-    il.write_text("".join(f"L IW{n}\nT QW{n}\n" for n in range(16)))
-    values = [1 << k for k in range(16)] + [~(1 << k) & 0xFFFF for k in range(16)]
-    stim.write_text("scan," + ",".join(f"IW{n}" for n in range(16)) + "\n" + "".join(
-        f"{s}," + ",".join(str(to_int16(values[(s + n) % 32])) for n in range(16)) + "\n"
-        for s in range(32)))
-    expected = _harness_equals_reference(il, stim, [f"QW{n}" for n in range(16)], 32)
-    assert all(len({row[n] for row in expected}) == 32 for n in range(16))
+    _words_walk(tmp_path, "QW")
 
 
 def test_every_timer_status_column_harness(tmp_path):
