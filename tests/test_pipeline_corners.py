@@ -107,7 +107,7 @@ WRITE_BACK_COLUMNS = [f"Q0.{i}" for i in range(7)]
 def test_own_writes_read_back_every_clock(gap, tmp_path):
     il, stim = tmp_path / "w.il", tmp_path / "w.csv"
     il.write_text(_write_back_program(gap))
-    scans = 30
+    scans = 20
     _per_clock(stim, scans * 60, seed=11 + gap)
     rows = _harness_equals_reference(il, stim, WRITE_BACK_COLUMNS, scans)
     assert all(len({r[c] for r in rows}) == 2 for c in range(len(WRITE_BACK_COLUMNS))), rows
