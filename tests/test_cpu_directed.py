@@ -348,21 +348,30 @@ def test_every_status_index_harness(mode, tmp_path):
 # that both waits end on the registered bits, not on a write in the same clock:
 # without them, counter 58's updated bit never set and counter 39's written bit
 # stuck at 1 both passed; with them each fails (shown by hand on the RTL).
-COUNTER_SET_PROGRAM = "".join(
-    f"L IW0\nLD I0.1\nS C{n}\n" + "LD I0.2\n= M20.0\n" * 16 +
-    f"LD C{n}\n= M{n // 8}.{n % 8}\n" for n in range(STATUS))
+def _counter_set_program(order) -> str:
+    return "".join(
+        f"L IW0\nLD I0.1\nS C{n}\n" + "LD I0.2\n= M20.0\n" * 16 +
+        f"LD C{n}\n= M{n // 8}.{n % 8}\n" for n in order)
+
+
+# (the counters from the last down as well, in parallel mode with the status path: a
+# high counter's updated / written bit then comes before a low one's, so a bit that
+# depends on a higher one goes wrong; make mutate, cpu campaign: counter 34's updated
+# bit and counter 4's written bit inverted while counter 50's was set went unseen)
+COUNTER_SET_PROGRAM = _counter_set_program(range(STATUS))
 COUNTER_SET_WATCH = [f"M{b}.{i}" for b in range(8) for i in range(8)]
 
 
-@pytest.mark.parametrize("mode", TC_MODES)
+@pytest.mark.parametrize("mode", TC_MODES + ["parallel-status-down"])
 def test_every_counter_through_the_status_buffer_harness(mode, tmp_path):
     il, stim = tmp_path / "counters.il", tmp_path / "counters.csv"
-    il.write_text(COUNTER_SET_PROGRAM)
+    il.write_text(_counter_set_program(reversed(range(STATUS))) if mode.endswith("-down")
+                  else COUNTER_SET_PROGRAM)
     scans = 10
     stim.write_text("scan,I0.1,IW0\n" + "".join(
         f"{k},{k % 2},{3 if k // 2 % 2 == 0 else 0}\n" for k in range(scans)))
     extra = _mode_options(mode)
-    if mode == "parallel-status":   # the program takes the path this test is about
+    if mode.startswith("parallel-status"):   # the program takes the path tested here
         out = tmp_path / "asm"
         assert cli.main(["asm", str(il), "--mode", "parallel", "--tc-path", "status",
                          "-o", str(out)]) == 0
@@ -379,16 +388,18 @@ def test_every_counter_through_the_status_buffer_harness(mode, tmp_path):
 # (the RLO it dispatches with) or, with --tc-path status, by the bit side's `= T n` /
 # `= C n` (docs/byte-bus.md; make mutate: the dispatch's index into the buffer, with
 # a bit flipped, went unseen, as serial mode's firmware takes the dispatched RLO).
-TC_INPUT_PROGRAM = "".join(
-    f"LD I{n // 8}.{n % 8}\nL 0\nSD T{n}\nLD I{8 + n // 8}.{n % 8}\nCU C{n}\n"
-    for n in range(STATUS))
+def _tc_input_program(order) -> str:
+    return "".join(
+        f"LD I{n // 8}.{n % 8}\nL 0\nSD T{n}\nLD I{8 + n // 8}.{n % 8}\nCU C{n}\n"
+        for n in order)
 
 
-@pytest.mark.parametrize("mode", ["serial", "parallel-status"])
+@pytest.mark.parametrize("mode", ["serial", "parallel-status", "parallel-status-down"])
 def test_every_timer_and_counter_input_bit_harness(mode, tmp_path):
     from bitbyte.sim.verilator import run_harness
     il, stim = tmp_path / "inputs.il", tmp_path / "inputs.csv"
-    il.write_text(TC_INPUT_PROGRAM)
+    il.write_text(_tc_input_program(reversed(range(STATUS)) if mode.endswith("-down")
+                                    else range(STATUS)))
     _write_pin_patterns(stim)
     extra = {} if mode == "serial" else {"mode": "parallel", "tc_path": "status"}
     # the last scan's image: all ones, all zeros after them, 0x55..., 0xAA..., and a
