@@ -29,6 +29,22 @@ from run_synth import git_rev  # noqa: E402,F401  (the tree a figure was measure
 DEFAULT_CLOCK_MHZ = Fraction(100)
 
 
+def source_rev() -> str:
+    """The commit a bench's figures belong to: `git describe`, with "-dirty" when a
+    tracked file outside docs/ differs from it. `make bench` runs its benches one after
+    another, each writing its report into docs/: those reports are not the code the
+    next bench measures."""
+    try:
+        head = subprocess.run(["git", "describe", "--always"], cwd=ROOT,
+                              capture_output=True, text=True).stdout.strip() or "?"
+        changed = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no",
+                                  "--", ".", ":(exclude)docs"], cwd=ROOT,
+                                 capture_output=True, text=True).stdout.strip()
+    except OSError:
+        return "?"
+    return head + ("-dirty" if changed else "")
+
+
 # ---------------------------------------------------------------------- progress
 _T0 = time.perf_counter()
 

@@ -345,7 +345,8 @@ def markdown(res, d) -> str:
     t1, ser, c = d["t1"], d["t1_serial"], d["t1_c320"]
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     add("# Performance: scan time, response time, simulator speed\n")
-    add(f"Written by `make bench` ({now}; `bench/run_bench.py`, raw data in "
+    add(f"Written by `make bench` ({now}, at `{res.get('rev', '?')}`; `bench/run_bench.py`, "
+        "raw data in "
         "`build/bench/results.json`). Do not edit: the next run rewrites this file.\n")
     add("## Summary\n")
     add(f"* **Clock: {f:g} MHz** — {res['clock_source']}. Every µs below is clocks / "

@@ -291,6 +291,7 @@ def main(argv=None) -> int:
     ap.add_argument("--no-cocotb", action="store_true", help="skip the cocotb speed runs")
     args = ap.parse_args(argv)
     t_start = time.perf_counter()
+    rev = bl.source_rev()      # taken first: the figures are of the tree as it starts
     bl.BUILD.mkdir(parents=True, exist_ok=True)
     try:
         import matplotlib  # noqa: F401  (the plots; pinned in requirements.txt)
@@ -339,7 +340,7 @@ def main(argv=None) -> int:
                 f"(8051 interpreter on a {mcu['mcu_mhz']:g} MHz DS80C320; native code "
                 f"{mcu['b_native']})")
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
-    results = dict(clock_mhz=float(f), clock_source=f_src, c320_mhz=float(C320_MHZ),
+    results = dict(rev=rev, clock_mhz=float(f), clock_source=f_src, c320_mhz=float(C320_MHZ),
                    modes=mode_status, scan=scan, response=resp,
                    response_fast=resp_fast, simspeed=speed, tc_path=tc_path,
                    bit_engine=bit_engine,

@@ -30,9 +30,8 @@ sys.path[:0] = [str(HERE), str(ROOT), str(ROOT / "tests"), str(ROOT / "synth")]
 
 import randprog                                   # noqa: E402
 from bit_engine_bench import adder_il, fmax_lines  # noqa: E402
-from run_synth import git_rev                      # noqa: E402
-
 from benchlib import progress as bl_progress      # noqa: E402
+from benchlib import source_rev                    # noqa: E402
 from bitbyte.compiler.partition import partition  # noqa: E402
 from bitbyte.lang.parser import parse             # noqa: E402
 from bitbyte.wide import lutmap as L              # noqa: E402
@@ -155,7 +154,7 @@ def measure(quick: bool = False) -> list[dict]:
 
 def markdown(rows: list[dict]) -> list[str]:
     fmax = fmax_lines().get("ECP5-25")
-    L_ = [BEGIN, "", f"Measured by `bench/wide_map_bench.py` at commit `{git_rev()}` "
+    L_ = [BEGIN, "", f"Measured by `bench/wide_map_bench.py` at commit `{source_rev()}` "
           f"(Yosys `{L.YOSYS}`, flows {', '.join(f'`{f}`' for f in FLOWS)}, the best "
           "checked program over LUT sizes k ≤ K). *Bit IL*: the IL bit instructions "
           "(jumps, direct and cut instructions included; byte, timer and counter "
