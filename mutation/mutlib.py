@@ -498,6 +498,17 @@ EQ_RESET = """\
 """
 
 
+def run_check(work: Path, job: str, il: Path, mode: str, depth: int, timeout: float,
+              script: str = "") -> str:
+    """run_sby on the check `job`: its RTLIL `il` and its top `<job>_top.sv` (module
+    eq_top, in `work`), by smtbmc yices in `mode` to `depth`; `script` after prep."""
+    top = work / f"{job}_top.sv"
+    text = (f"[options]\nmode {mode}\ndepth {depth}\n\n[engines]\nsmtbmc yices\n\n"
+            f"[script]\nread_rtlil {il.name}\nread -formal {top.name}\n"
+            f"prep -top eq_top\n{script}\n[files]\n{il}\n{top}\n")
+    return run_sby(work, text, job, timeout)
+
+
 def not_state(mod: dict) -> list[str]:
     """The named wires of a write_json module that are neither a port nor a register's
     output (the netlist's _012_ wires and constants included; mutsel too, meant to
@@ -649,11 +660,8 @@ def equivalence(work: Path, netlist: Path, top: str, mut_id: int, depth: int,
             EQ_TOP.format(ports=decl, module=module, conns=conns, what=what,
                           from_=" from reset: reset is held in the first clock" if has_reset
                           else "", reset=EQ_RESET.format(reset=reset) if has_reset else ""))
-        text = (f"[options]\nmode {mode}\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
-                f"[script]\nread_rtlil {name}_{kind}.il\nread -formal {name}_{kind}_top.sv\n"
-                f"prep -top eq_top\n\n[files]\n{work / (name + '_' + kind + '.il')}\n"
-                f"{work / (name + '_' + kind + '_top.sv')}\n")
-        return run_sby(work, text, f"{name}_{kind}", timeout)
+        return run_check(work, f"{name}_{kind}", work / f"{name}_{kind}.il", mode, k,
+                         timeout)
 
     if step and check("paired", "paired", "", "the pairs equal in the first clocks",
                       EQ_BASE_DEPTH, mode="bmc") == "pass":
@@ -760,12 +768,8 @@ def settled_equivalence(work: Path, netlist: Path, top: str, mut_id: int, settle
         (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
             what=f"once settled ({kind})", ports=decl, body=body, reset=reset, props=props,
             once=once))
-        il = work / f"{name}_{module}.il"
-        text = (f"[options]\nmode {mode}\ndepth {k}\n\n[engines]\nsmtbmc yices\n\n"
-                f"[script]\nread_rtlil {il.name}\nread -formal {name}_{kind}_top.sv\n"
-                f"prep -top eq_top\n{script}\n[files]\n{il}\n"
-                f"{work / (name + '_' + kind + '_top.sv')}\n")
-        return run_sby(work, text, f"{name}_{kind}", timeout)
+        return run_check(work, f"{name}_{kind}", work / f"{name}_{module}.il", mode, k,
+                         timeout, script)
 
     d = settle.clocks
     wires = "".join(f"  wire [{w - 1}:0] gold_{n}, gate_{n};\n" for n, w in outputs)
@@ -888,11 +892,8 @@ def contract_equivalence(work: Path, netlist: Path, top: str, mut_id: int,
         (work / f"{name}_{kind}_top.sv").write_text(SETTLE_TOP.format(
             what=f"by contract ({kind})", ports=decl, body=body, reset=reset, props=props,
             once=""))
-        il = work / f"{name}_{module}.il"
-        text = (f"[options]\nmode prove\ndepth 2\n\n[engines]\nsmtbmc yices\n\n"
-                f"[script]\nread_rtlil {il.name}\nread -formal {name}_{kind}_top.sv\n"
-                f"prep -top eq_top\n\n[files]\n{il}\n{work / (name + '_' + kind + '_top.sv')}\n")
-        return run_sby(work, text, f"{name}_{kind}", timeout)
+        return run_check(work, f"{name}_{kind}", work / f"{name}_{module}.il", "prove", 2,
+                         timeout)
 
     conns = [f".{n}({n})" for n, _ in inputs]
     if contract.same:
