@@ -103,6 +103,7 @@ CAMPAIGNS = [
                      "tests/test_cpu_directed.py::test_every_timer_status_column_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_after_refresh_harness",
                      "tests/test_cpu_directed.py::test_every_pending_edge_within_the_scan_harness",
+                     "tests/test_cpu_directed.py::test_bit_side_stall_count_past_bit_15_harness",
                      "tests/test_random_programs.py::test_verilator_harness",
                      "tests/test_random_programs.py::test_mixed_verilator_harness",
                      "tests/test_random_parallel.py::test_parallel_on_harness",

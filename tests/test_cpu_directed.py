@@ -520,3 +520,25 @@ def test_the_cpus_scan_counters_are_checked(tmp_path, monkeypatch, stat):
     _, columns, job, _ = prepare_run(str(il), watch="Q0.0", scans=3)
     with pytest.raises(SimError, match="the CPU counted"):
         run_harness(job, columns)
+
+
+# STALLS_BIT against a count of its own, past bit 15 (make mutate: cpu 47,
+# stalls_bit_o[15] stuck at 0 went unseen: no test ran 32 768 stall clocks). In
+# parallel mode a bit part of two instructions beside a byte part of 60 word
+# instructions: the bit side waits at END for the byte side's SCAN_DONE, so every clock
+# a scan takes beyond the same bit part alone (no byte part: no wait) is a stall.
+def test_bit_side_stall_count_past_bit_15_harness(tmp_path):
+    from bitbyte.sim.verilator import run_harness
+    scans, runs = 100, {}
+    for name, body in (("bit", ""), ("both", "L MW0\nT MW2\n" * 30)):
+        il = tmp_path / f"{name}.il"
+        il.write_text("LD I0.0\n= Q0.0\n" + body)
+        _, columns, job, _ = prepare_run(str(il), watch="Q0.0", scans=scans,
+                                         mode="parallel")
+        records, fault, stats = run_harness(job, columns)
+        assert not fault and len(records) == scans
+        runs[name] = ([r.cycles for r in records], stats.stalls)
+    (bit_cycles, bit_stalls), (cycles, stalls) = runs["bit"], runs["both"]
+    assert bit_stalls == (0, 0)
+    waited = sum(c - b for c, b in zip(cycles, bit_cycles))
+    assert waited > 1 << 15 and stalls == (waited, 0), (waited, stalls)
