@@ -136,13 +136,18 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 # cell counts for Xilinx 7-series and generic gates, a parameter sweep. Writes
 # docs/synthesis.md and docs/synthesis_resources.png; logs stay in synth/build/.
 # Not part of `make test` (11 to 18 minutes on 2 cores; synth-quick about 3 to 5).
-.PHONY: synth synth-quick
+.PHONY: synth synth-quick synth-depth
 
 synth: $(VENV_STAMP)  ## synthesis + place and route, all targets and the sweep -> docs/synthesis.md
 	$(VENV)/bin/python synth/run_synth.py --jobs $(JOBS)
 
 synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no sweep, 3 to 5 min)
 	$(VENV)/bin/python synth/run_synth.py --quick --jobs $(JOBS)
+
+# LUT levels in front of each register of the HX8K design (make synth's flow, no place
+# and route: about a minute), deepest first; DEPTH_ARGS="--match u_bit_proc --path e_opnd_q"
+synth-depth: $(VENV_STAMP)  ## LUT levels per register, HX8K profile (a minute; no docs written)
+	$(VENV)/bin/python synth/depth_report.py $(DEPTH_ARGS)
 
 # ------------------------------------------------------------------ benchmarks (bench/)
 # Scan time, response time and simulator speed (issue 8): the examples, a generated
