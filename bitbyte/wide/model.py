@@ -1,0 +1,134 @@
+"""The wide bit engine's reference model (issue 18, direction (a)): the serial-mode
+reference interpreter (bitbyte/ref/refsim.py) with every compiled unit of the program
+run as its LUT program, one LUT instruction per clock, and everything else (cuts,
+units that fell back, byte instructions) as the scalar interpreter runs it.
+
+It is what the wide engine's RTL will be checked against, and it checks the compiler
+on whole programs over many scans, beyond the per-unit check of lutmap.check: a unit
+is entered only at its first instruction (a label cuts, so no jump lands inside one),
+reads its inputs from the machine state as the scalar instructions would at that
+point, writes back every location it writes, and leaves the RLO as the scalar
+instructions would where the next instruction reads it (Unit.rlo_live). Spec §4
+(`--bit-engine`): on programs without timers and with scan-keyed stimuli, every trace
+column but `t_us` and `cycles` equals the scalar engine's.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from bitbyte.lang.config import DEFAULT
+from bitbyte.lang.program import Program
+from bitbyte.lang.trace import trace_columns
+from bitbyte.ref.refsim import RefSim, refsim_trace
+from bitbyte.wide import lutmap as L
+from bitbyte.wide.stretch import RLO, Split, split_program
+
+# the recommendation of docs/wide-engine.md: dual_s, 5 operands
+K, VARIANT, FLOW = 5, "dual_s", "abc"
+
+_AREA = re.compile(r"[A-Z]+")
+
+
+@dataclass
+class Compiled:
+    """A program split into units, each with its checked LUT program (None: it runs
+    scalar)."""
+
+    split: Split
+    programs: list[list[L.MInstr] | None]
+
+    @property
+    def fallbacks(self) -> int:
+        return sum(p is None for p in self.programs)
+
+
+def compile_programs(programs: list[Program], k: int = K, variant: str = VARIANT,
+                     flow: str = FLOW) -> list[Compiled]:
+    """Each program split and its units compiled (all programs' units in one Yosys
+    run: the mapping, not the check, is what takes time)."""
+    splits = [split_program(p) for p in programs]
+    every = [u for s in splits for u in s.units]
+    progs = L.compile_units(every, k, variant, flow) if every else []
+    out, at = [], 0
+    for s in splits:
+        out.append(Compiled(s, progs[at:at + len(s.units)]))
+        at += len(s.units)
+    return out
+
+
+def compile_program(program: Program, k: int = K, variant: str = VARIANT,
+                    flow: str = FLOW) -> Compiled:
+    return compile_programs([program], k, variant, flow)[0]
+
+
+class WideRefSim(RefSim):
+    """RefSim whose compiled units run as LUT programs. lut_clocks counts the LUT
+    instructions executed, unit_il the scalar instructions they stood for."""
+
+    def __init__(self, program: Program, compiled: Compiled, *args, **kwargs):
+        super().__init__(program, *args, **kwargs)
+        self.units = {u.start: (u, p) for u, p in zip(compiled.split.units, compiled.programs)
+                      if p is not None}
+        self.lut_clocks = 0
+        self.unit_il = 0
+
+    def _get(self, x: str) -> int:
+        if x == RLO:
+            return self.rlo
+        area = _AREA.match(x).group(0)
+        if area in ("T", "C"):
+            n = int(x[len(area):])
+            return self.timer_status(n) if area == "T" else self.counter_status(n)
+        return (getattr(self, L._IMAGES[area]) >> L._bit_number(x, area)) & 1
+
+    def _set(self, x: str, v: int) -> None:
+        if x == RLO:
+            self.rlo = v
+            return
+        area = _AREA.match(x).group(0)
+        attr, b = L._IMAGES[area], L._bit_number(x, area)
+        setattr(self, attr, getattr(self, attr) & ~(1 << b) | (v << b))
+
+    def _step(self, ins, pc, clock):
+        hit = self.units.get(pc)
+        if hit is None:
+            return super()._step(ins, pc, clock)
+        unit, prog = hit
+        state = L.execute(prog, {x: self._get(x) for x in unit.inputs}, 1)
+        for x in unit.outputs:
+            if x != RLO or unit.rlo_live:
+                self._set(x, state[x])
+        self.lut_clocks += len(prog)
+        self.unit_il += unit.size
+        return unit.stop, len(prog)
+
+
+def wide_trace(program: Program, compiled: Compiled, config=None, stimulus=None,
+               watch=(), scans: int | None = None, watchdog: int = 100000):
+    """(columns, records, fault?, sim) of a serial-mode run of the wide model, as
+    refsim_trace gives the scalar one (its columns)."""
+    config = config or DEFAULT
+    columns = trace_columns(program, list(watch), program.symbols, config)
+    sim = WideRefSim(program, compiled, config, stimulus, watchdog, columns)
+    records = sim.run(scans)
+    return columns, records, sim.watchdog_fault, sim
+
+
+def compare(program: Program, stimulus, watch=(), scans: int = 8,
+            compiled: Compiled | None = None) -> tuple[list[str], WideRefSim]:
+    """The wide model against the scalar interpreter: the differences (column, scan:
+    wide vs scalar) of every trace column but t_us and cycles, empty when equal."""
+    compiled = compiled or compile_program(program)
+    cols, ref, ref_fault = refsim_trace(program, stimulus=stimulus, watch=watch, scans=scans)
+    _, wide, wide_fault, sim = wide_trace(program, compiled, stimulus=stimulus,
+                                          watch=watch, scans=scans)
+    diffs = []
+    if ref_fault != wide_fault or len(ref) != len(wide):
+        diffs.append(f"fault/scans: wide {wide_fault}/{len(wide)}, scalar {ref_fault}/{len(ref)}")
+    for r, w in zip(ref, wide):
+        for c in cols:
+            if r.values[c.header] != w.values[c.header]:
+                diffs.append(f"{c.header} scan {r.scan}: wide {w.values[c.header]}, "
+                             f"scalar {r.values[c.header]}")
+    return diffs, sim

@@ -1,0 +1,146 @@
+"""The wide bit engine's reference model (bitbyte/wide/model.py, issue 18): whole
+programs run with their compiled units as LUT programs give the scalar reference
+interpreter's trace (every column but t_us and cycles; scan-keyed stimuli, no timers,
+spec §4 `--bit-engine`), and the 64-bit adder's sums are the integer sums."""
+from __future__ import annotations
+
+import os
+import random
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench"))
+import randprog                                        # noqa: E402
+from bit_engine_bench import adder_il                  # noqa: E402
+from bitbyte.lang.parser import parse                  # noqa: E402
+from bitbyte.lang.stimulus import parse_stimulus       # noqa: E402
+from bitbyte.wide import lutmap as L                   # noqa: E402
+from bitbyte.wide import model                         # noqa: E402
+
+PROGRAMS = int(os.environ.get("BITBYTE_WIDE_MODEL_PROGRAMS", "40"))
+SCANS = 8
+BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
+
+
+def scan_stimulus(seed: int, scans: int, in_bytes: int = randprog.IN_BYTES,
+                  fixed: dict[str, int] | None = None) -> str:
+    """A row for every scan, every input pin random (or as `fixed` says)."""
+    rng = random.Random(seed)
+    cols = [f"I{b}.{n}" for b in range(in_bytes) for n in range(8)]
+    rows = ["scan," + ",".join(cols)]
+    for s in range(scans):
+        rows.append(f"{s}," + ",".join(str((fixed or {}).get(c, rng.randrange(2))) for c in cols))
+    return "\n".join(rows) + "\n"
+
+
+def _adder():
+    p = parse("adder.il", adder_il())
+    return p, model.compile_program(p)
+
+
+def _operands(seed: int, scans: int) -> list[tuple[int, int]]:
+    rng = random.Random(seed)
+    ops = [(0, 0), (2**64 - 1, 1), (2**64 - 1, 2**64 - 1), (0x5555555555555555, 0xAAAAAAAAAAAAAAAB)]
+    return (ops + [(rng.getrandbits(64), rng.getrandbits(64)) for _ in range(scans)])[:scans]
+
+
+def _adder_stimulus(ops) -> str:
+    cols = [f"I{b}.{n}" for b in range(16) for n in range(8)]
+    rows = ["scan," + ",".join(cols)]
+    for s, (a, b) in enumerate(ops):
+        bits = a | b << 64
+        rows.append(f"{s}," + ",".join(str(bits >> i & 1) for i in range(128)))
+    return "\n".join(rows) + "\n"
+
+
+def test_the_adder_sums_operands_as_integers():
+    """Q0.0..Q8.0 of each scan, read from the trace, is a + b of that scan's pins; the
+    adder's 900 IL run as 83 LUT instructions (10.8 per clock)."""
+    p, c = _adder()
+    ops = _operands(BASE_SEED, 12)
+    st = parse_stimulus(_adder_stimulus(ops))
+    watch = [f"Q{i // 8}.{i % 8}" for i in range(65)]
+    diffs, sim = model.compare(p, st, watch=watch, scans=len(ops), compiled=c)
+    assert diffs == []
+    _, recs, fault, _ = model.wide_trace(p, c, stimulus=st, watch=watch, scans=len(ops))
+    assert not fault and c.fallbacks == 0
+    for (a, b), r in zip(ops, recs):
+        got = sum(r.values[f"Q{i // 8}.{i % 8}"] << i for i in range(65))
+        assert got == a + b, (hex(a), hex(b), hex(got))
+    assert sim.unit_il == 900 * len(ops) and sim.lut_clocks * 10 < sim.unit_il
+
+
+def test_random_programs_trace_as_the_scalar_engine():
+    """Random programs of the regression's generators (bit-only: jumps, REFRESH,
+    parentheses, edges, PI/PQ; mixed serial-mode programs with their timers stripped:
+    words, compares, counters), scan-keyed stimuli: 0 mismatching programs."""
+    texts = [randprog.random_program(BASE_SEED * 1000 + k) if k % 2 == 0 else
+             randprog.strip_timers(randprog.random_mixed_program(BASE_SEED * 1000 + k))
+             for k in range(PROGRAMS)]
+    progs = [parse(f"wide{BASE_SEED * 1000 + k}.il", t) for k, t in enumerate(texts)]
+    compiled = model.compile_programs(progs)
+    bad, unit_il = [], 0
+    for k, (p, c) in enumerate(zip(progs, compiled)):
+        seed = BASE_SEED * 1000 + k
+        st = parse_stimulus(scan_stimulus(seed, SCANS))
+        diffs, sim = model.compare(p, st, watch=randprog.FULL_WATCH, scans=SCANS, compiled=c)
+        unit_il += sim.unit_il
+        if diffs:
+            bad.append((seed, diffs[:3]))
+    assert bad == [], bad
+    assert unit_il > 1000        # units ran: the comparison is not of two scalar runs
+
+
+# the RLO live across a cut: the unit LD/A/O hands its RLO to JC and to `= Q0.0`
+JUMP_PROGRAM = """\
+      LD  I0.0
+      A   I0.1
+      O   I0.2
+      JC  L1
+      LD  I0.3
+      =   Q0.1
+L1:   =   Q0.0
+"""
+
+
+@pytest.mark.parametrize("fault", ["table_bit", "rlo_dropped", "output_dropped"])
+def test_a_broken_wide_program_is_seen(fault):
+    """The comparison fails on a wrong LUT program: one truth-table bit flipped in
+    every unit of the adder; a live RLO not handed on (a unit before JC); a written
+    bit (the adder's carry out) not written."""
+    if fault == "rlo_dropped":
+        p = parse("jump.il", JUMP_PROGRAM)
+        c = model.compile_program(p)
+        assert any(u.rlo_live for u in c.split.units) and c.fallbacks == 0
+        st = parse_stimulus(scan_stimulus(BASE_SEED, SCANS))
+        watch, scans = ["Q0.0", "Q0.1"], SCANS
+    else:
+        p, c = _adder()
+        ops = _operands(BASE_SEED + 1, 6)
+        st = parse_stimulus(_adder_stimulus(ops))
+        watch, scans = [f"Q{i // 8}.{i % 8}" for i in range(65)], len(ops)
+    assert model.compare(p, st, watch=watch, scans=scans, compiled=c)[0] == []
+    if fault == "table_bit":
+        rng = random.Random(7)
+        for prog in c.programs:
+            ins = prog[rng.randrange(len(prog))]
+            d, t = ins.outs[0]
+            ins.outs[0] = (d, t ^ (1 << rng.randrange(1 << len(ins.inputs))))
+        diffs, _ = model.compare(p, st, watch=watch, scans=scans, compiled=c)
+    else:
+        orig = model.WideRefSim._set
+
+        def broken(self, x, v):
+            if (fault == "rlo_dropped" and x == model.RLO) or \
+                    (fault == "output_dropped" and x == "Q8.0"):
+                return
+            orig(self, x, v)
+        model.WideRefSim._set = broken
+        try:
+            diffs, _ = model.compare(p, st, watch=watch, scans=scans, compiled=c)
+        finally:
+            model.WideRefSim._set = orig
+    assert diffs, fault
