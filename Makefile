@@ -173,11 +173,13 @@ bench-multicore: $(VENV_STAMP)  ## seed 000 Table 4 in clocks, protections compa
 
 # The wide bit engine's instruction format (issue 18, direction (a)): LUT instructions
 # per IL bit instruction on the issue's benchmarks, per LUT size and format, each
-# compiled unit checked exhaustively (Yosys abc, 12 runs; 1.5 to 2.5 min). Writes the table of
-# docs/wide-engine.md.
+# compiled unit checked exhaustively (Yosys abc, 12 runs; 1.5 to 2.5 min); then the same
+# benchmarks run on the wide engine's reference model against the scalar interpreter
+# (clocks per scan, traces compared; about a minute). Writes the tables of docs/wide-engine.md.
 .PHONY: bench-wide
-bench-wide: $(VENV_STAMP)  ## wide bit engine: LUT instructions per IL (static) -> docs/wide-engine.md
+bench-wide: $(VENV_STAMP)  ## wide bit engine: LUT instructions per IL, model clocks per scan -> docs/wide-engine.md
 	$(VENV)/bin/python bench/wide_map_bench.py
+	$(VENV)/bin/python bench/wide_model_bench.py
 
 .PHONY: bench-alloc
 bench-alloc: $(VENV_STAMP)  ## task allocation (bitbyte alloc) -> docs/allocation.md
