@@ -71,6 +71,10 @@ def test_the_adder_sums_operands_as_integers():
         got = sum(r.values[f"Q{i // 8}.{i % 8}"] << i for i in range(65))
         assert got == a + b, (hex(a), hex(b), hex(got))
     assert sim.unit_il == 900 * len(ops) and sim.lut_clocks * 10 < sim.unit_il
+    # the bit part's count: every IL instruction of the adder is a bit instruction in a
+    # unit, END is none (the bench's "bit IL per clock")
+    lut = sum(len(prog) for prog in c.programs)
+    assert (sim.bit_il, sim.bit_clocks) == (900 * len(ops), lut * len(ops))
 
 
 def test_random_programs_trace_as_the_scalar_engine():

@@ -22,10 +22,12 @@ from bitbyte.lang.program import Program
 from bitbyte.lang.trace import trace_columns
 from bitbyte.ref.refsim import RefSim, refsim_trace
 from bitbyte.wide import lutmap as L
-from bitbyte.wide.stretch import RLO, Split, split_program
+from bitbyte.wide.stretch import RLO, Split, cut_reason, split_program
 
 # the recommendation of docs/wide-engine.md: dual_s, 5 operands
 K, VARIANT, FLOW = 5, "dual_s", "abc"
+# not bit instructions (the byte processor's, and END): outside the bit part's count
+BYTE_SIDE = ("byte", "timer/counter", "end")
 
 _AREA = re.compile(r"[A-Z]+")
 
@@ -64,7 +66,9 @@ def compile_program(program: Program, k: int = K, variant: str = VARIANT,
 
 class WideRefSim(RefSim):
     """RefSim whose compiled units run as LUT programs. lut_clocks counts the LUT
-    instructions executed, unit_il the scalar instructions they stood for."""
+    instructions executed, unit_il the scalar instructions they stood for; bit_il and
+    bit_clocks the bit part's IL instructions executed (units' included) and the
+    clocks they took (a unit's: its LUT instructions)."""
 
     def __init__(self, program: Program, compiled: Compiled, *args, **kwargs):
         super().__init__(program, *args, **kwargs)
@@ -72,6 +76,8 @@ class WideRefSim(RefSim):
                       if p is not None}
         self.lut_clocks = 0
         self.unit_il = 0
+        self.bit_il = 0
+        self.bit_clocks = 0
 
     def _get(self, x: str) -> int:
         if x == RLO:
@@ -93,7 +99,11 @@ class WideRefSim(RefSim):
     def _step(self, ins, pc, clock):
         hit = self.units.get(pc)
         if hit is None:
-            return super()._step(ins, pc, clock)
+            nxt, clocks = super()._step(ins, pc, clock)
+            if cut_reason(ins) not in BYTE_SIDE:
+                self.bit_il += 1
+                self.bit_clocks += clocks
+            return nxt, clocks
         unit, prog = hit
         state = L.execute(prog, {x: self._get(x) for x in unit.inputs}, 1)
         for x in unit.outputs:
@@ -101,6 +111,8 @@ class WideRefSim(RefSim):
                 self._set(x, state[x])
         self.lut_clocks += len(prog)
         self.unit_il += unit.size
+        self.bit_il += unit.size
+        self.bit_clocks += len(prog)
         return unit.stop, len(prog)
 
 
