@@ -70,3 +70,26 @@ def test_saturated_loss_counters_are_a_lower_bound():
     assert report.free_note(fr) == ("byte side 2 scans, mean 45 clocks; losses: overflows "
                                     "to-byte >= 65535 / to-bit 3, underflows to-byte 0 / "
                                     "to-bit >= 65535")
+
+
+# The report's rows (issue 15 defect 5, the audit at stop 38: §1's scan-time table and
+# §4's response rows showed the bit side alone): every row of a free-running run
+# carries the byte side's scans and the losses, other modes a dash.
+FREE = dict(byte_scans=7, clocks=700, byte_scan=100.0, exchange="queue-free",
+            losses=[5, 0, 2, 0])
+NOTE = "byte side 7 scans, mean 100 clocks; losses: overflows to-byte 5 / to-bit 0"
+
+
+def test_every_free_running_row_states_the_byte_side_and_losses():
+    e = dict(name="p", n_bit=3, n_word=1, n_jump=0, static_paper=14)
+    run = dict(scans=10, min=9, median=10, max=11)
+    image = dict(clocks=[1, 2], min=1, median=1.5, p99=2, max=2, bound=30,
+                 within_bound=True, exact=True, scan_min=9, scan_max=11)
+    resp = dict(image=image, direct=dict(image, exact=False))
+    for free, want in ((FREE, NOTE), (None, "| – |")):
+        rows = [report.scan_row(e, "m", dict(run, free=free), 10.0),
+                report.response_row("m", "image", dict(resp, free=free), 10.0),
+                report.response_row("m", "direct", dict(resp, free=free), 10.0),
+                report.fast_row("m", dict(resp, free=free), 10.0)]
+        for row in rows:
+            assert want in row, row
