@@ -77,13 +77,33 @@ def test_the_adder_sums_operands_as_integers():
     assert (sim.bit_il, sim.bit_clocks) == (900 * len(ops), lut * len(ops))
 
 
-def test_random_programs_trace_as_the_scalar_engine():
+def with_label_nops(text: str, rng: random.Random) -> str:
+    """`label: NOP` (the jump-target idiom the generators do not write) before about
+    one line in eight: a unit of NOPs between two others must hand the RLO on."""
+    out, k = [], 0
+    lines = text.split("\n")
+    for i, line in enumerate(lines):
+        s, prev = line.strip(), lines[i - 1].strip() if i else ""
+        if s and not s.startswith(("VAR", "END_VAR")) and ":" not in s and \
+                " AT " not in s and not prev.endswith("(") and rng.random() < 0.12:
+            out.append(f"NP{k}: NOP")
+            k += 1
+        out.append(line)
+    return "\n".join(out)
+
+
+@pytest.mark.parametrize("nops", [False, True], ids=["as_generated", "label_nops"])
+def test_random_programs_trace_as_the_scalar_engine(nops):
     """Random programs of the regression's generators (bit-only: jumps, REFRESH,
     parentheses, edges, PI/PQ; mixed serial-mode programs with their timers stripped:
-    words, compares, counters), scan-keyed stimuli: 0 mismatching programs."""
+    words, compares, counters), scan-keyed stimuli: 0 mismatching programs. Also with
+    `label: NOP` lines put in (a review found the RLO dropped before one)."""
     texts = [randprog.random_program(BASE_SEED * 1000 + k) if k % 2 == 0 else
              randprog.strip_timers(randprog.random_mixed_program(BASE_SEED * 1000 + k))
              for k in range(PROGRAMS)]
+    if nops:
+        texts = [with_label_nops(t, random.Random(BASE_SEED * 1000 + k))
+                 for k, t in enumerate(texts)]
     progs = [parse(f"wide{BASE_SEED * 1000 + k}.il", t) for k, t in enumerate(texts)]
     compiled = model.compile_programs(progs)
     bad, unit_il = [], 0
@@ -96,6 +116,18 @@ def test_random_programs_trace_as_the_scalar_engine():
             bad.append((seed, diffs[:3]))
     assert bad == [], bad
     assert unit_il > 1000        # units ran: the comparison is not of two scalar runs
+
+
+def test_a_unit_before_a_label_nop_hands_on_its_rlo():
+    """LD/A is a unit, `skip: NOP` a unit of its own, CU a cut: the first unit's RLO
+    reaches CU (and `= Q0.0`) through the NOP (the review's reproducer: the RLO was
+    dropped, Q0.0 and C1 differed in scan 1)."""
+    p = parse("nop.il", "LD I0.0\nA I0.1\nskip: NOP\nCU C1\nA C1\n= Q0.0\n")
+    c = model.compile_program(p)
+    assert [(u.start, u.stop) for u in c.split.units][:2] == [(0, 2), (2, 3)]
+    assert c.split.units[0].rlo_live
+    st = parse_stimulus(scan_stimulus(BASE_SEED, SCANS, fixed={"I0.0": 1, "I0.1": 1}))
+    assert model.compare(p, st, watch=["Q0.0", "C1"], scans=SCANS, compiled=c)[0] == []
 
 
 # the RLO live across a cut: the unit LD/A/O hands its RLO to JC and to `= Q0.0`

@@ -462,12 +462,16 @@ def _units(program, a, b, depth, max_inputs, scalar, base: int = 0) -> list[Unit
 
 
 def _set_liveness(program: Program, units: list[Unit]) -> None:
-    """Evaluate each unit, its RLO live if the next unit reads it or the instruction
-    after it may."""
-    for k, u in enumerate(units):
+    """Evaluate each unit, its RLO live if the next unit reads it, or passes it on
+    untouched to whatever reads it after (a unit of NOPs: the jump-target idiom
+    `label: NOP`), or the instruction after it may read it. Back to front, so that the
+    next unit's liveness is known."""
+    for k in range(len(units) - 1, -1, -1):
+        u = units[k]
         nxt = units[k + 1] if k + 1 < len(units) else None
         if nxt is not None and nxt.start == u.stop:
-            live = RLO in syntactic_inputs(nxt.instrs)
+            passes = not any(i.mnemonic in RLO_SETTERS for i in nxt.instrs) and nxt.rlo_live
+            live = RLO in syntactic_inputs(nxt.instrs) or passes
         else:
             live = _rlo_read_next(program.instrs, u.stop)
         units[k] = make_unit(program, u.start, u.stop, live)
