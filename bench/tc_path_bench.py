@@ -47,7 +47,7 @@ def _partition_counts(prog: Path, mode: str, tc_path: str) -> dict:
 def measure(case: dict, f: Fraction) -> dict:
     """case: run_bench.scan_cases' Table-1 entry (program, stimulus, scans)."""
     out = dict(program=str(case["prog"].relative_to(bl.ROOT)), scans=case["scans"],
-               clock_mhz=float(f), rev=bl.git_rev(), runs=[])
+               clock_mhz=float(f), rev=bl.source_rev(), runs=[])
     for spec in MODES:
         mode, _ = bl.split_mode(spec)
         for tp in PATHS:
