@@ -24,7 +24,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(1, str(Path(__file__).resolve().parents[1] / "bench"))
 import mutlib  # noqa: E402
+from benchlib import source_rev  # noqa: E402  (the commit a report's figures belong to)
 
 ROOT = mutlib.ROOT
 BUILD = ROOT / "build" / "mutation"
@@ -266,8 +268,7 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
     cands = {}
     for f in sorted(home_dir(work).glob("all.*.list")):
         cands[f.name.split(".")[1]] = sum(1 for line in f.read_text().splitlines() if line.strip())
-    head = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT,
-                          capture_output=True, text=True).stdout.strip()
+    head = source_rev()     # -dirty for code, not for docs/ (which a campaign writes)
     summary = {
         "campaign": c.name, "commit": head, "tests": c.tests, "keyword": c.keyword, "modules": c.modules,
         "seed": seed, "count": count, "env": c.env, "candidates": cands,
