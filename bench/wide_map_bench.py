@@ -31,7 +31,7 @@ sys.path[:0] = [str(HERE), str(ROOT), str(ROOT / "tests"), str(ROOT / "synth")]
 import randprog                                   # noqa: E402
 from bit_engine_bench import adder_il, fmax_lines  # noqa: E402
 from benchlib import progress as bl_progress      # noqa: E402
-from benchlib import source_rev                    # noqa: E402
+from benchlib import source_rev, splice_section    # noqa: E402
 from bitbyte.compiler.partition import partition  # noqa: E402
 from bitbyte.lang.parser import parse             # noqa: E402
 from bitbyte.wide import lutmap as L              # noqa: E402
@@ -209,13 +209,6 @@ def markdown(rows: list[dict]) -> list[str]:
     return L_
 
 
-def splice(text: str, lines: list[str]) -> str:
-    if BEGIN in text and END in text:
-        a, b = text.index(BEGIN), text.index(END) + len(END)
-        return text[:a] + "\n".join(lines) + text[b:]
-    return text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="10 random programs, not 50")
@@ -226,7 +219,7 @@ def main(argv=None) -> int:
     print("\n".join(lines))
     if not args.no_doc:
         doc = ROOT / "docs" / "wide-engine.md"
-        doc.write_text(splice(doc.read_text() if doc.exists() else "", lines))
+        doc.write_text(splice_section(doc.read_text() if doc.exists() else "", lines))
     return 0
 
 

@@ -11,7 +11,6 @@ Writes the table of docs/wide-engine.md between its markers (`make bench-wide`).
 from __future__ import annotations
 
 import argparse
-import random
 import sys
 from pathlib import Path
 
@@ -20,6 +19,7 @@ ROOT = HERE.parent
 sys.path[:0] = [str(HERE), str(ROOT), str(ROOT / "tests")]
 from benchlib import source_rev, splice_section    # noqa: E402
 from bit_engine_bench import adder_il              # noqa: E402
+from randprog import scan_stimulus                 # noqa: E402
 from wide_map_bench import random_programs        # noqa: E402
 from bitbyte.lang.parser import parse              # noqa: E402
 from bitbyte.lang.stimulus import parse_stimulus   # noqa: E402
@@ -30,13 +30,6 @@ BEGIN = "<!-- wide-model: bench/wide_model_bench.py -->"
 END = "<!-- /wide-model -->"
 SCANS = 8
 SEED = 1818
-
-
-def scan_rows(seed: int, in_bytes: int, scans: int) -> str:
-    rng = random.Random(seed)
-    cols = [f"I{b}.{n}" for b in range(in_bytes) for n in range(8)]
-    return "\n".join(["scan," + ",".join(cols)] + [
-        f"{s}," + ",".join(str(rng.randrange(2)) for _ in cols) for s in range(scans)]) + "\n"
 
 
 def benchmarks() -> list[tuple[str, list[tuple[str, str]], bool]]:
@@ -64,7 +57,7 @@ def measure() -> list[dict]:
         scalar = wide = unit_il = lut = bit_il = bit_clocks = 0
         mismatching = 0
         for k, (p, c) in enumerate(zip(progs, compiled)):
-            st = parse_stimulus(scan_rows(SEED + k, 16, SCANS))
+            st = parse_stimulus(scan_stimulus(SEED + k, SCANS, in_bytes=16))
             _, ref, _ = refsim_trace(p, stimulus=st, scans=SCANS)
             _, rec, _, sim = model.wide_trace(p, c, stimulus=st, scans=SCANS)
             scalar += sum(r.cycles for r in ref)

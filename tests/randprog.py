@@ -156,6 +156,18 @@ def random_stimulus(seed: int, scans: int) -> str:
     return "\n".join(rows) + "\n"
 
 
+def scan_stimulus(seed: int, scans: int, in_bytes: int = IN_BYTES,
+                  fixed: dict[str, int] | None = None) -> str:
+    """A row for every scan, every input pin random (or as `fixed` says): the stimuli
+    under which the wide engine's trace must equal the scalar one (spec §4)."""
+    rng = random.Random(seed)
+    cols = [f"I{b}.{n}" for b in range(in_bytes) for n in range(8)]
+    rows = ["scan," + ",".join(cols)]
+    for s in range(scans):
+        rows.append(f"{s}," + ",".join(str((fixed or {}).get(c, rng.randrange(2))) for c in cols))
+    return "\n".join(rows) + "\n"
+
+
 def random_watch(seed: int) -> list[str]:
     rng = random.Random(seed ^ 0xAA)
     return [_bit(rng, rng.choice(["M", "I", "IR", "IF", "PI"])).replace(" ", "")

@@ -25,17 +25,6 @@ SCANS = 8
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
 
 
-def scan_stimulus(seed: int, scans: int, in_bytes: int = randprog.IN_BYTES,
-                  fixed: dict[str, int] | None = None) -> str:
-    """A row for every scan, every input pin random (or as `fixed` says)."""
-    rng = random.Random(seed)
-    cols = [f"I{b}.{n}" for b in range(in_bytes) for n in range(8)]
-    rows = ["scan," + ",".join(cols)]
-    for s in range(scans):
-        rows.append(f"{s}," + ",".join(str((fixed or {}).get(c, rng.randrange(2))) for c in cols))
-    return "\n".join(rows) + "\n"
-
-
 def _adder():
     p = parse("adder.il", adder_il())
     return p, model.compile_program(p)
@@ -109,7 +98,7 @@ def test_random_programs_trace_as_the_scalar_engine(nops):
     bad, unit_il = [], 0
     for k, (p, c) in enumerate(zip(progs, compiled)):
         seed = BASE_SEED * 1000 + k
-        st = parse_stimulus(scan_stimulus(seed, SCANS))
+        st = parse_stimulus(randprog.scan_stimulus(seed, SCANS))
         diffs, sim = model.compare(p, st, watch=randprog.FULL_WATCH, scans=SCANS, compiled=c)
         unit_il += sim.unit_il
         if diffs:
@@ -126,7 +115,7 @@ def test_a_unit_before_a_label_nop_hands_on_its_rlo():
     c = model.compile_program(p)
     assert [(u.start, u.stop) for u in c.split.units][:2] == [(0, 2), (2, 3)]
     assert c.split.units[0].rlo_live
-    st = parse_stimulus(scan_stimulus(BASE_SEED, SCANS, fixed={"I0.0": 1, "I0.1": 1}))
+    st = parse_stimulus(randprog.scan_stimulus(BASE_SEED, SCANS, fixed={"I0.0": 1, "I0.1": 1}))
     assert model.compare(p, st, watch=["Q0.0", "C1"], scans=SCANS, compiled=c)[0] == []
 
 
@@ -151,7 +140,7 @@ def test_a_broken_wide_program_is_seen(fault):
         p = parse("jump.il", JUMP_PROGRAM)
         c = model.compile_program(p)
         assert any(u.rlo_live for u in c.split.units) and c.fallbacks == 0
-        st = parse_stimulus(scan_stimulus(BASE_SEED, SCANS))
+        st = parse_stimulus(randprog.scan_stimulus(BASE_SEED, SCANS))
         watch, scans = ["Q0.0", "Q0.1"], SCANS
     else:
         p, c = _adder()
