@@ -111,13 +111,15 @@ clean:          ## remove build products (keeps .venv)
 
 # ------------------------------------------------------------------ soak (soak/)
 # N random programs (tests/randprog.py's generators) on the Verilator harness in serial
-# and parallel (handshake, queue) mode against the reference interpreter, and the
+# and parallel (handshake, queue) mode against the reference interpreter, in
+# free-running mode (queue-free, marker) against a model of the exchange, and the
 # shared-memory tearing test at 100 000 reader scans per protection, spread over
 # JOBS cores; mismatches saved under build/soak/cases/; docs/soak.md gets the seed, the
-# time, the mismatches and the coverage table.  soak/test_stl_soak.py: 1 000 compared S7
+# time, the mismatches and the coverage table (counted on the hardware: --line-counts).
+# soak/test_stl_soak.py: 1 000 compared S7
 # programs of each of three kinds (BITBYTE_STL_SOAK_N) against awlsim, on the reference
 # interpreter and the harness in serial and parallel mode (build/soak/stl-cases/).
-# Not part of `make test` (N=10000: about 15 min on 2 cores, the S7 soak about 10 more).
+# Not part of `make test` (docs/soak.md has the last run's time; the S7 soak about 10 min more).
 # BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak
 N ?= 10000

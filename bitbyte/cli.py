@@ -32,6 +32,7 @@ from bitbyte.plant.run import PlantRunError, run_plant
 from bitbyte.run.prepare import MODES, TC_PATHS, check_tc_path, parse_clock_mhz, prepare
 from bitbyte.run.force import check_overlaps, force_tables, parse_force
 from bitbyte.run.response import response_times
+from bitbyte.run.line_counts import line_count_rows, line_counts_csv
 from bitbyte.run.status import block_status_text, parallel_block_status_text
 from bitbyte.run.summary import fault_scan_name, summary_text
 from bitbyte.sim.cocotb_runner import run_cocotb
@@ -208,6 +209,12 @@ def _parser() -> argparse.ArgumentParser:
                         "per program line the RLO after it, the operand bit it read, "
                         "ACCU1/ACCU2 after word instructions, or 'not executed' "
                         "(serial and parallel mode)")
+    r.add_argument("--line-counts", default=None, metavar="FILE",
+                   help="Verilator: write how often each program line executed in the "
+                        "whole run to FILE (CSV: part, address, source line, instruction, "
+                        "count; 0 for a line never reached), counted on the simulated "
+                        "hardware; in parallel and free-running mode the bit and the "
+                        "byte part")
     r.add_argument("--exchange-log", default=None, metavar="FILE",
                    help="parallel and free-running mode, Verilator: write every condition "
                         "that crosses to FILE (CSV: the bit side's FBI/FBY retirements, "
@@ -400,6 +407,11 @@ def cmd_run(args) -> int:
             raise UsageError("--exchange-log: parallel and free-running mode on Verilator "
                              "(serial mode has no crossings)")
         job.xlog = str(Path(args.exchange_log).resolve())
+    if args.line_counts is not None:
+        if args.sim != "verilator":
+            raise UsageError("--line-counts: the Verilator harness counts them "
+                             "(use --sim verilator)")
+        job.line_counts = True
     if args.force:
         forces = [parse_force(text, program.symbols, prep.config, program.symbol_names)
                   for text in args.force]
@@ -413,6 +425,8 @@ def cmd_run(args) -> int:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
+    if args.line_counts is not None:
+        _write_line_counts(args.line_counts, prep, stats)
     print(summary_text(records, f, stats, args.trace, waves,
                        None if args.force else response_times(prep, records),
                        watchdog=args.watchdog,
@@ -435,6 +449,16 @@ def cmd_run(args) -> int:
               "outputs forced to 0", file=sys.stderr)
         return EXIT_WATCHDOG
     return 0
+
+
+def _write_line_counts(path: str, prep, stats) -> None:
+    rows = line_count_rows(prep.listing, stats.line_counts or {},
+                           prep.byte_listing if prep.job.mode != "serial" else None,
+                           stats.byte_line_counts)
+    try:
+        Path(path).write_text(line_counts_csv(rows))
+    except OSError as e:
+        raise UsageError(f"--line-counts: cannot write {path}: {e.strerror}") from None
 
 
 def _wave_layout(args, prep, records, stats) -> str:
@@ -463,7 +487,8 @@ def cmd_run_plant(args) -> int:
                        ("--tc-path", args.tc_path != "channel"),
                        ("--clock-mhz", args.clock_mhz != "100"),
                        ("--status", args.status is not None), ("--force", args.force),
-                       ("--exchange-log", args.exchange_log is not None)):
+                       ("--exchange-log", args.exchange_log is not None),
+                       ("--line-counts", args.line_counts is not None)):
         if given:
             raise UsageError(f"{opt} does not apply to a plant (the plant file sets it)")
     try:

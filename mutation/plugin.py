@@ -16,6 +16,9 @@ Two ways a test reaches the mutated design:
 - the Verilator harness (campaign "harness"): the netlist of bitbyte_cpu is built into
   its own harness binary at the start; BITBYTE_HARNESS names it and
   BITBYTE_HARNESS_ARGS passes +mutsel=<id> (bitbyte/sim/verilator.py).
+- the plant harness (campaign "plant"): the netlist of plc_system with two cores is
+  built into its own plant harness; BITBYTE_PLANT_HARNESS_2 names it and the same
+  BITBYTE_HARNESS_ARGS passes +mutsel=<id> (bitbyte/plant/run.py).
 """
 from __future__ import annotations
 
@@ -135,6 +138,25 @@ def build_harness(cfg: dict) -> None:
     os.environ["BITBYTE_HARNESS"] = str(out / "Vbitbyte_cpu")
 
 
+def build_plant_harness(cfg: dict) -> None:
+    """The mutant netlist of plc_system (Cores = 2) in its own plant harness: the
+    plant runs (`bitbyte run PLANT.toml`, bitbyte.plant.run) of two-core plants take
+    it through BITBYTE_PLANT_HARNESS_2."""
+    params = dict(cfg.get("params", {}))
+    cores = int(params.setdefault("Cores", 2))
+    path, _ = CAMPAIGN.netlist("plc_system", params)
+    out = path.parent / "harness"
+    t0 = time.time()
+    proc = subprocess.run(["make", "-s", "-C", str(mutlib.ROOT / "sim"), "plant",
+                           f"OUT={out}", f"RTL_SOURCES={path}", f"CORES={cores}",
+                           "PLANT_GFLAGS=", "TRACE=none"],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise mutlib.MutationError(f"{path}: plant harness build failed:\n{proc.stderr[-3000:]}")
+    CAMPAIGN.elabs[-1]["harness_build_s"] = round(time.time() - t0, 1)
+    os.environ[f"BITBYTE_PLANT_HARNESS_{cores}"] = str(out / f"plant{cores}" / "Vplc_system")
+
+
 def pytest_configure(config):
     if CAMPAIGN is None:
         return
@@ -146,6 +168,8 @@ def pytest_configure(config):
     simrun.run_cocotb = mutant_run_cocotb
     if CAMPAIGN.cfg.get("harness"):
         build_harness(CAMPAIGN.cfg)
+    if CAMPAIGN.cfg.get("plant"):
+        build_plant_harness(CAMPAIGN.cfg)
 
 
 def set_mutant(mut: int) -> None:

@@ -40,6 +40,7 @@ class Campaign:
     modules: list          # the RTL modules sampled here (each module has one home)
     keyword: str = ""      # pytest -k (the benches: Icarus only, the faster build)
     harness: bool = False  # the tests run the Verilator harness (bitbyte_cpu)
+    plant: bool = False    # the tests run two-core plants on the plant harness (plc_system)
     env: dict = field(default_factory=dict)
     equivalence: bool = True   # the miter is small enough (not the whole CPU)
     # else: the modules whose survivors are checked alone (their own module in the
@@ -132,7 +133,7 @@ def run_tests(c: Campaign, seed: int, count: int, work: Path, keep: Path | None 
     """The campaign's tests against every mutant (one pytest session): plugin results.
     `keep`: an earlier run's results.json whose test kills stand (its survivors run)."""
     cfg = {"work": str(work), "modules": c.modules, "count": count, "seed": seed,
-           "harness": c.harness, "results": str(work / "results.json"),
+           "harness": c.harness, "plant": c.plant, "results": str(work / "results.json"),
            "keep": str(keep) if keep else None}
     (work / "config.json").write_text(json.dumps(cfg))
     env = dict(os.environ, BITBYTE_MUTATION=str(work / "config.json"), BITBYTE_SEED=str(seed),

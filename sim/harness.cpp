@@ -172,6 +172,10 @@ struct Run {
   struct Status { uint64_t count = 0; unsigned rlo = 0, opnd = 0; int32_t accu1 = 0, accu2 = 0; };
   std::map<uint32_t, Status> status, byte_status;  // the bit processor's; the byte part's
   uint64_t byte_seq = 0;                              // byte-part instructions seen completed
+  // --line-counts: how often each address retired over the whole run (every scan, and
+  // in parallel and free-running mode the byte part's too, from the firmware's record)
+  std::map<uint32_t, uint64_t> counts, byte_counts;
+  uint64_t count_seq = 0;                             // byte-part instructions counted
   // --exchange-log: every condition that crosses, one line each, for a model of the
   // exchange (tests/exchange_model.py): the bit side's retirements with an FBI / FBY
   // operand (clock, its scan, the instruction word, the operand it read, the RLO after
@@ -200,8 +204,17 @@ struct Run {
                  unsigned(write));
     if (addr == BB_BUS_SCAN_DONE) ++byte_scans;
   }
+  void count_retirement() {
+    if (!rf->line_counts) return;
+    if (top->dbg_ret_valid_o) ++counts[top->dbg_ret_pc_o];
+    if ((rf->parallel || rf->free_running) && bb_ret_seq(bb) != count_seq) {
+      count_seq = bb_ret_seq(bb);     // one completion per clock at most (see below)
+      ++byte_counts[bb_ret_pc(bb)];
+    }
+  }
   void observe_retirement() {
     log_bit_exchange();
+    count_retirement();
     if (int64_t(scans) != rf->status_scan) {
       byte_seq = bb_ret_seq(bb);
       return;
@@ -594,6 +607,10 @@ int main(int argc, char** argv) {
   for (const auto& [pc, s] : run.byte_status)  // ... of the byte part (parallel mode)
     std::printf("bstatus %u %llu %u %d %d\n", pc, (unsigned long long)s.count, s.rlo,
                 s.accu1, s.accu2);
+  for (const auto& [pc, c] : run.counts)  // with `line_counts 1` only: the whole run
+    std::printf("count %u %llu\n", pc, (unsigned long long)c);
+  for (const auto& [pc, c] : run.byte_counts)
+    std::printf("bcount %u %llu\n", pc, (unsigned long long)c);
   std::printf("stat wall_s %.6f\n", wall);
   return fault ? 3 : 0;
 }

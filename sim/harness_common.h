@@ -151,6 +151,7 @@ struct RunFile {
   bool marker_write_buffer = false;                                // marker: publish at scan end
   std::string byte_prog;                                           // its byte part (.hex)
   int64_t status_scan = -1;                                        // block status of this scan
+  bool line_counts = false;                                        // retirements per address, all scans
   std::string xlog;                                                // exchange log (--exchange-log)
   // --force: the force table (in mask, in values, out mask, out values) a host writes
   // during a scan (key: the scan; -1: before RUN), rows in ascending key order
@@ -206,6 +207,7 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   else if (k == "until_min_scans") { want(1); rf.until_min_scans = parse_u64(w[1], "until_min_scans"); }
   else if (k == "status")      { want(1); rf.status_scan = int64_t(parse_u64(w[1], "status scan")); }
   else if (k == "xlog")        { want(1); rf.xlog = w[1]; }
+  else if (k == "line_counts") { want(1); rf.line_counts = parse_u64(w[1], "line_counts") != 0; }
   else if (k == "progress") {
     if (w.size() != 2 && w.size() != 3) die("'progress' takes FD [AFTER_S]");
     rf.progress_fd = int(parse_u64(w[1], "progress fd"));

@@ -243,9 +243,14 @@ static unsigned col_range(const std::string& kind) {
 }
 
 int main(int argc, char** argv) {
-  if (argc != 2) { std::fprintf(stderr, "usage: %s RUNFILE\n", argv[0]); return 2; }
+  // +name=value after the run file: plusargs for the model, as in harness.cpp (the
+  // +mutsel=<id> of a mutant netlist, mutation/run_mutate.py's plant campaign).
+  bool usage = argc < 2;
+  for (int i = 2; i < argc; ++i) usage = usage || argv[i][0] != '+';
+  if (usage) { std::fprintf(stderr, "usage: %s RUNFILE [+PLUSARG...]\n", argv[0]); return 2; }
   PlantFile pf = read_plant_file(argv[1]);
   std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
+  ctx->commandArgs(argc, argv);
   if (!pf.waves.empty()) ctx->traceEverOn(true);
   std::unique_ptr<Vplc_system> topp{new Vplc_system{ctx.get(), "TOP"}};
   Vplc_system& top = *topp;

@@ -4,19 +4,30 @@ A bin is (mnemonic, operand kind, mode, exchange); beside them, the parenthesis 
 reached, ("(", depth, mode, exchange) for every depth from 1 to the build's
 NestDepth (an opening parenthesis executed at that depth).  The operand kind is the operand's
 area (`I`, `M`, `T`, ...), `INT` / `TIME` for a constant, `LABEL` for a jump target and
-`-` for none.  A bin counts the instructions the reference interpreter *executed* in
-the run that a hardware run was compared with (dead code does not count), under every
-mode and exchange that hardware run used.
+`-` for none.
+
+A bin counts what the *hardware* executed in that mode and exchange: the harness's
+retirement counts per program address (`bitbyte run --line-counts`,
+bitbyte.run.line_counts), mapped through the run's own listing back to the source
+instruction each word was made from — in parallel and free-running mode the bit
+part's and the byte part's words (`A ==I` runs as the byte side's `==I`).  Dead code
+does not count, and nothing the reference interpreter did is credited to a mode.  A
+parenthesis's depth is its nesting in the program (the programs jump only between
+rungs, outside parentheses); tests/test_soak_checker.py checks that the hardware's
+counts equal the reference interpreter's executions, depths included
+(Coverage.counting), in serial and in parallel mode.
 
 The legal bins come from the parser's instruction signatures (bitbyte.lang.parser
 SIGNATURES, spec §3's operand table), not from what the generator happens to emit:
 every mnemonic with every area it accepts, in every mode (the output edges `QR`/`QF`
 and `REFRESH Q` included since issue 16).  Left out, and said so in docs/soak.md: the
 channel operands (`FBI k`, `FBY k`, `READ`, `WRITE`), which only the partitioning
-compiler or hand-partitioned sections write.
+compiler or hand-partitioned sections write, and the byte part's END_B (its end of scan,
+which the firmware records as no instruction).
 """
 from __future__ import annotations
 
+import csv
 from collections import Counter
 from contextlib import contextmanager
 
@@ -25,9 +36,11 @@ from bitbyte.lang.parser import SIGNATURES
 from bitbyte.lang.program import OPENS
 from bitbyte.ref.refsim import RefSim
 
-MODES = (("serial", "-"), ("parallel", "handshake"), ("parallel", "queue"))
+MODES = (("serial", "-"), ("parallel", "handshake"), ("parallel", "queue"),
+         ("free", "queue-free"), ("free", "marker"))
 CHANNEL_AREAS = ("FBI", "FBY")
 CHANNEL_MNEMONICS = ("READ", "WRITE")
+CLOSE = ")"
 
 
 def operand_kind(ins) -> str:
@@ -53,13 +66,67 @@ def legal_bins() -> set[tuple[str, str, str, str]]:
     return bins
 
 
+def is_bin(ins) -> bool:
+    """An instruction that has a bin: not a channel transfer, not the byte part's end."""
+    op = ins.operand
+    return not (ins.mnemonic in CHANNEL_MNEMONICS or ins.mnemonic == "END_B"
+                or (op is not None and op.area in CHANNEL_AREAS))
+
+
+def source_keys(instrs) -> list[list[tuple[str, str]]]:
+    """The bins one execution of each source instruction counts: its (mnemonic, kind),
+    and for an opening parenthesis ("(", depth) with the depth its nesting in the
+    program."""
+    keys, depth = [], 0
+    for ins in instrs:
+        here = [(ins.mnemonic, operand_kind(ins))]
+        if ins.mnemonic in OPENS:
+            depth += 1
+            here.append(("(", str(depth)))
+        elif ins.mnemonic == CLOSE:
+            depth = max(depth - 1, 0)
+        keys.append(here)
+    return keys
+
+
+def read_line_counts(path) -> dict[str, dict[int, int]]:
+    """`bitbyte run --line-counts` CSV: part -> address -> count (END_B's empty count
+    left out)."""
+    out: dict[str, dict[int, int]] = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            if row["count"] != "":
+                out.setdefault(row["part"], {})[int(row["address"])] = int(row["count"])
+    return out
+
+
 class Coverage:
     def __init__(self):
         self.counts: Counter = Counter()
 
+    def add_hardware(self, mode: str, exchange: str, program, parts) -> None:
+        """program: the source program (bitbyte.lang.program.Program); parts:
+        (listing, address -> count) for each program the hardware ran in this mode
+        (serially the whole program; otherwise the bit and the byte part).  A source
+        instruction executed as often as the listing's words made from it (same line
+        and column) retired, channel transfers and END_B aside; where the partitioning
+        compiler mirrors one on both sides (a jump: JC and JC_B), the larger count."""
+        ran: Counter = Counter()
+        for listing, counts in parts:
+            for pc, ins in enumerate(listing):
+                if is_bin(ins):
+                    at = (ins.line, ins.col)
+                    ran[at] = max(ran[at], counts.get(pc, 0))
+        for ins, keys in zip(program.instrs, source_keys(program.instrs)):
+            n = ran.get((ins.line, ins.col), 0)
+            for k in keys:
+                if n:
+                    self.counts[k + (mode, exchange)] += n
+
     @contextmanager
     def counting(self, *modes: tuple[str, str]):
-        """Count what RefSim executes inside the block under each of `modes`."""
+        """Count what RefSim executes inside the block under each of `modes` (the
+        reference side of the check that the hardware's counts are right)."""
         step, end_scan = RefSim._step, RefSim._end_scan
         counts = self.counts
 

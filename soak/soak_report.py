@@ -82,12 +82,19 @@ def main(argv=None) -> int:
         "",
         "## Coverage: instruction x operand x mode x exchange",
         "",
-        "Counted by the soak: the instructions the reference interpreter executed in "
-        "the runs each hardware run was compared with (soak/coverage_count.py). The "
-        "legal bins are the parser's instruction signatures (spec §3: every mnemonic "
-        "with every operand area it accepts) in each of the three modes; the channel "
-        "operands (`FBI`, `FBY`, `READ`, `WRITE`), written by the partitioning compiler, "
-        "are not bins of their own.",
+        "Counted on the hardware: how often each program word retired in each "
+        "hardware run (the harness's line counts, `bitbyte run --line-counts`), "
+        "mapped back to the source instruction it was made from, in the mode and "
+        "exchange of that run (soak/coverage_count.py); nothing the reference "
+        "interpreter executed is credited to a mode. The free-running columns count "
+        "both parts of the free-running runs. The legal bins are the parser's "
+        "instruction signatures (spec §3: every mnemonic with every operand area it "
+        f"accepts) in each of the {len(MODES)} mode/exchange pairs; the channel operands "
+        "(`FBI`, `FBY`, `READ`, `WRITE`), written by the partitioning compiler, and "
+        "the byte part's `END_B` are not bins of their own. "
+        "tests/test_soak_checker.py checks that these counts equal the reference "
+        "interpreter's executions bin by bin in serial and parallel mode, and differ "
+        "when one retirement per address is lost.",
         "",
         f"Legal bins: {len(legal)}; hit: {len(legal) - len(missed)}; "
         f"**missed: {len(missed)}**" + (": " + ", ".join(

@@ -34,8 +34,9 @@ mixed again.  Programs are checked in chunks of CHUNK, one pytest item each, so
 pytest-xdist spreads them over the cores.  A mismatch is saved under
 build/soak/cases/<name>/ (program, stimulus, both traces, the command that repeats it)
 and the chunk goes on with its other programs before it fails.  Each chunk writes
-what its programs executed (soak/coverage_count.py) to build/soak/; soak/soak_report.py
-adds them up into docs/soak.md.
+what its programs executed on the hardware in each mode (the harness's line counts,
+soak/coverage_count.py) to build/soak/; soak/soak_report.py adds them up into
+docs/soak.md.
 """
 from __future__ import annotations
 
@@ -54,9 +55,9 @@ from bitbyte import cli
 from bitbyte.lang.stimulus import load_stimulus
 from bitbyte.lang.trace import read_trace_rows, trace_text
 from bitbyte.ref.refsim import refsim_trace
-from bitbyte.run.prepare import prepare_run
+from bitbyte.run.prepare import prepare
 from bitbyte.sim.cocotb_runner import records_from_rows, run_jobs
-from coverage_count import Coverage
+from coverage_count import Coverage, read_line_counts
 from exchange_model import check_marker, check_queues, losses_of, read_log
 from randprog import (FULL_WATCH, long_timers, random_mixed_program, random_mixed_stimulus,
                       random_mixed_watch, random_parallel_program, random_program,
@@ -120,10 +121,12 @@ def run_hw(argv: list[str]) -> int:
 
 class Case:
     """One program of the run in one mode: its files, the expected result (from the
-    reference interpreter, counted for coverage) and what runs it on the hardware."""
+    reference interpreter) and what runs it on the hardware, which counts its coverage
+    (cov, from the harness's line counts).  ref_cov, if given, counts what the
+    reference interpreter executed, for the check that the two agree."""
 
     def __init__(self, tmp: Path, index: int, family: Family, cov: Coverage,
-                 parallel: bool):
+                 parallel: bool, ref_cov: Coverage | None = None):
         seed = SEED * 100000 + index
         self.parallel = parallel
         self.name = f"{family.name}{seed}" + ("p" if parallel else "")
@@ -143,16 +146,19 @@ class Case:
                   watchdog=self.watchdog)
         if clock:
             kw["clock_mhz"] = clock
-        self.program, self.columns, serial_job, self.f = prepare_run(str(self.il), **kw)
-        self.jobs = {ex: prepare_run(str(self.il), mode="parallel", exchange=ex, **kw)[2]
-                     for ex in EXCHANGES} if parallel else {"-": serial_job}
+        serial = prepare(str(self.il), **kw)
+        self.program, self.columns, self.f = serial.program, serial.columns, serial.f
+        self.cov = cov
+        self.preps = {ex: prepare(str(self.il), mode="parallel", exchange=ex, **kw)
+                      for ex in EXCHANGES} if parallel else {"-": serial}
+        self.jobs = {ex: p.job for ex, p in self.preps.items()}
         stimulus = load_stimulus(str(self.stim), self.program.symbols)
         config = cli.Config()
         if clock:
             stimulus.clock_mhz = self.f
             config = cli.Config(clock_mhz=float(self.f))
         modes = [("parallel", ex) for ex in EXCHANGES] if parallel else [("serial", "-")]
-        with cov.counting(*modes):
+        with (ref_cov or Coverage()).counting(*modes):
             _, records, fault = refsim_trace(
                 self.program, config=config, stimulus=stimulus,
                 watch=self.watch.split(",") if self.watch else [], scans=self.scans,
@@ -169,7 +175,7 @@ class Case:
     def argv(self, exchange: str, trace: Path) -> list[str]:
         argv = ["run", str(self.il), "--sim", "verilator", "--stimulus", str(self.stim),
                 "--scans", str(self.scans), "--watchdog", str(self.watchdog),
-                "--trace", str(trace)]
+                "--trace", str(trace), "--line-counts", str(trace) + ".lines.csv"]
         if self.parallel:
             argv += ["--mode", "parallel", "--exchange", exchange]
         if self.clock:
@@ -192,15 +198,26 @@ class Case:
             rc = run_hw(argv)
             got = self.view(read_trace_rows(trace, self.columns), rc == cli.EXIT_WATCHDOG)
             how = f"parallel-{exchange}" if self.parallel else "serial"
+            count_hardware(self.cov, self.preps[exchange], Path(str(trace) + ".lines.csv"),
+                           "parallel" if self.parallel else "serial", exchange)
             problem = self.compare(got, how, argv)
             problems += [problem] if problem else []
         return problems
 
 
+def count_hardware(cov: Coverage, prep, lines: Path, mode: str, exchange: str) -> None:
+    """Add one hardware run's line counts (bitbyte run --line-counts) to cov."""
+    got = read_line_counts(lines)
+    parts = [(prep.listing, got.get("program" if mode == "serial" else "bit", {}))]
+    if mode != "serial":
+        parts.append((prep.byte_listing, got.get("byte", {})))
+    cov.add_hardware(mode, exchange, prep.program, parts)
+
+
 FREE_SCANS = 40
 
 
-def free_check(tmp: Path, index: int, family: Family) -> list[str]:
+def free_check(tmp: Path, index: int, family: Family, cov: Coverage) -> list[str]:
     """Free-running mode (docs/exchange.md): the program of the parallel comparison for
     FREE_SCANS bit scans with every crossing logged. With the free-running queues each
     read must give the value a model of the queues gives and the run's loss counts
@@ -214,12 +231,17 @@ def free_check(tmp: Path, index: int, family: Family) -> list[str]:
     problems = []
     for exchange in ("queue-free", "marker"):
         log = tmp / f"{name}.{exchange}.xlog.csv"
+        lines = tmp / f"{name}.{exchange}.lines.csv"
         argv = ["run", str(il), "--sim", "verilator", "--stimulus", str(stim), "--scans",
                 str(FREE_SCANS), "--watchdog", str(PAR_WATCHDOG), "--mode", "free",
-                "--exchange", exchange, "--exchange-log", str(log)]
+                "--exchange", exchange, "--exchange-log", str(log), "--line-counts",
+                str(lines)]
         out = io.StringIO()
         with contextlib.redirect_stdout(out):
             run_hw(argv)
+        count_hardware(cov, prepare(str(il), stimulus=str(stim), scans=FREE_SCANS,
+                                    watchdog=PAR_WATCHDOG, mode="free", exchange=exchange),
+                       lines, "free", exchange)
         crossings, snaps = read_log(log)
         if exchange == "marker":
             problem = check_marker(crossings, snaps)
@@ -262,7 +284,7 @@ def test_soak_chunk(chunk, tmp_path):
             if problem:
                 problems.append(problem)
             problems += parallel_check(tmp_path, index, family, cov)
-            problems += free_check(tmp_path, index, family)
+            problems += free_check(tmp_path, index, family, cov)
         except Mismatch as exc:
             problems.append(f"program {index}: {exc}")
     OUT.mkdir(parents=True, exist_ok=True)

@@ -33,9 +33,38 @@ def test_the_programs_agree_and_are_counted(tmp_path, monkeypatch):
         family = soak.FAMILIES[index]
         assert soak.serial_check(tmp_path, index, family, cov) is None
         assert soak.parallel_check(tmp_path, index, family, cov) == []
+        assert soak.free_check(tmp_path, index, family, cov) == []
     modes = {(mo, ex) for (_, _, mo, ex) in cov.counts}
     assert modes == set(coverage_count.MODES)
     assert set(cov.counts) <= coverage_count.legal_bins()
+
+
+@pytest.mark.parametrize("broken", ["none", "one retirement lost per address"])
+def test_the_hardware_counts_what_the_reference_executes(tmp_path, monkeypatch, broken):
+    """The coverage is the hardware's (the harness's line counts through the listing
+    back to the source), and it equals what the reference interpreter executed, bin by
+    bin, parentheses' depths included, serially and in parallel mode (where the
+    partitioning compiler splits and mirrors instructions over the two parts).  With
+    one retirement per address lost from the harness's counts, they differ."""
+    monkeypatch.setattr(soak, "OUT", tmp_path / "out")
+    monkeypatch.setattr(soak, "SEED", 1)
+    if broken != "none":
+        good = soak.read_line_counts
+
+        def lose_one(path):
+            return {part: {pc: n - 1 for pc, n in counts.items()}
+                    for part, counts in good(path).items()}
+        monkeypatch.setattr(soak, "read_line_counts", lose_one)
+    differ = []
+    for index in range(4):
+        for parallel in (False, True):
+            hw, ref = coverage_count.Coverage(), coverage_count.Coverage()
+            case = soak.Case(tmp_path, index, soak.FAMILIES[index], hw, parallel, ref)
+            assert case.on_harness(tmp_path) == []
+            assert hw.counts, "nothing counted"
+            differ += [(index, parallel)] if hw.counts != ref.counts else []
+    assert differ == ([] if broken == "none" else
+                      [(i, p) for i in range(4) for p in (False, True)])
 
 
 def test_a_broken_reference_is_caught_and_saved(tmp_path, monkeypatch):

@@ -39,7 +39,11 @@ def plant_harness_path(cores: int) -> Path:
 
 def ensure_plant_harness(cores: int = 2) -> Path:
     """Build sim/build/plant<cores>/Vplc_system (plc_system with Cores = cores) through
-    the Makefile when missing or stale."""
+    the Makefile when missing or stale.  BITBYTE_PLANT_HARNESS_<cores> names another,
+    built already (mutation/run_mutate.py's plant mutants)."""
+    other = os.environ.get(f"BITBYTE_PLANT_HARNESS_{cores}")
+    if other:
+        return Path(other)
     binary = plant_harness_path(cores)
     binary.parent.mkdir(parents=True, exist_ok=True)
     with open(binary.parent / ".lock", "w") as lock:   # concurrent runs build once
@@ -203,7 +207,9 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
             text = f"progress {progress[0]} {progress[1]}\n" + text   # a plant key: before the cores
         run.write_text(text)
         try:
-            proc = subprocess.run([str(harness), str(run)], capture_output=True, text=True,
+            plusargs = os.environ.get("BITBYTE_HARNESS_ARGS", "").split()   # +name=value
+            proc = subprocess.run([str(harness), str(run), *plusargs], capture_output=True,
+                                  text=True,
                                   pass_fds=(progress[0],) if progress else ())
         finally:
             if progress is not None:

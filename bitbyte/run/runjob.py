@@ -52,6 +52,7 @@ class RunJob:
     byte_prog: list[int] = field(default_factory=list)   # parallel: the byte part
     status_scan: int | None = None       # the block status of this scan (--status)
     xlog: str | None = None              # --exchange-log: every crossing, one line each
+    line_counts: bool = False            # --line-counts: retirements per address, whole run
     # --force: (scan, in mask, in values, out mask, out values), the force table a host
     # writes during that scan (-1: before RUN); bitbyte.run.force
     force: list[tuple[int, int, int, int, int]] = field(default_factory=list)
@@ -85,6 +86,8 @@ class RunJob:
             lines.append(f"status {self.status_scan}")
         if self.xlog is not None:
             lines.append(f"xlog {self.xlog}")
+        if self.line_counts:
+            lines.append("line_counts 1")
         for key, *vectors in self.force:
             lines.append(f"force {'pre' if key < 0 else key} "
                          + " ".join(f"{v:x}" for v in vectors))

@@ -25,6 +25,10 @@ class RunStats:
     wave_t0_ps: int | None = None                # with waves: the waveform time of clock 0
     block_status: dict | None = None             # --status: address -> Retired
     byte_status: dict | None = None              # ... of the byte part (parallel mode)
+    # --line-counts: address -> how often it retired in the whole run (the bit
+    # processor's program; the byte part's in parallel and free-running mode)
+    line_counts: dict | None = None
+    byte_line_counts: dict | None = None
     # the startup scans (an S7 source's OB 100, bitbyte.run.startup): how many the
     # program has, and the clocks of each the run completed (a watchdog fault in one
     # leaves fewer); they are no scans of the trace, but the watchdog times them
@@ -58,6 +62,16 @@ def parse_block_status(stdout: str, key: str = "status") -> dict[int, Retired]:
             pc, count, rlo, *rest = (int(w) for w in words[1:])
             operand = rest[0] if len(rest) == 3 else 0
             out[pc] = Retired(count, rlo, operand, rest[-2], rest[-1])
+    return out
+
+
+def parse_line_counts(stdout: str, key: str = "count") -> dict[int, int]:
+    """A harness's `count PC N` lines, or the byte part's `bcount PC N` (sim/README.md)."""
+    out = {}
+    for line in stdout.splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == key:
+            out[int(words[1])] = int(words[2])
     return out
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows, write_trace
 from bitbyte.run.startup import hardware_job, startup_cycles, traced
-from bitbyte.run.summary import RunStats, parse_block_status, parse_stats
+from bitbyte.run.summary import RunStats, parse_block_status, parse_line_counts, parse_stats
 
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
@@ -115,5 +115,8 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
                      block_status=parse_block_status(proc.stdout)
                      if job.status_scan is not None else None,
                      byte_status=parse_block_status(proc.stdout, "bstatus")
-                     if job.status_scan is not None and job.mode == "parallel" else None)
+                     if job.status_scan is not None and job.mode == "parallel" else None,
+                     line_counts=parse_line_counts(proc.stdout) if job.line_counts else None,
+                     byte_line_counts=parse_line_counts(proc.stdout, "bcount")
+                     if job.line_counts and job.mode != "serial" else None)
     return records, proc.returncode == HARNESS_WATCHDOG, stats
