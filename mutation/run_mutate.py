@@ -120,6 +120,14 @@ CAMPAIGNS = [
              env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
                   "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},
              equivalence=False, equiv_modules=("sync_ram",)),
+    # the multi-core plant's own modules (a core: CPU, MW RAM, precycle / postcycle
+    # sequencer; the system: cores, shared memory, semaphore, period timers) through
+    # two-core plants on a plant harness built once from the mutant netlist of
+    # plc_system; its CPUs are the cpu campaign's, sampled there
+    Campaign("plant", ["tests/test_plant_run.py::test_seed_6_1_example",
+                       "tests/test_plant_parallel.py", "tests/test_plant_spec.py",
+                       "tests/test_plant_tearing.py"],
+             ["plc_core", "plc_system"], plant=True, equivalence=False),
 ]
 
 
