@@ -146,6 +146,7 @@ def build_plant_harness(cfg: dict) -> None:
     cores = int(params.setdefault("Cores", 2))
     path, _ = CAMPAIGN.netlist("plc_system", params)
     out = path.parent / "harness"
+    (out / f"plant{cores}").mkdir(parents=True, exist_ok=True)   # Verilator's -Mdir
     t0 = time.time()
     proc = subprocess.run(["make", "-s", "-C", str(mutlib.ROOT / "sim"), "plant",
                            f"OUT={out}", f"RTL_SOURCES={path}", f"CORES={cores}",
