@@ -212,9 +212,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--line-counts", default=None, metavar="FILE",
                    help="Verilator: write how often each program line executed in the "
                         "whole run to FILE (CSV: part, address, source line, instruction, "
-                        "count; 0 for a line never reached), counted on the simulated "
-                        "hardware; in parallel and free-running mode the bit and the "
-                        "byte part")
+                        "count; 0 for a line never reached, empty for the byte part's "
+                        "END_B), counted on the simulated hardware; in parallel and "
+                        "free-running mode the bit and the byte part")
     r.add_argument("--exchange-log", default=None, metavar="FILE",
                    help="parallel and free-running mode, Verilator: write every condition "
                         "that crosses to FILE (CSV: the bit side's FBI/FBY retirements, "
@@ -411,6 +411,11 @@ def cmd_run(args) -> int:
         if args.sim != "verilator":
             raise UsageError("--line-counts: the Verilator harness counts them "
                              "(use --sim verilator)")
+        try:     # checked before the run, as --trace is: not lost after it
+            Path(args.line_counts).write_text("")
+        except OSError as e:
+            raise UsageError(f"--line-counts: cannot write {args.line_counts}: "
+                             f"{e.strerror}") from None
         job.line_counts = True
     if args.force:
         forces = [parse_force(text, program.symbols, prep.config, program.symbol_names)

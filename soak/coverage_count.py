@@ -9,13 +9,16 @@ area (`I`, `M`, `T`, ...), `INT` / `TIME` for a constant, `LABEL` for a jump tar
 A bin counts what the *hardware* executed in that mode and exchange: the harness's
 retirement counts per program address (`bitbyte run --line-counts`,
 bitbyte.run.line_counts), mapped through the run's own listing back to the source
-instruction each word was made from — in parallel and free-running mode the bit
-part's and the byte part's words (`A ==I` runs as the byte side's `==I`).  Dead code
+instruction each word was made from (PartInstr.origin) — in parallel and free-running
+mode the bit part's and the byte part's words (`A ==I` runs as the byte side's `==I`).  Dead code
 does not count, and nothing the reference interpreter did is credited to a mode.  A
-parenthesis's depth is its nesting in the program (the programs jump only between
-rungs, outside parentheses); tests/test_soak_checker.py checks that the hardware's
-counts equal the reference interpreter's executions, depths included
-(Coverage.counting), in serial and in parallel mode.
+parenthesis's depth is its nesting in the program (the generators jump only between
+rungs, outside parentheses; source_keys refuses a program that does not).
+tests/test_soak_checker.py checks that the hardware's counts equal the reference
+interpreter's executions, depths included (Coverage.counting), serially, and in
+parallel mode for runs the watchdog did not end (where one did, the two modes'
+different timing ends the scan at different points: a loop waiting for an input
+runs a different number of rounds).
 
 The legal bins come from the parser's instruction signatures (bitbyte.lang.parser
 SIGNATURES, spec §3's operand table), not from what the generator happens to emit:
@@ -73,12 +76,20 @@ def is_bin(ins) -> bool:
                 or (op is not None and op.area in CHANNEL_AREAS))
 
 
-def source_keys(instrs) -> list[list[tuple[str, str]]]:
+JUMPS = ("JU", "JC", "JCN")
+
+
+def source_keys(program) -> list[list[tuple[str, str]]]:
     """The bins one execution of each source instruction counts: its (mnemonic, kind),
     and for an opening parenthesis ("(", depth) with the depth its nesting in the
-    program."""
+    program.  That static depth is the executed one only if no jump leaves or enters
+    parentheses: a jump or a label inside them is refused (ValueError)."""
     keys, depth = [], 0
-    for ins in instrs:
+    labelled = set(program.labels.values())
+    for i, ins in enumerate(program.instrs):
+        if depth and (ins.mnemonic in JUMPS or i in labelled):
+            raise ValueError(f"{program.path}:{ins.line}:{ins.col}: a jump or a label "
+                             "inside parentheses: the coverage's static depth does not hold")
         here = [(ins.mnemonic, operand_kind(ins))]
         if ins.mnemonic in OPENS:
             depth += 1
@@ -108,18 +119,26 @@ class Coverage:
         """program: the source program (bitbyte.lang.program.Program); parts:
         (listing, address -> count) for each program the hardware ran in this mode
         (serially the whole program; otherwise the bit and the byte part).  A source
-        instruction executed as often as the listing's words made from it (same line
-        and column) retired, channel transfers and END_B aside; where the partitioning
-        compiler mirrors one on both sides (a jump: JC and JC_B), the larger count."""
+        instruction executed as often as the listing's words made from it retired
+        (a part's word names its source instruction, PartInstr.origin; a serial
+        listing is the program itself), channel transfers and END_B aside; where the
+        partitioning compiler mirrors one on both sides (a jump: JC and JC_B), the
+        larger count."""
+        keys = source_keys(program)
         ran: Counter = Counter()
         for listing, counts in parts:
             for pc, ins in enumerate(listing):
-                if is_bin(ins):
-                    at = (ins.line, ins.col)
-                    ran[at] = max(ran[at], counts.get(pc, 0))
-        for ins, keys in zip(program.instrs, source_keys(program.instrs)):
-            n = ran.get((ins.line, ins.col), 0)
-            for k in keys:
+                if not is_bin(ins):
+                    continue
+                src = getattr(ins, "origin", None)
+                if src is None:
+                    if program.instrs[pc] is not ins:
+                        raise ValueError(f"{program.path}: listing word {pc} is no "
+                                         "source instruction and names none")
+                    src = pc
+                ran[src] = max(ran[src], counts.get(pc, 0))
+        for src, n in ran.items():
+            for k in keys[src]:
                 if n:
                     self.counts[k + (mode, exchange)] += n
 
