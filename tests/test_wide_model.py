@@ -95,6 +95,9 @@ def test_random_programs_trace_as_the_scalar_engine(nops):
                  for k, t in enumerate(texts)]
     progs = [parse(f"wide{BASE_SEED * 1000 + k}.il", t) for k, t in enumerate(texts)]
     compiled = model.compile_programs(progs)
+    # direct PI reads are units' inputs (model.ABSORB_DIRECT): some ran here
+    assert sum(any(x.startswith("PI") for x in u.inputs)
+               for c in compiled for u in c.split.units) >= 10
     bad, unit_il = [], 0
     for k, (p, c) in enumerate(zip(progs, compiled)):
         seed = BASE_SEED * 1000 + k

@@ -26,6 +26,11 @@ from bitbyte.wide.stretch import RLO, Split, cut_reason, split_program
 
 # the recommendation of docs/wide-engine.md: dual_s, 5 operands
 K, VARIANT, FLOW = 5, "dual_s", "abc"
+# Direct PI (and PQ) reads are inputs of a unit, read once at its start (stretch.py
+# cut_reason): exact under scan-keyed stimuli, the only ones spec §4 promises the
+# engines' traces equal for (pins change at latches only); PQ writes still cut.
+# The decision and its t_us caveat: docs/wide-engine.md "Decisions".
+ABSORB_DIRECT = True
 # not bit instructions (the byte processor's, and END): outside the bit part's count
 BYTE_SIDE = ("byte", "timer/counter", "end")
 
@@ -46,10 +51,10 @@ class Compiled:
 
 
 def compile_programs(programs: list[Program], k: int = K, variant: str = VARIANT,
-                     flow: str = FLOW) -> list[Compiled]:
+                     flow: str = FLOW, absorb_direct: bool = ABSORB_DIRECT) -> list[Compiled]:
     """Each program split and its units compiled (all programs' units in one Yosys
     run: the mapping, not the check, is what takes time)."""
-    splits = [split_program(p) for p in programs]
+    splits = [split_program(p, absorb_direct=absorb_direct) for p in programs]
     every = [u for s in splits for u in s.units]
     progs = L.compile_units(every, k, variant, flow) if every else []
     out, at = [], 0
@@ -60,8 +65,8 @@ def compile_programs(programs: list[Program], k: int = K, variant: str = VARIANT
 
 
 def compile_program(program: Program, k: int = K, variant: str = VARIANT,
-                    flow: str = FLOW) -> Compiled:
-    return compile_programs([program], k, variant, flow)[0]
+                    flow: str = FLOW, absorb_direct: bool = ABSORB_DIRECT) -> Compiled:
+    return compile_programs([program], k, variant, flow, absorb_direct)[0]
 
 
 class WideRefSim(RefSim):
@@ -79,10 +84,12 @@ class WideRefSim(RefSim):
         self.bit_il = 0
         self.bit_clocks = 0
 
-    def _get(self, x: str) -> int:
+    def _get(self, x: str, clock: int) -> int:
         if x == RLO:
             return self.rlo
         area = _AREA.match(x).group(0)
+        if area == "PI":        # a direct pin read, once at the unit's first clock
+            return (self.pins(clock) >> L._bit_number(x, area)) & 1
         if area in ("T", "C"):
             n = int(x[len(area):])
             return self.timer_status(n) if area == "T" else self.counter_status(n)
@@ -105,7 +112,7 @@ class WideRefSim(RefSim):
                 self.bit_clocks += clocks
             return nxt, clocks
         unit, prog = hit
-        state = L.execute(prog, {x: self._get(x) for x in unit.inputs}, 1)
+        state = L.execute(prog, {x: self._get(x, clock) for x in unit.inputs}, 1)
         for x in unit.outputs:
             if x != RLO or unit.rlo_live:
                 self._set(x, state[x])
