@@ -124,7 +124,8 @@ CAMPAIGNS = [
     # sequencer; the system: cores, shared memory, semaphore, period timers) through
     # two-core plants on a plant harness built once from the mutant netlist of
     # plc_system; its CPUs are the cpu campaign's, sampled there
-    Campaign("plant", ["tests/test_plant_run.py::test_seed_6_1_example",
+    Campaign("plant", ["tests/test_plant_every_bit.py",
+                       "tests/test_plant_run.py::test_seed_6_1_example",
                        "tests/test_plant_parallel.py", "tests/test_plant_spec.py",
                        "tests/test_plant_tearing.py"],
              ["plc_core", "plc_system"], plant=True, equivalence=False),
