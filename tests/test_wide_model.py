@@ -47,7 +47,8 @@ def _adder_stimulus(ops) -> str:
 
 def test_the_adder_sums_operands_as_integers():
     """Q0.0..Q8.0 of each scan, read from the trace, is a + b of that scan's pins; the
-    adder's 900 IL run as 83 LUT instructions (10.8 per clock)."""
+    adder's 900 IL run as 2 scalar instructions (positions 0 and 1, R1) and about 83
+    LUT instructions (10.5 per clock)."""
     p, c = _adder()
     ops = _operands(BASE_SEED, 12)
     st = parse_stimulus(_adder_stimulus(ops))
@@ -59,11 +60,11 @@ def test_the_adder_sums_operands_as_integers():
     for (a, b), r in zip(ops, recs):
         got = sum(r.values[f"Q{i // 8}.{i % 8}"] << i for i in range(65))
         assert got == a + b, (hex(a), hex(b), hex(got))
-    assert sim.unit_il == 900 * len(ops) and sim.lut_clocks * 10 < sim.unit_il
-    # the bit part's count: every IL instruction of the adder is a bit instruction in a
-    # unit, END is none (the bench's "bit IL per clock")
+    assert sim.unit_il == 898 * len(ops) and sim.lut_clocks * 10 < sim.unit_il
+    # the bit part's count: every IL instruction of the adder is a bit instruction, in
+    # a unit but the first two, END is none (the bench's "bit IL per clock")
     lut = sum(len(prog) for prog in c.programs)
-    assert (sim.bit_il, sim.bit_clocks) == (900 * len(ops), lut * len(ops))
+    assert (sim.bit_il, sim.bit_clocks) == (900 * len(ops), (lut + 2) * len(ops))
 
 
 def with_label_nops(text: str, rng: random.Random) -> str:
@@ -114,9 +115,9 @@ def test_a_unit_before_a_label_nop_hands_on_its_rlo():
     """LD/A is a unit, `skip: NOP` a unit of its own, CU a cut: the first unit's RLO
     reaches CU (and `= Q0.0`) through the NOP (the review's reproducer: the RLO was
     dropped, Q0.0 and C1 differed in scan 1)."""
-    p = parse("nop.il", "LD I0.0\nA I0.1\nskip: NOP\nCU C1\nA C1\n= Q0.0\n")
-    c = model.compile_program(p)
-    assert [(u.start, u.stop) for u in c.split.units][:2] == [(0, 2), (2, 3)]
+    p = parse("nop.il", "NOP\nNOP\nLD I0.0\nA I0.1\nskip: NOP\nCU C1\nA C1\n= Q0.0\n")
+    c = model.compile_program(p)     # (positions 0 and 1 stay scalar: R1)
+    assert [(u.start, u.stop) for u in c.split.units][:2] == [(2, 4), (4, 5)]
     assert c.split.units[0].rlo_live
     st = parse_stimulus(randprog.scan_stimulus(BASE_SEED, SCANS, fixed={"I0.0": 1, "I0.1": 1}))
     assert model.compare(p, st, watch=["Q0.0", "C1"], scans=SCANS, compiled=c)[0] == []
@@ -172,3 +173,53 @@ def test_a_broken_wide_program_is_seen(fault):
         finally:
             model.WideRefSim._set = orig
     assert diffs, fault
+
+
+def test_no_unit_at_the_scan_start_or_after_a_refresh():
+    """The RTL's contract (docs/wide-rtl-plan.md R1/R2): positions 0 and 1 and the
+    instruction after REFRESH / REFRESH Q stay scalar, on every program of the random
+    test and on a hand-written one."""
+    p = parse("r.il", "LD I0.0\nA I0.1\n= Q0.0\nREFRESH\nLD I0.2\nA I0.3\n= Q0.1\n"
+                      "REFRESH Q\nLD I0.4\n= Q0.2\nLD I0.5\n= Q0.3\n")
+    c = model.compile_program(p)
+    assert [(u.start, u.stop) for u in c.split.units] == [(2, 3), (5, 7), (9, 12)]
+    texts = [randprog.random_program(BASE_SEED * 1000 + k) for k in range(PROGRAMS)]
+    progs = [parse(f"r{k}.il", t) for k, t in enumerate(texts)]
+    starts = 0
+    for p, c in zip(progs, model.compile_programs(progs)):
+        for u in c.split.units:
+            assert u.start >= 2 and \
+                p.instrs[u.start - 1].mnemonic not in ("REFRESH", "REFRESH Q"), u.start
+        starts += any(p.instrs[u.start - 2].mnemonic == "REFRESH" for u in c.split.units)
+    assert starts, "no unit two after a REFRESH: the rule is untested"
+
+
+def test_a_unit_reads_its_pins_word_by_word_in_each_operand_clock():
+    """Under a t_us stimulus (which spec §4 leaves to each engine) a LUT word reads PI
+    in its operand clock, the clock before it executes: the unit at clock 2 has one
+    word per output; I0.0 and I0.1 rise at clock 2, so the word that runs first (its
+    operand clock 1) writes 0 and the second (operand clock 2) writes 1; the scalar
+    engine reads both at clocks 2 and 4 (1 and 1). Behind a dispatched byte
+    instruction the first word reads the pins of that instruction's first clock."""
+    p = parse("pi.il", "NOP\nNOP\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n")
+    c = model.compile_program(p)
+    (unit, prog), = [(u, g) for u, g in zip(c.split.units, c.programs)]
+    assert (unit.start, len(prog)) == (2, 2)
+    first = prog[0].outs[0][0]                 # the output the first word writes
+    st = parse_stimulus("t_us,I0.0,I0.1\n0,0,0\n0.02,1,1\n")    # clock 2 at 100 MHz
+    _, recs, _, _ = model.wide_trace(p, c, stimulus=st, scans=1, watch=["Q0.0", "Q0.1"])
+    got = {q: recs[0].values[q] for q in ("Q0.0", "Q0.1")}
+    assert got == {q: 0 if q == first else 1 for q in got}, (first, got)
+    # behind `L 5` (clock 2, a dispatched byte instruction of k >= 2 clocks) the first
+    # word reads the pins of clock 2 (0), the second those of clock 2 + k (1): the
+    # pins rise at clock 3, which the word's own operand clock 2 + k - 1 would see
+    p = parse("pib.il", "NOP\nNOP\nL 5\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n")
+    c = model.compile_program(p)
+    (unit, prog), = [(u, g) for u, g in zip(c.split.units, c.programs)]
+    assert (unit.start, len(prog)) == (3, 2)
+    first = prog[0].outs[0][0]
+    st = parse_stimulus("t_us,I0.0,I0.1\n0,0,0\n0.03,1,1\n")
+    _, recs, _, sim = model.wide_trace(p, c, stimulus=st, scans=1, watch=["Q0.0", "Q0.1"])
+    assert recs[0].cycles >= 2 + 2 + 2 + 1        # L 5 took two clocks or more
+    got = {q: recs[0].values[q] for q in ("Q0.0", "Q0.1")}
+    assert got == {q: 0 if q == first else 1 for q in got}, (first, got)

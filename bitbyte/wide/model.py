@@ -31,6 +31,11 @@ K, VARIANT, FLOW = 5, "dual_s", "abc"
 # engines' traces equal for (pins change at latches only); PQ writes still cut.
 # The decision and its t_us caveat: docs/wide-engine.md "Decisions".
 ABSORB_DIRECT = True
+# The RTL's contract (docs/wide-rtl-plan.md R1/R2): positions 0 and 1 and the
+# instruction after a REFRESH stay scalar; and a LUT word reads its PI pins in its
+# operand clock, the clock before it executes (a unit's first word behind a dispatched
+# byte instruction: that instruction's first clock).
+POSITIONS = True
 # not bit instructions (the byte processor's, and END): outside the bit part's count
 BYTE_SIDE = ("byte", "timer/counter", "end")
 
@@ -51,10 +56,12 @@ class Compiled:
 
 
 def compile_programs(programs: list[Program], k: int = K, variant: str = VARIANT,
-                     flow: str = FLOW, absorb_direct: bool = ABSORB_DIRECT) -> list[Compiled]:
+                     flow: str = FLOW, absorb_direct: bool = ABSORB_DIRECT,
+                     positions: bool = POSITIONS) -> list[Compiled]:
     """Each program split and its units compiled (all programs' units in one Yosys
     run: the mapping, not the check, is what takes time)."""
-    splits = [split_program(p, absorb_direct=absorb_direct) for p in programs]
+    splits = [split_program(p, absorb_direct=absorb_direct, positions=positions)
+              for p in programs]
     every = [u for s in splits for u in s.units]
     progs = L.compile_units(every, k, variant, flow) if every else []
     out, at = [], 0
@@ -83,6 +90,7 @@ class WideRefSim(RefSim):
         self.unit_il = 0
         self.bit_il = 0
         self.bit_clocks = 0
+        self._byte_start: int | None = None   # the last step, if a byte instruction: its clock
 
     def _get(self, x: str, clock: int) -> int:
         if x == RLO:
@@ -103,16 +111,32 @@ class WideRefSim(RefSim):
         attr, b = L._IMAGES[area], L._bit_number(x, area)
         setattr(self, attr, getattr(self, attr) & ~(1 << b) | (v << b))
 
+    def pin_clock(self, clock: int, word: int) -> int:
+        """The clock whose pins word `word` of a unit starting at `clock` reads: its
+        operand clock, the one before it executes; for the first word behind a
+        dispatched byte instruction, that instruction's first clock (the word waits
+        in execute while it completes)."""
+        if word == 0 and self._byte_start is not None:
+            return self._byte_start
+        return clock + word - 1
+
     def _step(self, ins, pc, clock):
         hit = self.units.get(pc)
         if hit is None:
             nxt, clocks = super()._step(ins, pc, clock)
-            if cut_reason(ins) not in BYTE_SIDE:
+            reason = cut_reason(ins)
+            self._byte_start = clock if reason in ("byte", "timer/counter") else None
+            if reason not in BYTE_SIDE:
                 self.bit_il += 1
                 self.bit_clocks += clocks
             return nxt, clocks
         unit, prog = hit
-        state = L.execute(prog, {x: self._get(x, clock) for x in unit.inputs}, 1)
+        state = {x: self._get(x, clock) for x in unit.inputs if not x.startswith("PI")}
+        for i, word in enumerate(prog):       # one LUT instruction per clock
+            at = self.pin_clock(clock, i)
+            state.update({x: self._get(x, at) for x in word.inputs if x.startswith("PI")})
+            state = L.execute([word], state, 1)
+        self._byte_start = None
         for x in unit.outputs:
             if x != RLO or unit.rlo_live:
                 self._set(x, state[x])

@@ -357,24 +357,44 @@ def _rlo_read_next(instrs: list[Instr], i: int) -> bool:
     return not (m in RLO_SETTERS or m == "END" or m in DEF.all_compares or m == "READ")
 
 
+REFRESHES = ("REFRESH", "REFRESH Q")
+
+
+def position_reason(instrs: list[Instr], i: int) -> str | None:
+    """Why the instruction at program position i stays scalar by where it stands (the
+    RTL's contract, docs/wide-rtl-plan.md R1/R2), else None: positions 0 and 1 of a
+    scan (a LUT word's operand stage would see the scan-start latch) and the
+    instruction after `REFRESH` / `REFRESH Q` (it would see that latch or PIO update)."""
+    if i < 2:
+        return "scan-start"
+    if instrs[i - 1].mnemonic in REFRESHES:
+        return "after-refresh"
+    return None
+
+
 def split_program(program: Program, max_inputs: int = 16,
-                  absorb_direct: bool = False) -> Split:
+                  absorb_direct: bool = False, positions: bool = False) -> Split:
     """The stretches of `program` and their units (module text); absorb_direct: see
-    cut_reason."""
+    cut_reason; positions: position_reason keeps the first two positions and the
+    instruction after a REFRESH scalar (the RTL's contract; the model sets it)."""
     instrs = program.instrs
     depth = _text_depths(program)
     scalar: dict[str, list[int]] = {}
     stretches: list[tuple[int, int]] = []
     n = len(instrs)
+
+    def reason_at(k: int) -> str | None:
+        return cut_reason(instrs[k], absorb_direct) or (
+            position_reason(instrs, k) if positions else None)
     i = 0
     while i < n:
-        reason = cut_reason(instrs[i], absorb_direct)
+        reason = reason_at(i)
         if reason is not None:
             scalar.setdefault(reason, []).append(i)
             i += 1
             continue
         j = i + 1                               # the run of pure instructions [i, j)
-        while j < n and cut_reason(instrs[j], absorb_direct) is None and not instrs[j].labels:
+        while j < n and reason_at(j) is None and not instrs[j].labels:
             j += 1
         # stretches: maximal sub-runs that never go below the depth they start at
         # and end at it (balanced); a `)` that closes a group a cut interrupted
