@@ -158,6 +158,23 @@ def build_plant_harness(cfg: dict) -> None:
     os.environ[f"BITBYTE_PLANT_HARNESS_{cores}"] = str(out / f"plant{cores}" / "Vplc_system")
 
 
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(session, config, items):
+    """The campaign's tests run in the order its list gives (the cheap test that kills
+    most first), not in the regression's slow-first order (tests/conftest.py)."""
+    if CAMPAIGN is None:
+        return
+    order = CAMPAIGN.cfg.get("tests", [])
+
+    def rank(item):
+        for k, spec in enumerate(order):
+            if item.nodeid == spec or item.nodeid.startswith(spec + "::") or \
+                    item.nodeid.startswith(spec + "["):
+                return k
+        return len(order)
+    items.sort(key=rank)
+
+
 def pytest_configure(config):
     if CAMPAIGN is None:
         return

@@ -148,6 +148,7 @@ def run_tests(c: Campaign, seed: int, count: int, work: Path, keep: Path | None 
     """The campaign's tests against every mutant (one pytest session): plugin results.
     `keep`: an earlier run's results.json whose test kills stand (its survivors run)."""
     cfg = {"work": str(work), "modules": c.modules, "count": count, "seed": seed,
+           "tests": c.tests,
            "harness": c.harness, "plant": c.plant, "results": str(work / "results.json"),
            "keep": str(keep) if keep else None}
     (work / "config.json").write_text(json.dumps(cfg))
