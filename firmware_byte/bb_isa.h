@@ -41,6 +41,8 @@
 #define BB_STATUS_WAIT          0x40000u /* with BB_FROM_STATUS: wait for T_WRITTEN / C_WRITTEN bit n first */
 #define BB_AT_LATCH             0x80000u /* SD/SS/SP/SF: the time is LATCH_MS (the scan's latch), not the instruction's */
 #define BB_COUNT_FROM_ACCU2     0x800u /* shifts: the count is ACCU2's low byte, not index n */
+#define BB_LUT_TAG_SHIFT        30     /* a word whose bits from here are BB_LUT_TAG_VALUE: a LUT word */
+#define BB_LUT_TAG_VALUE        1u     /* (the wide engine, docs/wide-rtl-plan.md) */
 
 /* Byte-instruction opcodes (docs/isa.md, "Byte instructions"). */
 #define BB_OP_L_IMM             0x80u  /* L# */

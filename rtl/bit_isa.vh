@@ -65,6 +65,28 @@
 `define OP_B_CU              8'hB8     // CU
 `define OP_B_RC              8'hBB     // R C
 
+// The wide engine's LUT word (docs/wide-rtl-plan.md §3): base word, tag 01 in bits 31:30
+`define LUT_K                5         // operands per LUT word
+`define LUT_SCRATCH_BITS     32
+`define LUT_EXT_BITS         144       // the extension word
+`define LUT_TAG              31:30
+`define LUT_TAG_VALUE        2'b01
+`define LUT_FIRST            29
+`define LUT_LAST             28
+`define LUT_DST_AREA         27:24
+`define LUT_SCR_INDEX        20:16
+`define LUT_SCR_EN           11
+`define LUT_DST_INDEX        10:0
+`define LUT_TABLE_A          31:0      // extension word
+`define LUT_TABLE_B          63:32
+`define LUT_OPND_BASE        64        // operand j at + OPND_BITS*j
+`define LUT_OPND_BITS        15
+`define LUT_OPND_AREA        14:11
+`define LUT_OPND_INDEX       10:0
+`define LAREA_S              4'd10     // S
+`define LAREA_RLO            4'd11     // RLO
+`define LAREA_ZERO           4'd12     // ZERO
+
 // Run-time setting exchange_i (bitbyte_cpu)
 `define EXCHANGE_HANDSHAKE   2'd0      // handshake
 `define EXCHANGE_QUEUE       2'd1      // queue

