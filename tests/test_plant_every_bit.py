@@ -2,10 +2,11 @@
 runs its project as the CPU of §2-§5 does, with its own scan period). Each core runs a
 program that touches every bit of every image and a word of every kind: Q := I for all
 128 inputs, IR and IF of every input and QR and QF of every output into markers (and
-markers at every bit-address line), IW into QW and into MW at every word-address line,
+markers at every bit-address line), IW into QW and into MW at every word-address line
+and read back,
 a counter and a 0 ms on-delay timer on every one of the 64 status bits; each core with
-its own random scan-keyed stimulus. Watched: every image bit, marker, word, timer and
-counter the program touches. Every traced value of every scan of both cores must equal
+its own random scan-keyed stimulus. Watched: every image bit (the output edges QR/QF
+too), marker, word, timer and counter the program touches. Every traced value of every scan of both cores must equal
 the reference interpreter's run of that core's program and stimulus on its own
 (bitbyte.ref.refsim): the columns but t_us and the plant's pre, post and sem_wait
 (a core's scan takes as many clocks as the CPU's: `cycles` is compared too). This is the test that reaches the plant's own wiring (rtl/plc_core.v,
@@ -29,6 +30,7 @@ IN_BITS, WORDS, STATUS = 128, 16, 64
 QR_AT, QF_AT = 96, 112
 MARK_LINES = [(32, 0), (64, 0), (128, 0), (255, 7)]
 MW_LINES = [0, 1, 2, 4, 8, 16, 32, 64, 128, 255]
+MW_COPY = 200             # MW200.. hold what the program read back from MW_LINES
 SCANS = 10
 PERIOD_US = 100           # a scan of the program takes about 39 us at 100 MHz
 TIMING = ("t_us", "pre", "post", "sem_wait")   # a serial core's `cycles` is the CPU's
@@ -50,6 +52,8 @@ def every_bit_program() -> str:
         lines += [f"L IW{k}", f"T QW{k}"]
     for k, addr in enumerate(MW_LINES):
         lines += [f"L IW{k}", f"T MW{addr}"]
+    for k, addr in enumerate(MW_LINES):           # and read back (the MW RAM's read port)
+        lines += [f"L MW{addr}", f"T MW{MW_COPY + k}"]
     for n in range(STATUS):
         lines += [f"LD I{bit(n)}", f"CU C{n}", f"LD I{bit(64 + n)}", "L T#0ms", f"SD T{n}"]
     for i in range(IN_BITS):
@@ -61,8 +65,10 @@ def every_bit_program() -> str:
 def watch_list() -> list[str]:
     marks = ([f"M{bit(i)}" for i in range(256)] + [f"M{b}.{n}" for b, n in MARK_LINES]
              + [f"M{bit(8 * a + i)}" for a in (QR_AT, QF_AT) for i in range(IN_BITS)])
-    return ([f"{a}{bit(i)}" for a in ("I", "IR", "IF") for i in range(IN_BITS)] + marks
+    return ([f"{a}{bit(i)}" for a in ("I", "IR", "IF", "QR", "QF") for i in range(IN_BITS)]
+            + marks
             + [f"QW{k}" for k in range(WORDS)] + [f"MW{a}" for a in MW_LINES]
+            + [f"MW{MW_COPY + k}" for k in range(len(MW_LINES))]
             + [f"{a}{n}" for a in ("T", "C") for n in range(STATUS)])
 
 
