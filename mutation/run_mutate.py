@@ -232,55 +232,56 @@ def summarize(c: Campaign, seed: int, count: int, work: Path, eq_depth: int,
                     if any(o in ("fail", "unknown") for o in r.values())}
     t2 = time.time()
     equiv = {}
-    if c.equivalence or c.equiv_modules:
-        home = res["elaborations"][0]
-        by_id = {m.id: m for m in muts}
-        design = json.loads((Path(home["dir"]) / "sigs.json").read_text())["modules"]
+    # the no-op and dead checks apply to every campaign (the plant's too); the
+    # equivalence proper to those whose miter is small enough (below)
+    home = res["elaborations"][0]
+    by_id = {m.id: m for m in muts}
+    design = json.loads((Path(home["dir"]) / "sigs.json").read_text())["modules"]
 
-        def check(i: int) -> str | None:
-            """The verdict on survivor i (None: no check applies), its files in
-            equiv/m<i>/ (the checks of different mutants run side by side)."""
-            # a mutation that changes no bit of the netlist needs no proof (and the
-            # whole CPU, too large for the checks below, has such mutants too)
-            why = mutlib.noop(by_id[i], design)
-            if why:
-                return "no-op: " + why
-            here = work / "equiv" / f"m{i}"
-            # the whole design with its memories as memories (in the CPU: sync_ram's
-            # held word, its read enable tied to 1), then through the memories (the
-            # whole CPU is too large for that: its modules alone)
-            script = mutlib.elab_script(home["top"], home.get("params"))
-            drawn = Path(home["dir"])   # the RTL the sample was drawn from
-            alone = None if c.equivalence else by_id[i].module
-            if mutlib.dead(here, script, by_id[i], timeout, memories=False,
-                           rtl=drawn) or (alone != home["top"] and mutlib.dead(
-                               here, script, by_id[i], timeout, alone, rtl=drawn)):
-                return "no-op: Yosys's clean-up removes it (no output reads it)"
-            if not c.equivalence and by_id[i].home not in c.equiv_modules:
-                return None
-            top = home["top"] if c.equivalence else by_id[i].module
-            netlist = Path(home["dir"]) / "mutants.v"
-            try:
-                verdict = mutlib.equivalence(here, netlist, top, i, eq_depth, timeout)
-                if verdict != "equivalent" and c.settle:
-                    # a longer proof (a BMC through the clearing): four times the time
-                    if mutlib.settled_equivalence(here, netlist, top, i, c.settle,
-                                                  4 * timeout) == "equivalent":
-                        return f"settled: equivalent once {c.settle.signal} is up"
-                if verdict != "equivalent" and c.contract:
-                    if mutlib.contract_equivalence(here, netlist, top, i, c.contract,
-                                                   timeout) == "equivalent":
-                        return "contract: equivalent where its users look"
-                return verdict
-            except mutlib.MutationError as e:
-                (work / f"equiv-{i}.err").write_text(str(e))
-                return "error"
+    def check(i: int) -> str | None:
+        """The verdict on survivor i (None: no check applies), its files in
+        equiv/m<i>/ (the checks of different mutants run side by side)."""
+        # a mutation that changes no bit of the netlist needs no proof (and the
+        # whole CPU, too large for the checks below, has such mutants too)
+        why = mutlib.noop(by_id[i], design)
+        if why:
+            return "no-op: " + why
+        here = work / "equiv" / f"m{i}"
+        # the whole design with its memories as memories (in the CPU: sync_ram's
+        # held word, its read enable tied to 1), then through the memories (the
+        # whole CPU is too large for that: its modules alone)
+        script = mutlib.elab_script(home["top"], home.get("params"))
+        drawn = Path(home["dir"])   # the RTL the sample was drawn from
+        alone = None if c.equivalence else by_id[i].module
+        if mutlib.dead(here, script, by_id[i], timeout, memories=False,
+                       rtl=drawn) or (alone != home["top"] and mutlib.dead(
+                           here, script, by_id[i], timeout, alone, rtl=drawn)):
+            return "no-op: Yosys's clean-up removes it (no output reads it)"
+        if not c.equivalence and by_id[i].home not in c.equiv_modules:
+            return None
+        top = home["top"] if c.equivalence else by_id[i].module
+        netlist = Path(home["dir"]) / "mutants.v"
+        try:
+            verdict = mutlib.equivalence(here, netlist, top, i, eq_depth, timeout)
+            if verdict != "equivalent" and c.settle:
+                # a longer proof (a BMC through the clearing): four times the time
+                if mutlib.settled_equivalence(here, netlist, top, i, c.settle,
+                                              4 * timeout) == "equivalent":
+                    return f"settled: equivalent once {c.settle.signal} is up"
+            if verdict != "equivalent" and c.contract:
+                if mutlib.contract_equivalence(here, netlist, top, i, c.contract,
+                                               timeout) == "equivalent":
+                    return "contract: equivalent where its users look"
+            return verdict
+        except mutlib.MutationError as e:
+            (work / f"equiv-{i}.err").write_text(str(e))
+            return "error"
 
-        todo = sorted(survivors - proof_killed)
-        with ThreadPoolExecutor(max_workers=eq_jobs) as pool:
-            for i, verdict in zip(todo, pool.map(check, todo)):
-                if verdict is not None:
-                    equiv[i] = verdict
+    todo = sorted(survivors - proof_killed)
+    with ThreadPoolExecutor(max_workers=eq_jobs) as pool:
+        for i, verdict in zip(todo, pool.map(check, todo)):
+            if verdict is not None:
+                equiv[i] = verdict
     t_eq = time.time() - t2
     cands = {}
     for f in sorted(home_dir(work).glob("all.*.list")):
