@@ -121,8 +121,16 @@ def _set_register(name, **values):
     (lambda raw: raw["lut"].update(scr_en=20), r"\[lut\] scr_en: outside the word or overlapping"),
     (lambda raw: raw["lut"].update(tag_value=0), r"\[lut\] tag"),
     (lambda raw: raw["lut"].update(k=6), r"2\^k bits each"),
-    (lambda raw: raw["lut"].update(ext_bits=128), "do not fit the extension word"),
+    (lambda raw: raw["lut"].update(ext_bits=128), "operand 4: outside the extension word"),
     (lambda raw: raw["lut_area"][0].update(code=6), r"\[\[lut_area\]\]: codes"),
+    (lambda raw: raw["lut"].update(tag_value=2), r"\[lut\] tag"),          # byte opcodes
+    (lambda raw: raw["lut"].update(tag_value=4), r"\[lut\] tag"),          # 2 bits
+    (lambda raw: raw["lut"].update(table_b=[31, 0]), r"\[lut\] table_b: outside"),
+    (lambda raw: raw["lut"].update(table_a=[95, 64]), r"\[lut\] operand 0: outside"),
+    (lambda raw: raw["lut"].update(scr_en=23), "bit 23"),
+    (lambda raw: raw["lut"].update(scr_en=13), "the area field"),
+    (lambda raw: raw["lut"].update(dst_index=[9, 0]), "need 11 index bits"),
+    (lambda raw: raw["lut"].update(dst_area=[26, 24]), "does not fit"),
 ])
 def test_definition_rejects_contradictions(mutate, message):
     with pytest.raises(DefinitionError, match=message):

@@ -108,6 +108,25 @@ def test_what_does_not_fit_is_refused(prog, message):
 def test_a_word_that_is_no_lut_word_is_refused():
     with pytest.raises(EncodeError, match="no LUT word"):
         decode(0x0A00000B, 0)                        # A I1.3
+    with pytest.raises(EncodeError, match="a destination no LUT word writes"):
+        decode(1 << 30 | 7 << 24, 0)                 # a LUT word writing T
+    words = encode_unit([L.MInstr(("I0.0",), [("Q0.0", 2)]), L.MInstr(("I0.0",), [("Q0.1", 2)])])
+    with pytest.raises(EncodeError, match="first/last"):
+        decode_unit(words[::-1])
+
+
+def test_scratch_bits_past_eight_keep_their_numbers():
+    """32 scratch names in a unit of 40 words: S0..S31 in first-named order, the high
+    index bits too; the decoded program computes the same."""
+    prog = [L.MInstr(("I0.0", "I0.1"), [(f"S:n{i}", 0b0110 ^ i % 2)]) for i in range(32)]
+    prog += [L.MInstr((f"S:n{i}", f"S:n{i + 16}"), [("M0.0" if i == 7 else f"S:n{i}", 0b1000)])
+             for i in range(8)]
+    words = encode_unit(prog)
+    # a word with one scratch result writes it through port A: area S (10), its index
+    assert [(b >> 24 & 15, b & 0x7FF) for b, _ in words[:32]] == [(10, i) for i in range(32)]
+    state, mask = L.patterns(["I0.0", "I0.1"])
+    assert L.execute(decode_unit(words), state, mask)["M0.0"] == \
+        L.execute(prog, state, mask)["M0.0"]
 
 
 def test_widen():

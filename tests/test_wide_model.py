@@ -194,32 +194,53 @@ def test_no_unit_at_the_scan_start_or_after_a_refresh():
     assert starts, "no unit two after a REFRESH: the rule is untested"
 
 
-def test_a_unit_reads_its_pins_word_by_word_in_each_operand_clock():
-    """Under a t_us stimulus (which spec §4 leaves to each engine) a LUT word reads PI
-    in its operand clock, the clock before it executes: the unit at clock 2 has one
-    word per output; I0.0 and I0.1 rise at clock 2, so the word that runs first (its
-    operand clock 1) writes 0 and the second (operand clock 2) writes 1; the scalar
-    engine reads both at clocks 2 and 4 (1 and 1). Behind a dispatched byte
-    instruction the first word reads the pins of that instruction's first clock."""
-    p = parse("pi.il", "NOP\nNOP\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n")
+def _pins_trace(text: str, rise_us: str) -> tuple[model.Compiled, dict[str, int]]:
+    """The wide model's Q0.0..Q0.3 after one scan of `text` with I0.0 and I0.1 rising
+    at `rise_us` (a t_us stimulus, 100 MHz: 0.01 us a clock)."""
+    p = parse("pi.il", text)
     c = model.compile_program(p)
+    st = parse_stimulus(f"t_us,I0.0,I0.1\n0,0,0\n{rise_us},1,1\n")
+    watch = ["Q0.0", "Q0.1"]
+    _, recs, _, _ = model.wide_trace(p, c, stimulus=st, scans=1, watch=watch)
+    return c, {q: recs[0].values[q] for q in watch if q in recs[0].values}
+
+
+def test_a_unit_samples_its_pins_once_in_its_first_operand_clock():
+    """Under a t_us stimulus (which spec §4 leaves to each engine) a unit reads its
+    PI pins once, in its first word's operand clock (the clock before it executes),
+    for all its words: every word that reads a pin sees the value the unit's network
+    was checked with. The unit at clock 2 (two words) samples clock 1: the pins rising
+    at clock 2 are not seen (the scalar engine sees them: 1 and 1); rising at clock 1,
+    both outputs see them. A pin read twice in one unit (`= Q0.0`, `= Q0.1`, and an
+    edge through FP: the review's reproducers) gives one value."""
+    c, got = _pins_trace("NOP\nNOP\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n", "0.02")
     (unit, prog), = [(u, g) for u, g in zip(c.split.units, c.programs)]
     assert (unit.start, len(prog)) == (2, 2)
-    first = prog[0].outs[0][0]                 # the output the first word writes
-    st = parse_stimulus("t_us,I0.0,I0.1\n0,0,0\n0.02,1,1\n")    # clock 2 at 100 MHz
-    _, recs, _, _ = model.wide_trace(p, c, stimulus=st, scans=1, watch=["Q0.0", "Q0.1"])
-    got = {q: recs[0].values[q] for q in ("Q0.0", "Q0.1")}
-    assert got == {q: 0 if q == first else 1 for q in got}, (first, got)
-    # behind `L 5` (clock 2, a dispatched byte instruction of k >= 2 clocks) the first
-    # word reads the pins of clock 2 (0), the second those of clock 2 + k (1): the
-    # pins rise at clock 3, which the word's own operand clock 2 + k - 1 would see
-    p = parse("pib.il", "NOP\nNOP\nL 5\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n")
-    c = model.compile_program(p)
-    (unit, prog), = [(u, g) for u, g in zip(c.split.units, c.programs)]
-    assert (unit.start, len(prog)) == (3, 2)
-    first = prog[0].outs[0][0]
-    st = parse_stimulus("t_us,I0.0,I0.1\n0,0,0\n0.03,1,1\n")
-    _, recs, _, sim = model.wide_trace(p, c, stimulus=st, scans=1, watch=["Q0.0", "Q0.1"])
-    assert recs[0].cycles >= 2 + 2 + 2 + 1        # L 5 took two clocks or more
-    got = {q: recs[0].values[q] for q in ("Q0.0", "Q0.1")}
-    assert got == {q: 0 if q == first else 1 for q in got}, (first, got)
+    assert got == {"Q0.0": 0, "Q0.1": 0}
+    assert _pins_trace("NOP\nNOP\nLD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n",
+                       "0.01")[1] == {"Q0.0": 1, "Q0.1": 1}
+    c, got = _pins_trace("NOP\nNOP\nLD PI0.0\n= Q0.0\n= Q0.1\nEND\n", "0.02")
+    assert sum(x == "PI0.0" for p in c.programs[0] for x in p.inputs) >= 2
+    assert got["Q0.0"] == got["Q0.1"] == 0
+    c, got = _pins_trace("NOP\nNOP\nLD PI0.0\nFP M0.0\nS Q0.0\nEND\n", "0.02")
+    assert got["Q0.0"] == 0      # the edge is not lost: scan 1 would see it (below)
+    p = parse("fp.il", "NOP\nNOP\nLD PI0.0\nFP M0.0\nS Q0.0\nEND\n")
+    st = parse_stimulus("t_us,I0.0,I0.1\n0,0,0\n0.02,1,1\n")
+    _, recs, _, _ = model.wide_trace(p, model.compile_program(p), stimulus=st, scans=2,
+                                     watch=["Q0.0"])
+    assert [r.values["Q0.0"] for r in recs] == [0, 1]
+
+
+@pytest.mark.parametrize("byte", ["L 5", "CU C1"])
+def test_behind_a_byte_instruction_the_pins_of_its_first_clock(byte):
+    """Behind a dispatched byte instruction (clock 2, k >= 2 clocks; a counter's too)
+    the unit samples the pins of clock 2: the pins rising at clock 3 are not seen,
+    though the first word's own operand clock 2 + k - 1 would see them; also when a
+    unit of no LUT word (a label on `LD I0.1`, dead) stands between."""
+    for mid in ("", "la: LD I0.1\n"):
+        text = f"NOP\nNOP\n{byte}\n{mid}lb: LD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n"
+        c, got = _pins_trace(text, "0.03")
+        assert [len(g) for g in c.programs if g is not None][-1] == 2, c.programs
+        if mid:
+            assert [len(g) for g in c.programs if g is not None][0] == 0
+        assert got == {"Q0.0": 0, "Q0.1": 0}, (byte, mid, got)

@@ -301,15 +301,37 @@ class Definition:
             need(0 <= f.lo <= f.hi < self.word_bits and not used >> f.lo & f.mask,
                  f"[lut] {name}: outside the word or overlapping another field")
             used |= f.mask << f.lo
+        # bit 23 is the program RAM's END mark (bit_proc.v prog_word) and the area field
+        # must read as no FB access: no base field there
+        reserved = 1 << 23 | self.fields["area"].mask << self.fields["area"].lo
+        need(not used & reserved & ~(lut.tag.mask << lut.tag.lo),
+             "[lut] a base field on bit 23 (the END mark) or the area field")
         top = lut.tag.lo - self.fields["opcode"].lo     # the tag: the opcode's top bits
         need(lut.tag.hi == self.fields["opcode"].hi and top >= 0 and
-             all(v >> top != lut.tag_value for v in self.bit_opcodes.values()),
-             "[lut] tag: must be the opcode's top bits, with a value no bit opcode has")
+             0 <= lut.tag_value <= lut.tag.mask and
+             all(v >> top != lut.tag_value for v in
+                 list(self.bit_opcodes.values()) + list(self.byte_opcodes.values()) +
+                 list(self.byte_program_opcodes.values()) + [self.load_base, self.open_base]),
+             "[lut] tag: must be the opcode's top bits, with a value no opcode has")
         need(lut.table_a.width == lut.table_b.width == 1 << lut.k,
              "[lut] table_a/table_b: 2^k bits each")
-        need(lut.operand(lut.k - 1).hi < lut.ext_bits and lut.table_b.hi < lut.operand_base
-             and lut.operand_area.hi < lut.operand_bits and lut.operand_area.lo ==
-             lut.operand_index.hi + 1, "[lut] the operands do not fit the extension word")
+        ext, ext_used = [("table_a", lut.table_a), ("table_b", lut.table_b)] + [
+            (f"operand {j}", lut.operand(j)) for j in range(lut.k)], 0
+        for name, f in ext:
+            need(0 <= f.lo <= f.hi < lut.ext_bits and not ext_used >> f.lo & f.mask,
+                 f"[lut] {name}: outside the extension word or overlapping another field")
+            ext_used |= f.mask << f.lo
+        need(lut.operand_area.hi < lut.operand_bits and lut.operand_area.lo ==
+             lut.operand_index.hi + 1 and lut.operand_index.lo == 0,
+             "[lut] operand_area/operand_index: the operand's two fields, index low")
+        bits = max(8 * self.sizes["marker_bytes"], 8 * self.sizes["in_bytes"],
+                   8 * self.sizes["out_bytes"], self.sizes["timers"], self.sizes["counters"])
+        need(1 << lut.dst_index.width >= bits and 1 << lut.operand_index.width >= bits,
+             f"[lut] dst_index/operand_index: {bits} bits of an area need "
+             f"{(bits - 1).bit_length()} index bits")
+        need(all(c <= lut.dst_area.mask and c <= lut.operand_area.mask
+                 for c in list(self.area_codes.values()) + [c for _, c, _, _ in lut.areas]),
+             "[lut] dst_area/operand_area: an area code does not fit")
         need(1 << lut.scr_index.width >= lut.scratch_bits, "[lut] scr_index: too narrow")
         codes = [c for _, c, _, _ in lut.areas]
         need(len(set(codes)) == len(codes) and

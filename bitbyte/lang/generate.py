@@ -81,7 +81,7 @@ def rtl_bit_isa(d: Definition) -> str:
           _define("LUT_SCRATCH_BITS", str(lut.scratch_bits)),
           _define("LUT_EXT_BITS", str(lut.ext_bits), "the extension word"),
           _define("LUT_TAG", f"{lut.tag.hi}:{lut.tag.lo}"),
-          _define("LUT_TAG_VALUE", f"2'b{lut.tag_value:02b}"),
+          _define("LUT_TAG_VALUE", f"{lut.tag.width}'b{lut.tag_value:0{lut.tag.width}b}"),
           _define("LUT_FIRST", str(lut.first)), _define("LUT_LAST", str(lut.last)),
           _define("LUT_DST_AREA", f"{lut.dst_area.hi}:{lut.dst_area.lo}"),
           _define("LUT_SCR_INDEX", f"{lut.scr_index.hi}:{lut.scr_index.lo}"),
@@ -94,7 +94,7 @@ def rtl_bit_isa(d: Definition) -> str:
           _define("LUT_OPND_AREA", f"{lut.operand_area.hi}:{lut.operand_area.lo}"),
           _define("LUT_OPND_INDEX", f"{lut.operand_index.hi}:{lut.operand_index.lo}")]
     for name, code, rtl, _ in lut.areas:
-        b.append(_define(rtl, f"4'd{code}", name))
+        b.append(_define(rtl, f"{lut.operand_area.width}'d{code}", name))
     for key, port in (("exchange", "exchange_i (bitbyte_cpu)"), ("protection", "protect_i (plc_system)")):
         b += ["", f"// Run-time setting {port}"]
         for code, (name, macro, _) in enumerate(d.settings[key]):
@@ -317,12 +317,13 @@ def doc_areas(d: Definition) -> str:
 
 def doc_lut_word(d: Definition) -> str:
     lut = d.lut
+    top = lut.tag.lo - d.fields["opcode"].lo
     rng = lambda f: f"{f.hi}:{f.lo}" if f.hi != f.lo else str(f.lo)   # noqa: E731
     ops = f"{lut.operand(0).lo} + {lut.operand_bits}·j"
     rows = [
-        ["base", rng(lut.tag), "tag", f"{lut.tag_value:02b}: a LUT word (opcodes "
-         f"0x{lut.tag_value << (lut.tag.lo - d.fields['opcode'].lo):02X} and up, which no "
-         "scalar instruction uses)"],
+        ["base", rng(lut.tag), "tag", f"{lut.tag_value:0{lut.tag.width}b}: a LUT word "
+         f"(opcodes 0x{lut.tag_value << top:02X}–0x{(lut.tag_value + 1 << top) - 1:02X}, "
+         "which no instruction uses)"],
         ["base", str(lut.first), "first", "the first word of a unit"],
         ["base", str(lut.last), "last", "the last word of a unit"],
         ["base", rng(lut.dst_area), "dst_area",
@@ -337,6 +338,8 @@ def doc_lut_word(d: Definition) -> str:
          "a bit area code or S, RLO, ZERO"],
         ["extension", f"{ops} + {rng(lut.operand_index)}", "op_j index", "byte·8 + bit, n, or the scratch index"],
     ]
+    rows.append(["both", "the rest", "—", "0 (in the base word bit 23, the program RAM's "
+                 "END mark, and the area field among them)"])
     rows += [["area", str(code), name, doc] for name, code, _, doc in lut.areas]
     return _md_table(["word", "bits", "field", "meaning"], rows)
 

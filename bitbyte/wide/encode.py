@@ -125,6 +125,12 @@ def decode(base: int, ext: int) -> tuple[MInstr, bool, bool]:
                          _get(_get(ext, LUT.operand(j)), LUT.operand_index))
                    for j in range(LUT.k))
     outs = []
+    if _get(base, LUT.dst_area) not in (_CODES[a] for a in ("Q", "M", "S", RLO, ZERO)) or \
+            any(_get(_get(ext, LUT.operand(j)), LUT.operand_area) == _CODES["S"] and
+                _get(_get(ext, LUT.operand(j)), LUT.operand_index) >= LUT.scratch_bits
+                for j in range(LUT.k)) or _get(base, LUT.scr_index) >= LUT.scratch_bits:
+        raise EncodeError(f"0x{base:08X}: a destination no LUT word writes, or a scratch "
+                          "bit past the file")
     dst = _name(_get(base, LUT.dst_area), _get(base, LUT.dst_index))
     if dst != ZERO:
         outs.append((dst, _get(ext, LUT.table_a)))

@@ -28,15 +28,16 @@ from bitbyte.wide.stretch import RLO, Split, cut_reason, split_program
 
 # the recommendation of docs/wide-engine.md: dual_s, 5 operands
 K, VARIANT, FLOW = DEF.lut.k, "dual_s", "abc"     # K: definition.toml [lut]
-# Direct PI (and PQ) reads are inputs of a unit, read once at its start (stretch.py
-# cut_reason): exact under scan-keyed stimuli, the only ones spec §4 promises the
-# engines' traces equal for (pins change at latches only); PQ writes still cut.
-# The decision and its t_us caveat: docs/wide-engine.md "Decisions".
+# Direct PI (and PQ) reads are inputs of a unit (stretch.py cut_reason), each pin read
+# once for the whole unit: exact under scan-keyed stimuli, the only ones spec §4
+# promises the engines' traces equal for (pins change at latches only); PQ writes
+# still cut. The decision: docs/wide-engine.md "Decisions".
 ABSORB_DIRECT = True
 # The RTL's contract (docs/wide-rtl-plan.md R1/R2): positions 0 and 1 and the
-# instruction after a REFRESH stay scalar; and a LUT word reads its PI pins in its
-# operand clock, the clock before it executes (a unit's first word behind a dispatched
-# byte instruction: that instruction's first clock).
+# instruction after a REFRESH stay scalar; and a unit's pins are sampled once, in its
+# first word's operand clock, the clock before that word executes (behind a
+# dispatched byte instruction: that instruction's first clock), so that every word
+# reading a pin sees the one value the unit's network was checked with.
 POSITIONS = True
 # not bit instructions (the byte processor's, and END): outside the bit part's count
 BYTE_SIDE = ("byte", "timer/counter", "end")
@@ -100,7 +101,7 @@ class WideRefSim(RefSim):
         if x == RLO:
             return self.rlo
         area = _AREA.match(x).group(0)
-        if area == "PI":        # a direct pin read, once at the unit's first clock
+        if area == "PI":        # a direct pin read: the pins of `clock`
             return (self.pins(clock) >> L._bit_number(x, area)) & 1
         if area in ("T", "C"):
             n = int(x[len(area):])
@@ -115,14 +116,12 @@ class WideRefSim(RefSim):
         attr, b = L._IMAGES[area], L._bit_number(x, area)
         setattr(self, attr, getattr(self, attr) & ~(1 << b) | (v << b))
 
-    def pin_clock(self, clock: int, word: int) -> int:
-        """The clock whose pins word `word` of a unit starting at `clock` reads: its
-        operand clock, the one before it executes; for the first word behind a
+    def pin_clock(self, clock: int) -> int:
+        """The clock whose pins a unit starting at `clock` reads (once, for all its
+        words): its first word's operand clock, the one before it executes; behind a
         dispatched byte instruction, that instruction's first clock (the word waits
         in execute while it completes)."""
-        if word == 0 and self._byte_start is not None:
-            return self._byte_start
-        return clock + word - 1
+        return self._byte_start if self._byte_start is not None else clock - 1
 
     def _step(self, ins, pc, clock):
         hit = self.units.get(pc)
@@ -135,12 +134,11 @@ class WideRefSim(RefSim):
                 self.bit_clocks += clocks
             return nxt, clocks
         unit, prog = hit
-        state = {x: self._get(x, clock) for x in unit.inputs if not x.startswith("PI")}
-        for i, word in enumerate(prog):       # one LUT instruction per clock
-            at = self.pin_clock(clock, i)
-            state.update({x: self._get(x, at) for x in word.inputs if x.startswith("PI")})
-            state = L.execute([word], state, 1)
-        self._byte_start = None
+        at = self.pin_clock(clock)
+        state = L.execute(prog, {x: self._get(x, at if x.startswith("PI") else clock)
+                                 for x in unit.inputs}, 1)
+        if prog:                # a unit of no word is not in the image: the next word
+            self._byte_start = None     # still stands right behind the byte instruction
         for x in unit.outputs:
             if x != RLO or unit.rlo_live:
                 self._set(x, state[x])
