@@ -515,6 +515,8 @@ int main(int argc, char** argv) {
   // summary from them and the traces (bitbyte/run/summary.py, one printer for every
   // simulator)
   std::printf("stat clocks %llu\n", (unsigned long long)g_n);
+  // the plant's own time base (plc_system time_o), which the host checks against g_n
+  std::printf("stat time_o %llu\n", (unsigned long long)top.time_o);
   for (Core& k : g_cores)
     std::printf("stat skips.%s %llu\n", k.cf->name.c_str(), (unsigned long long)k.skips);
   // each core's mode and exchange as driven on plc_system's parallel_i / exchange_i

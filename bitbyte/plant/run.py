@@ -229,6 +229,11 @@ def run_plant(plant_path: str, *, until_us: str, trace: str | None = None,
         Path(waves).unlink()
         waves = vcd
     st = parse_stats(proc.stdout)
+    # the plant's own time base (plc_system time_o, clocks since the plant runs) against
+    # the clocks the harness simulated, as the single CPU's counters are checked
+    if st.get("time_o") != st["clocks"]:
+        raise PlantRunError(f"plant harness: the plant's time base time_o says "
+                            f"{st.get('time_o')} clocks, the harness ran {st['clocks']}")
     plant = shared_map.plant
     summary = plant_summary_text(
         plant.protection, jobs[0].clock_hz, st["clocks"],
