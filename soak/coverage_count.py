@@ -36,7 +36,7 @@ from contextlib import contextmanager
 
 from bitbyte.lang.config import DEFAULT
 from bitbyte.lang.parser import SIGNATURES
-from bitbyte.lang.program import OPENS
+from bitbyte.lang.program import JUMPS, OPENS
 from bitbyte.ref.refsim import RefSim
 
 MODES = (("serial", "-"), ("parallel", "handshake"), ("parallel", "queue"),
@@ -74,9 +74,6 @@ def is_bin(ins) -> bool:
     op = ins.operand
     return not (ins.mnemonic in CHANNEL_MNEMONICS or ins.mnemonic == "END_B"
                 or (op is not None and op.area in CHANNEL_AREAS))
-
-
-JUMPS = ("JU", "JC", "JCN")
 
 
 def source_keys(program) -> list[list[tuple[str, str]]]:
