@@ -15,7 +15,8 @@ import os
 from dataclasses import asdict
 
 from bitbyte.lang.config import DEFAULT, Config
-from bitbyte.encoding.encoder import constant_pool, encode
+from bitbyte.encoding.encoder import constant_pool, encode, encode_words
+from bitbyte.lang.errors import UsageError
 from bitbyte.lang.parser import parse_file
 from bitbyte.compiler.estimate import estimate
 from bitbyte.compiler.partition import partition
@@ -26,7 +27,8 @@ from bitbyte.lang.program import Program
 def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
              mode: str = "serial", lang: str | None = None,
              mnemonics: str | None = None, symbols: str | None = None,
-             tc_path: str = "channel") -> dict:
+             tc_path: str = "channel", bit_engine: str = "scalar",
+             profile: str | None = None) -> dict:
     """Parse, encode and write the three files (and `<stem>.pool.hex` when the
     program has constants too wide for the 24-bit immediate).
 
@@ -34,6 +36,9 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     parsed Program}.  Raises only
     SourceError for a bad program (OSError if outdir cannot be written).
     """
+    if bit_engine == "wide":
+        return assemble_wide(path, outdir, config, mode, profile, lang=lang,
+                             mnemonics=mnemonics, symbols=symbols)
     if mode == "parallel":            # two images and the partition report
         return assemble_parallel(path, outdir, config, lang=lang, mnemonics=mnemonics,
                                  symbols=symbols, tc_path=tc_path)
@@ -51,6 +56,45 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
         paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
         _write(paths["pool"], hex_image(pool))
     return {**paths, "words": len(words), "program": program}
+
+
+def assemble_wide(path: str, outdir: str | None, config: Config, mode: str,
+                  profile: str | None, **parse_kw) -> dict:
+    """`bitbyte asm --bit-engine wide` (issue 18, docs/wide-engine.md): the program
+    split into units, each compiled into LUT words (Yosys's ABC), relinked into the
+    wide image (bitbyte/wide/link.py): `<stem>.hex` (base words), `<stem>.ext.hex`
+    (extension words), `<stem>.lst`, `<stem>.json` (with the map from wide addresses
+    to source instructions). Serial mode only so far; the wide engine is an ECP5
+    build (docs/wide-rtl-plan.md §5): a profile for a smaller part is refused."""
+    from bitbyte.wide import link as wide_link
+    from bitbyte.wide.model import compile_program
+    if mode != "serial":
+        raise UsageError("--bit-engine wide: serial mode only so far (the parallel "
+                         "mode's bit part is not yet compiled for it: docs/wide-engine.md)")
+    if profile is not None:
+        raise UsageError(f"--bit-engine wide with --profile {profile}: the wide engine "
+                         "is built for the ECP5-25 at the default sizes only "
+                         "(docs/wide-rtl-plan.md §5)")
+    program = parse_file(path, config, **parse_kw)
+    encode_words(program, config, mode)     # the scalar checks (SourceError at the line)
+    image = wide_link.link(program, compile_program(program), config)
+    pool = constant_pool(program)
+    stem = os.path.splitext(os.path.basename(path))[0]
+    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
+    os.makedirs(outdir, exist_ok=True)
+    paths = {ext: os.path.join(outdir, f"{stem}.{ext}")
+             for ext in ("hex", "ext.hex", "lst", "json")}
+    _write(paths["hex"], hex_image(image.base))
+    _write(paths["ext.hex"], wide_link.hex_ext(image.ext))
+    _write(paths["lst"], _with_startup_line(wide_link.listing(image, config), program))
+    _write(paths["json"], json.dumps({**summary(program, image.base, config),
+                                      **wide_link.summary(image)}, indent=2) + "\n")
+    if pool:
+        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        _write(paths["pool"], hex_image(pool))
+    return {"hex": paths["hex"], "ext_hex": paths["ext.hex"], "lst": paths["lst"],
+            "json": paths["json"], **({"pool": paths["pool"]} if pool else {}),
+            "words": len(image.base), "program": program, "image": image}
 
 
 def hex_image(words: list[int]) -> str:

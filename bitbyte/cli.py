@@ -133,6 +133,11 @@ def _parser() -> argparse.ArgumentParser:
                    help="how a timer's enable / a counter's input reaches the byte side "
                         "in the parallel-mode partition (see run --tc-path); serial mode "
                         "refuses status (default channel)")
+    a.add_argument("--bit-engine", choices=["scalar", "wide"], default="scalar",
+                   help="scalar: one bit instruction per clock; wide: each straight-line "
+                        "stretch compiled into LUT words (several bit instructions per "
+                        "clock), written as the wide image: .hex (base words), .ext.hex "
+                        "(extension words), .lst, .json; serial mode (default scalar)")
     a.add_argument("-o", "--outdir", default=None, metavar="OUTDIR",
                    help="where the files go (default: beside the source)")
     _source_options(a)
@@ -303,9 +308,10 @@ def cmd_asm(args) -> int:
     check_tc_path(args.mode, args.tc_path)
     result = assemble(args.program, outdir=args.outdir, config=Config.of_profile(args.profile),
                       mode=args.mode, lang=args.lang, mnemonics=args.mnemonics,
-                      symbols=args.symbols, tc_path=args.tc_path)
+                      symbols=args.symbols, tc_path=args.tc_path,
+                      bit_engine=args.bit_engine, profile=args.profile)
     _warnings(args, result["program"])
-    for kind in ("hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
+    for kind in ("hex", "ext_hex", "bit_hex", "byte_hex", "pool", "lst", "report", "json"):
         if kind in result:
             print(f"wrote {result[kind]}")
     return 0

@@ -10,8 +10,9 @@ has no cycle.  tests/test_layers.py reads the sources with `ast`; nothing is imp
     1     bitbyte.ref        lang only: the reference interpreters never see the
                               encoder, the compiler or a simulator
     2     bitbyte.compiler   lang, encoding
-    2     bitbyte.wide       lang, ref (the wide engine's LUT compiler checks each unit
-                              against the reference interpreter's step)
+    2     bitbyte.wide       lang, encoding, ref (the wide engine's LUT compiler checks
+                              each unit against the reference interpreter's step; its
+                              linker encodes the scalar words)
     3     bitbyte.asm, bitbyte.alloc, bitbyte.run
     4     bitbyte.sim        (simulator drivers)
     5     bitbyte.plant      (plants: link, copy plans, run)

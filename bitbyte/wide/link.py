@@ -1,0 +1,157 @@
+"""The wide engine's image (issue 18, docs/wide-rtl-plan.md §1 option D): a program
+relinked so that each compiled unit of m IL instructions becomes its n LUT words at n
+consecutive addresses, every other instruction its scalar word at an address of its
+own, and every jump target moved to the new address of its instruction.
+
+An address holds a 32-bit base word (the program RAM, as today) and a 144-bit
+extension word (the LUT RAM, read with the same PC); a scalar word's extension word is
+0. Labels cut units (bitbyte/wide/stretch.py), so a jump lands on a unit's first word
+or on a scalar word, never inside a unit; a unit of no word (NOPs only, or nothing
+live) takes no address, and what jumps to it lands on the word after it.
+
+`link` builds the image from a compiled program (bitbyte/wide/model.py
+compile_program); `asm_files` writes it as `bitbyte asm --bit-engine wide` does:
+`<stem>.hex` (base words, the `$readmemh` format of the scalar image), `<stem>.ext.hex`
+(extension words, 36 hex digits a line), `<stem>.lst` and `<stem>.json` (the map from
+wide addresses to source instructions and lines, which hosts use for anything keyed
+by the PC). bitbyte/wide/iss.py runs the image.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from bitbyte.encoding import isa
+from bitbyte.encoding.encoder import constant_pool, encode_instr
+from bitbyte.lang.config import DEFAULT, Config
+from bitbyte.lang.definition import DEF
+from bitbyte.lang.errors import SourceError
+from bitbyte.lang.program import Program
+from bitbyte.wide.encode import ZERO, decode, encode_unit
+
+LUT = DEF.lut
+EXT_DIGITS = (LUT.ext_bits + 3) // 4      # hex digits of an extension word
+_TARGET = DEF.fields["target"]
+
+
+@dataclass
+class WideImage:
+    """base[a], ext[a]: the words at wide address a. src[a]: the source instruction
+    index of a scalar word, or (start, stop) of the unit a LUT word belongs to.
+    addr[p]: the wide address of source instruction p (a unit's instructions: its
+    first word's; after the last instruction: len(base)). units: one entry per unit
+    in the image (n >= 1 words)."""
+
+    program: Program
+    base: list[int]
+    ext: list[int]
+    src: list[int | tuple[int, int]]
+    addr: list[int]
+    units: list[dict]
+
+    def is_lut(self, a: int) -> bool:
+        return self.base[a] >> LUT.tag.lo & LUT.tag.mask == LUT.tag_value
+
+
+def jump_target(word: int) -> int:
+    """The target field of a jump word (a wide address in the wide image)."""
+    return word >> _TARGET.lo & _TARGET.mask
+
+
+def link(program: Program, compiled, config: Config = DEFAULT) -> WideImage:
+    """The wide image of `program` with its compiled units (model.Compiled);
+    SourceError (program too large) when it does not fit the program memory."""
+    instrs = program.instrs
+    runs = {u.start: (u, p) for u, p in zip(compiled.split.units, compiled.programs)
+            if p is not None}
+    # pass 1: the wide address of every source instruction
+    addr, p, a = [], 0, 0
+    while p < len(instrs):
+        hit = runs.get(p)
+        if hit is None:
+            addr.append(a)
+            a, p = a + 1, p + 1
+            continue
+        unit, prog = hit
+        addr += [a] * unit.size
+        a, p = a + len(prog), unit.stop
+    addr.append(a)
+    if a > config.prog_words:
+        last = instrs[-1]
+        raise SourceError(program.path, last.line, last.col,
+                          f"program too large: the wide image has {a} words, program "
+                          f"memory holds {config.prog_words} (prog_words)")
+    # pass 2: the words
+    pool = constant_pool(program)
+    base, ext, src, units = [], [], [], []
+    p = 0
+    while p < len(instrs):
+        hit = runs.get(p)
+        if hit is None:
+            ins = instrs[p]
+            word = encode_instr(program, ins, "serial", pool)
+            if ins.mnemonic in isa.JUMP_OPS:      # the target, relinked
+                target = addr[program.labels[ins.operand.label]]
+                word = word & ~(_TARGET.mask << _TARGET.lo) | target << _TARGET.lo
+            base.append(word)
+            ext.append(0)
+            src.append(p)
+            p += 1
+            continue
+        unit, prog = hit
+        words = encode_unit(prog)
+        if words:
+            units.append({"addr": addr[p], "words": len(words),
+                          "src": [unit.start, unit.stop],
+                          "lines": [instrs[unit.start].line, instrs[unit.stop - 1].line]})
+        for b, e in words:
+            base.append(b)
+            ext.append(e)
+            src.append((unit.start, unit.stop))
+        p = unit.stop
+    return WideImage(program, base, ext, src, addr, units)
+
+
+def hex_ext(words: list[int]) -> str:
+    """Extension words as `$readmemh` text, EXT_DIGITS hex digits a line."""
+    return "".join(f"{w:0{EXT_DIGITS}X}\n" for w in words)
+
+
+def listing(image: WideImage, config: Config = DEFAULT) -> str:
+    """One line per wide address: address, base word, and the source line it stands
+    for; a LUT word: its place in its unit, the unit's lines, and what it computes,
+    `dest := TABLE(operands)` per port (the truth table over the operands it reads,
+    operand j bit j of the row; the extension word itself is in the .ext.hex file)."""
+    prog = image.program
+    out = [f"; bitbyte listing of {prog.path} (wide bit engine)",
+           f"; program memory: {len(image.base)} of {config.prog_words} words "
+           f"({len(prog.instrs)} instructions; {len(image.units)} units in "
+           f"{sum(u['words'] for u in image.units)} LUT words)",
+           "", "addr  word      line: source"]
+    first_of = {u["addr"]: u for u in image.units}
+    for a, (word, s) in enumerate(zip(image.base, image.src)):
+        if isinstance(s, int):
+            ins = prog.instrs[s]
+            text = ins.source.strip().expandtabs(4) if ins.source else "(appended END)"
+            line = f"{a:04X}  {word:08X}  {ins.line:>4}: {text}"
+            if ins.mnemonic in isa.JUMP_OPS:
+                line = f"{line:<60} ; -> {jump_target(word):04X}"
+            out.append(line)
+            continue
+        unit = first_of.get(a) or next(u for u in image.units
+                                       if u["addr"] <= a < u["addr"] + u["words"])
+        i = a - unit["addr"]
+        lo, hi = unit["lines"]
+        ins, _, _ = decode(word, image.ext[a])
+        used = [x for x in ins.inputs if x != ZERO]
+        what = "; ".join(f"{d} := {t & (1 << (1 << len(used))) - 1:0{max(1, (1 << len(used)) // 4)}X}"
+                         f"({', '.join(used)})" for d, t in ins.outs)
+        line = f"{a:04X}  {word:08X}  {lo:>4}: LUT word {i + 1}/{unit['words']} of lines {lo}-{hi}"
+        out.append(f"{line:<60} ; {what}")
+    return "\n".join(out) + "\n"
+
+
+def summary(image: WideImage) -> dict:
+    """The JSON side file's wide part: the engine, the units, and the wide address of
+    every source instruction (hosts map PCs back to lines with it)."""
+    return {"bit_engine": "wide", "words": len(image.base), "units": image.units,
+            "addr": image.addr[:-1]}

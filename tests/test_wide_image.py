@@ -1,0 +1,205 @@
+"""The wide engine's image (issue 18 slice S3, docs/wide-rtl-plan.md §1 option D):
+`bitbyte asm --bit-engine wide` relinks a program into LUT words and scalar words, and
+bitbyte/wide/iss.py runs that image word by word. Its traces must equal the wide model's
+(bitbyte/wide/model.py, which runs the compiled units from the source program) in every
+column, `cycles` included, and so the scalar engine's but for `cycles` (the model's own
+test). Shown able to fail: a table bit flipped, a jump retargeted, a scalar word changed,
+a unit's first mark dropped."""
+from __future__ import annotations
+
+import json
+import os
+import random
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench"))
+import randprog                                        # noqa: E402
+from bitbyte.encoding import isa                       # noqa: E402
+from bitbyte.lang.definition import DEF                # noqa: E402
+from bitbyte.lang.parser import parse                  # noqa: E402
+from bitbyte.lang.stimulus import parse_stimulus       # noqa: E402
+from bitbyte.wide import iss, link, model              # noqa: E402
+from test_wide_model import (_adder, _adder_stimulus, _operands,  # noqa: E402
+                             with_label_nops)
+
+PROGRAMS = int(os.environ.get("BITBYTE_WIDE_MODEL_PROGRAMS", "40"))
+SCANS = 8
+BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
+
+
+def differences(program, compiled, image, stimulus, watch, scans=SCANS) -> list:
+    """Every column (cycles included) where the image's run and the model's differ."""
+    cols, want, want_fault, _ = model.wide_trace(program, compiled, stimulus=stimulus,
+                                                 watch=watch, scans=scans)
+    _, got, got_fault, _ = iss.image_trace(image, stimulus=stimulus, watch=watch, scans=scans)
+    out = [] if (want_fault, len(want)) == (got_fault, len(got)) else \
+        [f"fault/scans: image {got_fault}/{len(got)}, model {want_fault}/{len(want)}"]
+    for w, g in zip(want, got):
+        if w.cycles != g.cycles:
+            out.append(f"cycles scan {w.scan}: image {g.cycles}, model {w.cycles}")
+        out += [f"{c.header} scan {w.scan}" for c in cols
+                if w.values[c.header] != g.values[c.header]]
+    return out
+
+
+def _random_set():
+    texts = [randprog.random_program(BASE_SEED * 1000 + k) if k % 2 == 0 else
+             randprog.strip_timers(randprog.random_mixed_program(BASE_SEED * 1000 + k))
+             for k in range(PROGRAMS)]
+    texts += [with_label_nops(t, random.Random(BASE_SEED * 1000 + k))
+              for k, t in enumerate(texts)]
+    progs = [parse(f"img{k}.il", t) for k, t in enumerate(texts)]
+    return progs, model.compile_programs(progs)
+
+
+@pytest.fixture(scope="module")
+def random_set():
+    return _random_set()
+
+
+def test_the_adder_image_sums_as_the_model():
+    p, c = _adder()
+    img = link.link(p, c)
+    ops = _operands(BASE_SEED, 6)
+    st = parse_stimulus(_adder_stimulus(ops))
+    watch = [f"Q{i // 8}.{i % 8}" for i in range(65)]
+    assert differences(p, c, img, st, watch, len(ops)) == []
+    lut_words = sum(len(prog) for prog in c.programs)
+    # 898 instructions in units, the two first scalar, END
+    assert len(img.base) == lut_words + 3 and len(img.units) == sum(
+        1 for prog in c.programs if prog)
+    _, recs, _, sim = iss.image_trace(img, stimulus=st, watch=watch, scans=len(ops))
+    for (a, b), r in zip(ops, recs):        # and the sums themselves, from the trace
+        assert sum(r.values[f"Q{i // 8}.{i % 8}"] << i for i in range(65)) == a + b
+    assert sim.lut_clocks == lut_words * len(ops)
+
+
+def test_random_images_run_as_the_model(random_set):
+    """The regression's generators (jumps, backward ones too, REFRESH, parentheses,
+    edges, PI/PQ, words, compares, counters; with `label: NOP` lines): every column
+    and `cycles` of every scan equal, 0 mismatching programs."""
+    progs, comp = random_set
+    bad, jumps = [], 0
+    for k, (p, c) in enumerate(zip(progs, comp)):
+        img = link.link(p, c)
+        st = parse_stimulus(randprog.scan_stimulus(BASE_SEED * 1000 + k % PROGRAMS, SCANS))
+        d = differences(p, c, img, st, randprog.FULL_WATCH)
+        if d:
+            bad.append((k, d[:3]))
+        jumps += sum(1 for s in img.src if isinstance(s, int)
+                     and p.instrs[s].mnemonic in isa.JUMP_OPS)
+    assert bad == [], bad
+    assert jumps > 50             # relinked jumps ran
+
+
+def test_image_layout(random_set):
+    """Jump targets are a unit's first word or a scalar word, the instruction's new
+    address; a unit's words are consecutive, first and last marked; every source
+    instruction has its address (a unit's instructions its first word's; a unit of no
+    word, the next word's)."""
+    progs, comp = random_set
+    empty = 0
+    for p, c in zip(progs, comp):
+        img = link.link(p, c)
+        starts = {u["addr"] for u in img.units}
+        for a, s in enumerate(img.src):
+            if isinstance(s, int):
+                assert img.addr[s] == a and img.ext[a] == 0
+                ins = p.instrs[s]
+                if ins.mnemonic in isa.JUMP_OPS:
+                    t = link.jump_target(img.base[a])
+                    assert t == img.addr[p.labels[ins.operand.label]]
+                    assert t in starts or t == len(img.base) or isinstance(img.src[t], int)
+            else:
+                assert img.is_lut(a)
+        for u in img.units:
+            assert all(img.src[a] == tuple(u["src"]) for a in range(u["addr"], u["addr"] + u["words"]))
+            assert img.addr[u["src"][0]] == u["addr"]
+        for unit, prog in zip(c.split.units, c.programs):
+            if prog == []:
+                empty += 1
+                assert img.addr[unit.start] == img.addr[unit.stop]
+        assert img.addr == sorted(img.addr)
+    assert empty > 0              # units of no word were relinked past
+
+
+def _first_unit_run(progs, comp):
+    """A program, its image and stimulus in which a unit's word runs."""
+    for k, (p, c) in enumerate(zip(progs, comp)):
+        img = link.link(p, c)
+        if img.units:
+            return p, c, img, parse_stimulus(randprog.scan_stimulus(BASE_SEED * 1000 + k % PROGRAMS, SCANS))
+    raise AssertionError("no unit")
+
+
+@pytest.mark.parametrize("fault", ["table_bit", "jump_target", "scalar_word", "first_mark"])
+def test_a_broken_image_is_seen(random_set, fault):
+    progs, comp = random_set
+    seen = 0
+    for k, (p, c) in enumerate(zip(progs, comp)):
+        img = link.link(p, c)
+        st = parse_stimulus(randprog.scan_stimulus(BASE_SEED * 1000 + k % PROGRAMS, SCANS))
+        if fault == "table_bit":
+            if not img.units:
+                continue
+            a = img.units[0]["addr"]
+            img.ext[a] ^= (1 << (1 << DEF.lut.k)) - 1      # table A inverted
+        elif fault == "jump_target":
+            at = [a for a, s in enumerate(img.src) if isinstance(s, int)
+                  and p.instrs[s].mnemonic == "JU"]
+            if not at:
+                continue
+            img.base[at[0]] ^= 1 << DEF.fields["target"].lo   # one address off
+        elif fault == "scalar_word":
+            img.base[0] ^= 1 << DEF.fields["index"].lo
+        else:
+            if not img.units:
+                continue
+            img.base[img.units[0]["addr"]] &= ~(1 << DEF.lut.first)
+        try:
+            d = differences(p, c, img, st, randprog.FULL_WATCH)
+        except iss.ImageError:
+            d = ["ImageError"]
+        seen += bool(d)
+        if seen >= 5:
+            break
+    assert seen >= 5, (fault, seen)
+
+
+def _asm(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
+    src = tmp_path / "interlock.il"
+    src.write_text((ROOT / "examples" / "interlock.il").read_text())
+    return subprocess.run([sys.executable, "-m", "bitbyte.cli", "asm", str(src), *args],
+                          capture_output=True, text=True, cwd=tmp_path)
+
+
+def test_asm_bit_engine_wide_writes_the_image(tmp_path):
+    r = _asm(tmp_path, "--bit-engine", "wide")
+    assert r.returncode == 0, r.stderr
+    base = (tmp_path / "interlock.hex").read_text().split()
+    ext = (tmp_path / "interlock.ext.hex").read_text().split()
+    meta = json.loads((tmp_path / "interlock.json").read_text())
+    p = parse(str(tmp_path / "interlock.il"), (tmp_path / "interlock.il").read_text())
+    img = link.link(p, model.compile_program(p))
+    assert base == [f"{w:08X}" for w in img.base] and len(ext) == len(base)
+    assert all(len(e) == link.EXT_DIGITS for e in ext)
+    assert [int(e, 16) for e in ext] == img.ext
+    assert meta["bit_engine"] == "wide" and meta["words"] == len(base) and meta["units"]
+    assert len(meta["addr"]) == len(p.instrs)
+    lst = (tmp_path / "interlock.lst").read_text()
+    assert "LUT word 1/" in lst and ":=" in lst
+
+
+@pytest.mark.parametrize("args,message", [
+    (("--mode", "parallel"), "serial mode only"),
+    (("--profile", "hx8k"), "ECP5-25"),
+])
+def test_asm_bit_engine_wide_refuses(tmp_path, args, message):
+    r = _asm(tmp_path, "--bit-engine", "wide", *args)
+    assert r.returncode == 2 and message in r.stderr and "Traceback" not in r.stderr
+    assert not (tmp_path / "interlock.ext.hex").exists()
