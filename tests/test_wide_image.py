@@ -24,6 +24,7 @@ from bitbyte.lang.definition import DEF                # noqa: E402
 from bitbyte.lang.parser import parse                  # noqa: E402
 from bitbyte.lang.stimulus import parse_stimulus       # noqa: E402
 from bitbyte.wide import iss, link, model              # noqa: E402
+from bitbyte.wide import lutmap as L                   # noqa: E402
 from test_wide_model import (_adder, _adder_stimulus, _operands,  # noqa: E402
                              with_label_nops)
 
@@ -114,7 +115,7 @@ def test_image_layout(random_set):
                 if ins.mnemonic in isa.JUMP_OPS:
                     t = link.jump_target(img.base[a])
                     assert t == img.addr[p.labels[ins.operand.label]]
-                    assert t in starts or t == len(img.base) or isinstance(img.src[t], int)
+                    assert t in starts or isinstance(img.src[t], int)
             else:
                 assert img.is_lut(a)
         for u in img.units:
@@ -128,13 +129,62 @@ def test_image_layout(random_set):
     assert empty > 0              # units of no word were relinked past
 
 
-def _first_unit_run(progs, comp):
-    """A program, its image and stimulus in which a unit's word runs."""
+def dense_stimulus(seed: int, clocks: int) -> str:
+    """A `t_us` stimulus whose pins change in every clock (100 MHz): the clock a unit
+    samples its PI pins in decides what it reads."""
+    rng = random.Random(seed)
+    cols = [f"I{b}.{n}" for b in range(randprog.IN_BYTES) for n in range(8)]
+    return "t_us," + ",".join(cols) + "\n" + "".join(
+        f"{c / 100:.2f}," + ",".join(str(rng.randrange(2)) for _ in cols) + "\n"
+        for c in range(clocks))
+
+
+def test_random_images_under_pins_changing_every_clock(random_set):
+    """The pin rule of docs/wide-rtl-plan.md §2.3 (a unit's PI pins once, in its first
+    word's operand clock; behind a dispatched byte or timer/counter instruction, in
+    that instruction's first clock), which scan-keyed stimuli cannot tell from others."""
+    progs, comp = random_set
+    bad, pi = [], 0
     for k, (p, c) in enumerate(zip(progs, comp)):
+        pi += any(x.startswith("PI") for u, g in zip(c.split.units, c.programs) if g
+                  for x in u.inputs)
+        d = differences(p, c, link.link(p, c), parse_stimulus(dense_stimulus(k, 1200)),
+                        randprog.FULL_WATCH)
+        if d:
+            bad.append((k, d[:3]))
+    assert bad == [] and pi >= 20, (bad, pi)
+
+
+@pytest.mark.parametrize("before", ["NOP", "L 5", "CU C1"])
+def test_pins_behind_a_byte_instruction(before):
+    """A unit reading PI right behind a byte (or counter) instruction of several clocks,
+    and the same with a scalar word between: the pins change at each of the first clocks."""
+    for mid in ("", "la: LD I0.1\n"):
+        text = f"NOP\nNOP\n{before}\n{mid}lb: LD PI0.0\n= Q0.0\nLD PI0.1\n= Q0.1\nEND\n"
+        p = parse("pi.il", text)
+        c = model.compile_program(p)
         img = link.link(p, c)
-        if img.units:
-            return p, c, img, parse_stimulus(randprog.scan_stimulus(BASE_SEED * 1000 + k % PROGRAMS, SCANS))
-    raise AssertionError("no unit")
+        assert img.units, text
+        for rise in ("0.01", "0.02", "0.03", "0.04", "0.05", "0.1", "0.11", "0.12"):
+            st = parse_stimulus(f"t_us,I0.0,I0.1\n0,0,0\n{rise},1,1\n")
+            assert differences(p, c, img, st, ["Q0.0", "Q0.1"], scans=2) == [], (text, rise)
+
+
+def test_a_non_live_rlo_write_is_refused(random_set):
+    """No word of a unit whose RLO the next instruction does not read writes the RLO
+    (§2.4): the RLO is no trace column, so the linker refuses such a program."""
+    progs, comp = random_set
+    for p, c in zip(progs, comp):
+        hit = [i for i, (u, g) in enumerate(zip(c.split.units, c.programs))
+               if g and not u.rlo_live]
+        if hit:
+            link.link(p, c)                  # as compiled: accepted
+            c.programs[hit[0]] = c.programs[hit[0]] + [L.MInstr((), [("RLO", 1)])]
+            with pytest.raises(link.LinkError, match="not live"):
+                link.link(p, c)
+            c.programs[hit[0]] = c.programs[hit[0]][:-1]
+            return
+    raise AssertionError("no unit with a dead RLO")
 
 
 @pytest.mark.parametrize("fault", ["table_bit", "jump_target", "scalar_word", "first_mark"])
@@ -191,6 +241,14 @@ def test_asm_bit_engine_wide_writes_the_image(tmp_path):
     assert [int(e, 16) for e in ext] == img.ext
     assert meta["bit_engine"] == "wide" and meta["words"] == len(base) and meta["units"]
     assert len(meta["addr"]) == len(p.instrs)
+    # the labels where their jumps go, in the .hex
+    jumps = {int(w, 16) >> DEF.fields["target"].lo & DEF.fields["target"].mask
+             for w in base if int(w, 16) >> DEF.fields["opcode"].lo in (isa.OPCODES[j] for j in isa.JUMP_OPS)}
+    assert jumps and jumps <= set(meta["labels"].values())
+    assert meta["labels"] == {n: img.addr[a] for n, a in p.labels.items()}
+    for u in meta["units"]:       # a unit's lines: those of its source instructions
+        lines = [ins.line for ins in p.instrs[u["src"][0]:u["src"][1]]]
+        assert u["lines"] == [min(lines), max(lines)]
     lst = (tmp_path / "interlock.lst").read_text()
     assert "LUT word 1/" in lst and ":=" in lst
 

@@ -49,8 +49,8 @@ class ImageSim(RefSim):
         self._byte_start: int | None = None
 
     def _instr(self, pc: int) -> Instr:
-        if pc >= len(self.image.base):
-            return Instr("END", None, 0, 0)
+        if pc >= len(self.image.base):      # the image ends with END: never run past it
+            raise ImageError(f"address {pc:04X}: past the image's last word")
         src = self.image.src[pc]
         if not isinstance(src, int):
             return _LUT_INSTR

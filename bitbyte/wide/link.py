@@ -18,7 +18,7 @@ by the PC). bitbyte/wide/iss.py runs the image.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 from bitbyte.encoding import isa
 from bitbyte.encoding.encoder import constant_pool, encode_instr
@@ -27,6 +27,7 @@ from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
 from bitbyte.lang.program import Program
 from bitbyte.wide.encode import ZERO, decode, encode_unit
+from bitbyte.wide.stretch import RLO
 
 LUT = DEF.lut
 EXT_DIGITS = (LUT.ext_bits + 3) // 4      # hex digits of an extension word
@@ -50,6 +51,10 @@ class WideImage:
 
     def is_lut(self, a: int) -> bool:
         return self.base[a] >> LUT.tag.lo & LUT.tag.mask == LUT.tag_value
+
+
+class LinkError(RuntimeError):
+    """A compiled program the image must not hold (a defect of the compiler)."""
 
 
 def jump_target(word: int) -> int:
@@ -98,11 +103,18 @@ def link(program: Program, compiled, config: Config = DEFAULT) -> WideImage:
             p += 1
             continue
         unit, prog = hit
+        if not unit.rlo_live and any(d == RLO for ins in prog for d, _ in ins.outs):
+            # the RTL's rule (docs/wide-rtl-plan.md §2.4): the RLO is written only where
+            # the instruction after the unit reads it; a compiler that writes it anyway
+            # is refused here, since no trace column shows the RLO
+            raise LinkError(f"{program.path}: the unit of source instructions "
+                            f"{unit.start}..{unit.stop - 1} writes the RLO, which is not live")
         words = encode_unit(prog)
         if words:
+            lines = [ins.line for ins in instrs[unit.start:unit.stop]]
             units.append({"addr": addr[p], "words": len(words),
                           "src": [unit.start, unit.stop],
-                          "lines": [instrs[unit.start].line, instrs[unit.stop - 1].line]})
+                          "lines": [min(lines), max(lines)]})
         for b, e in words:
             base.append(b)
             ext.append(e)
@@ -122,13 +134,24 @@ def listing(image: WideImage, config: Config = DEFAULT) -> str:
     `dest := TABLE(operands)` per port (the truth table over the operands it reads,
     operand j bit j of the row; the extension word itself is in the .ext.hex file)."""
     prog = image.program
+    n_units = len(image.units)
     out = [f"; bitbyte listing of {prog.path} (wide bit engine)",
            f"; program memory: {len(image.base)} of {config.prog_words} words "
-           f"({len(prog.instrs)} instructions; {len(image.units)} units in "
+           f"({len(prog.instrs)} instructions; {n_units} unit{'s' * (n_units != 1)} in "
            f"{sum(u['words'] for u in image.units)} LUT words)",
-           "", "addr  word      line: source"]
+           "; config: " + " ".join(f"{k}={v}" for k, v in asdict(config).items())]
+    labels = wide_labels(image)
+    if labels:
+        out += ["", "labels:"] + [f"  {name:<16} {a:04X}" for name, a in labels.items()]
+    out += ["", "addr  word      line: source"]
     first_of = {u["addr"]: u for u in image.units}
+    at: dict[int, list[str]] = {}
+    for name, a in labels.items():
+        at.setdefault(a, []).append(name)
     for a, (word, s) in enumerate(zip(image.base, image.src)):
+        if a in at and a > 0:
+            out.append("")
+        out += [f"{'':16}{name}:" for name in at.get(a, [])]
         if isinstance(s, int):
             ins = prog.instrs[s]
             text = ins.source.strip().expandtabs(4) if ins.source else "(appended END)"
@@ -150,8 +173,14 @@ def listing(image: WideImage, config: Config = DEFAULT) -> str:
     return "\n".join(out) + "\n"
 
 
+def wide_labels(image: WideImage) -> dict[str, int]:
+    """Each label at its wide address (where its jumps go)."""
+    return {name: image.addr[p] for name, p in image.program.labels.items()}
+
+
 def summary(image: WideImage) -> dict:
-    """The JSON side file's wide part: the engine, the units, and the wide address of
-    every source instruction (hosts map PCs back to lines with it)."""
-    return {"bit_engine": "wide", "words": len(image.base), "units": image.units,
-            "addr": image.addr[:-1]}
+    """The JSON side file's wide part: the engine, the labels at their wide addresses,
+    the units, and the wide address of every source instruction (hosts map PCs back
+    to lines with it)."""
+    return {"bit_engine": "wide", "words": len(image.base), "labels": wide_labels(image),
+            "units": image.units, "addr": image.addr[:-1]}
