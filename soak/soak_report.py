@@ -137,14 +137,40 @@ def main(argv=None) -> int:
             lines.append(f"| {prot} | {lay} | " + " | ".join(
                 str(plant.get((prot, lay, c), 0)) if (prot, lay, c) in plant_legal_bins()
                 else "–" for c in CONTENTIONS) + " |")
+    wide = [json.loads(p.read_text()) for p in sorted(Path(args.build).glob("wide_chunk*.json"))]
+    wide_programs = sum(c["programs"] for c in wide)
+    wide_mismatches = [m for c in wide for m in c["mismatches"]]
+    total = {k: sum(c[k] for c in wide) for k in
+             ("units", "lut_words", "unit_il", "fallbacks", "pi_units", "jump_programs")}
+    lines += [
+        "",
+        "## The wide bit engine: compiler, image and model (soak/test_wide_soak.py)",
+        "",
+        f"{wide_programs} random programs (bit-only, mixed with the timers stripped, "
+        "bit-only with `label: NOP` lines) compiled for the wide engine and relinked "
+        "into its image, the image run word by word (bitbyte/wide/iss.py; no wide RTL "
+        "yet): against the scalar reference interpreter in every column but `t_us` and "
+        "`cycles` (scan-keyed stimulus), and against the wide model in every column, "
+        "`cycles` included (scan-keyed, and pins changing in every clock). "
+        f"{total['units']} units ({total['unit_il']} IL instructions in "
+        f"{total['lut_words']} LUT words; {total['pi_units']} reading PI pins), "
+        f"{total['fallbacks']} fallen back to scalar, {total['jump_programs']} programs "
+        "with jumps.",
+        "",
+        f"**Mismatches: {len(wide_mismatches)}.**" + (
+            " Saved under build/soak/wide-cases/:" if wide_mismatches else ""),
+    ]
+    lines += [f"- {m}" for m in wide_mismatches[:50]]
     Path(args.out).write_text("\n".join(lines) + "\n")
     print(f"soak: {programs} programs, {len(mismatches)} mismatches, "
           f"{len(missed)} of {len(legal)} legal coverage bins missed, "
           f"{len(plant_missed)} of {len(plant_legal_bins())} plant bins -> {args.out}")
-    if programs < args.n:
-        print(f"soak: only {programs} of {args.n} programs reported", file=sys.stderr)
+    print(f"soak (wide engine): {wide_programs} programs, {len(wide_mismatches)} mismatches")
+    if programs < args.n or wide_programs < args.n:
+        print(f"soak: only {programs} (wide: {wide_programs}) of {args.n} programs "
+              "reported", file=sys.stderr)
         return 1
-    return 1 if mismatches or missed or plant_missed or plant_extra else 0
+    return 1 if mismatches or missed or plant_missed or plant_extra or wide_mismatches else 0
 
 
 if __name__ == "__main__":

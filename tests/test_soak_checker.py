@@ -121,14 +121,25 @@ def _chunk(build: Path, n: int, mismatches=(), coverage=None):
         "seconds": 1.0, "coverage": coverage}))
 
 
+def _wide_chunk(build: Path, n: int, mismatches=()):
+    (build / f"wide_chunk{n:05d}.json").write_text(json.dumps({
+        "seed": 1, "chunk": n, "programs": 25, "mismatches": list(mismatches),
+        "seconds": 1.0, "units": 10, "lut_words": 12, "unit_il": 40, "fallbacks": 0,
+        "pi_units": 2, "jump_programs": 5}))
+
+
 @pytest.mark.parametrize("broken", ["none", "mismatch", "bin missed", "chunk missing",
-                                    "plant bin missed", "plant bin not legal"])
+                                    "plant bin missed", "plant bin not legal",
+                                    "wide mismatch", "wide chunk missing"])
 def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     build = tmp_path / "b"
     bins = [list(b) + [1] for b in sorted(coverage_count.legal_bins())]
     bins = bins[1:] if broken == "bin missed" else bins
     _chunk(build, 0, ["p: differs"] if broken == "mismatch" else (), bins)
     _chunk(build, 1, (), bins)
+    _wide_chunk(build, 0, ["program 3: Q0.0 scan 1"] if broken == "wide mismatch" else ())
+    if broken != "wide chunk missing":
+        _wide_chunk(build, 1)
     plant = [list(b) + [3] for b in sorted(coverage_count.plant_legal_bins())]
     (build / "plant_a.json").write_text(json.dumps({"plant_coverage": plant[:5]}))
     (build / "plant_b.json").write_text(json.dumps(
@@ -147,7 +158,9 @@ def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
             "none/compact/copy_fail" in text) == (broken == "plant bin not legal")
     assert ("hit: {0}; **missed: 0**.".format(len(coverage_count.legal_bins()))
             in text) == (broken != "bin missed")
-    assert ("**Mismatches: 1.**" in text) == (broken == "mismatch")
+    assert ("**Mismatches: 1.**" in text) == (broken in ("mismatch", "wide mismatch"))
+    assert ("## The wide bit engine" in text and
+            f"{25 if broken == 'wide chunk missing' else 50} random programs" in text)
 
 
 def test_plant_contention_by_hand():
