@@ -119,8 +119,9 @@ clean:          ## remove build products (keeps .venv)
 # soak/test_stl_soak.py: 1 000 compared S7
 # programs of each of three kinds (BITBYTE_STL_SOAK_N) against awlsim, on the reference
 # interpreter and the harness in serial and parallel mode (build/soak/stl-cases/).
-# soak/test_wide_soak.py: the N programs compiled for the wide bit engine, its image run
-# against the scalar reference and the wide model (build/soak/wide-cases/; no wide RTL yet).
+# soak/test_wide_soak.py: N programs of its own families compiled for the wide bit engine,
+# each image run against the scalar reference and the wide model (build/soak/wide-cases/;
+# no wide RTL yet; about 17 CPU-minutes for N=10000).
 # Not part of `make test` (docs/soak.md has the last run's time; the S7 soak about 10 min more).
 # BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak

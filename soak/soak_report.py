@@ -1,8 +1,10 @@
 """Adds up the soak's chunks (build/soak/chunk*.json) into docs/soak.md: the seed, the
 number of programs, the run time, the mismatches, and the coverage of
 instruction x operand area x mode x exchange against the legal bins, and the plant's
-protection x layout x contention (soak/coverage_count.py).  Exit status 1 when a chunk is missing, a mismatch was
-found or a legal bin was not hit, so `make soak` fails with it."""
+protection x layout x contention (soak/coverage_count.py); and the wide bit engine's
+chunks (build/soak/wide_chunk*.json, soak/test_wide_soak.py).  Exit status 1 when a
+chunk of either is missing, a mismatch was found or a legal bin was not hit, so `make
+soak` fails with it."""
 from __future__ import annotations
 
 import argparse

@@ -7,20 +7,25 @@ checked against them.
 
 Per program (serial mode, as spec §4 `--bit-engine` says):
 
-* scan-keyed stimulus: the image's trace against the scalar reference interpreter in
-  every column but `t_us` and `cycles`, and against the wide model
-  (bitbyte/wide/model.py, which runs the compiled units from the source program) in
-  every column, `cycles` included;
-* pins changing in every clock (`t_us`): the image against the wide model in every
-  column, `cycles` included (the unit's pin sample clock, docs/wide-rtl-plan.md §2.3).
+* scan-keyed stimulus (inputs and IW words): the image's trace against the scalar
+  reference interpreter in every column but `t_us` and `cycles`, and against the wide
+  model (bitbyte/wide/model.py, which runs the compiled units from the source program)
+  in every column, `cycles` included;
+* pins changing in every clock (`t_us`) for as long as the scan-keyed run took: the
+  image against the wide model in every column, `cycles` included (the unit's pin
+  sample clock, docs/wide-rtl-plan.md §2.3).
 
 Program i has the seed BITBYTE_SEED * 100000 + i and comes from tests/randprog.py by
 i % 3: bit-only (jumps, REFRESH, parentheses, edges, PI/PQ), mixed with its timers
 stripped (words, compares, counters: the model's timers run, but spec §4 promises
 trace equality only without them), and bit-only with `label: NOP` lines put in.
-Chunks of CHUNK programs, each compiled in one Yosys run; a mismatch is saved under
-build/soak/wide-cases/ and the chunk goes on before it fails. Each chunk writes its
-counts to build/soak/wide_chunk*.json; soak/soak_report.py adds them up.
+These are the wide soak's own families, not the main soak's programs. Chunks of CHUNK
+programs, each compiled in one Yosys run; a mismatch or any error of a program is saved
+under build/soak/wide-cases/wide<i>/ (program, stimuli, the image as linked in its
+chunk, the differences, repeat.sh) and the chunk goes on before it fails; a chunk that
+ran no LUT word, or fell back to scalar for more than one unit in twenty, fails too.
+Each chunk writes its counts to build/soak/wide_chunk*.json; soak/soak_report.py adds
+them up.
 """
 from __future__ import annotations
 
@@ -28,6 +33,7 @@ import json
 import os
 import random
 import time
+import traceback
 from pathlib import Path
 
 import pytest
@@ -36,7 +42,8 @@ from bitbyte.lang.parser import parse
 from bitbyte.lang.stimulus import parse_stimulus
 from bitbyte.ref.refsim import refsim_trace
 from bitbyte.wide import iss, link, model
-from randprog import FULL_WATCH, random_mixed_program, random_program, scan_stimulus, strip_timers
+from randprog import (FULL_WATCH, random_mixed_program, random_program, random_scan_stimulus,
+                      strip_timers)
 from test_wide_image import dense_stimulus, differences
 from test_wide_model import with_label_nops
 
@@ -47,7 +54,6 @@ N = int(os.environ.get("BITBYTE_SOAK_N", "100"))
 SEED = int(os.environ["BITBYTE_SEED"])
 CHUNK = 200
 SCANS = 8
-DENSE_CLOCKS = 1200
 
 
 def program_text(index: int) -> str:
@@ -59,8 +65,9 @@ def program_text(index: int) -> str:
     return with_label_nops(text, random.Random(seed)) if kind == 2 else text
 
 
-def scalar_differences(program, image, stimulus) -> list[str]:
-    """The image against the scalar interpreter: every column but t_us and cycles."""
+def scalar_differences(program, image, stimulus) -> tuple[list[str], int]:
+    """The image against the scalar interpreter: every trace column (the records'
+    values; t_us and cycles are not among them). Also the scalar run's last clock."""
     cols, want, want_fault = refsim_trace(program, stimulus=stimulus, watch=FULL_WATCH,
                                           scans=SCANS)
     _, got, got_fault, _ = iss.image_trace(image, stimulus=stimulus, watch=FULL_WATCH,
@@ -70,15 +77,28 @@ def scalar_differences(program, image, stimulus) -> list[str]:
     for w, g in zip(want, got):
         out += [f"{c.header} scan {w.scan}: image {g.values[c.header]}, scalar "
                 f"{w.values[c.header]}" for c in cols
-                if c.header != "t_us" and w.values[c.header] != g.values[c.header]]
-    return out
+                if w.values[c.header] != g.values[c.header]]
+    return out, max((r.end_clock for r in want), default=0)
 
 
-def save(index: int, text: str, problems: list[str]) -> None:
-    CASES.mkdir(parents=True, exist_ok=True)
-    (CASES / f"wide{index}.il").write_text(text)
-    (CASES / f"wide{index}.txt").write_text(
-        f"BITBYTE_SEED={SEED} program {index}\n" + "\n".join(problems[:20]) + "\n")
+def save(index: int, chunk: int, text: str, problems: list[str], image,
+         stimuli: dict[str, str]) -> None:
+    """The case: program, stimuli, the image as linked in its chunk (Yosys maps a
+    chunk's units in one run, so the program compiled alone may map differently), what
+    differed, and how to repeat the chunk."""
+    case = CASES / f"wide{index}"
+    case.mkdir(parents=True, exist_ok=True)
+    (case / "program.il").write_text(text)
+    for name, st in stimuli.items():
+        (case / f"{name}.csv").write_text(st)
+    if image is not None:
+        (case / "image.hex").write_text("".join(f"{w:08X}\n" for w in image.base))
+        (case / "image.ext.hex").write_text(link.hex_ext(image.ext))
+        (case / "image.json").write_text(json.dumps(link.summary(image), indent=1))
+    (case / "problems.txt").write_text("\n".join(problems[:40]) + "\n")
+    (case / "repeat.sh").write_text(
+        f"BITBYTE_SEED={SEED} BITBYTE_SOAK_N={N} pytest -p no:cacheprovider "
+        f"'soak/test_wide_soak.py::test_wide_soak_chunk[{chunk}]'\n")
 
 
 @pytest.mark.parametrize("chunk", range((N + CHUNK - 1) // CHUNK))
@@ -93,25 +113,36 @@ def test_wide_soak_chunk(chunk):
     for i in indexes:
         p, c = progs[i], compiled[i]
         problems: list[str] = []
+        image, stimuli = None, {}
         try:
             image = link.link(p, c)
-            scan = parse_stimulus(scan_stimulus(SEED * 100000 + i, SCANS))
-            problems += scalar_differences(p, image, scan)
+            stimuli["scan"] = random_scan_stimulus(SEED * 100000 + i, SCANS)
+            scan = parse_stimulus(stimuli["scan"])
+            diffs, last = scalar_differences(p, image, scan)
+            problems += diffs
             problems += [f"model: {d}" for d in differences(p, c, image, scan, FULL_WATCH)]
-            dense = parse_stimulus(dense_stimulus(SEED * 100000 + i, DENSE_CLOCKS))
-            problems += [f"t_us model: {d}" for d in differences(p, c, image, dense, FULL_WATCH)]
-        except (iss.ImageError, link.LinkError) as exc:
-            problems.append(f"{type(exc).__name__}: {exc}")
+            # pins changing in every clock of the run (its scans as long as the
+            # scan-keyed run's, and a margin)
+            stimuli["dense"] = dense_stimulus(SEED * 100000 + i, last + 200)
+            problems += [f"t_us model: {d}" for d in differences(
+                p, c, image, parse_stimulus(stimuli["dense"]), FULL_WATCH)]
+        except Exception as exc:       # any error is this program's case, not the chunk's
+            problems.append(f"{type(exc).__name__}: {exc}\n{traceback.format_exc()}")
         if problems:
-            mismatches.append(f"program {i} (wide-cases/wide{i}.il): {problems[0]}")
-            save(i, texts[i], problems)
-        live = [(u, g) for u, g in zip(c.split.units, c.programs) if g is not None]
+            mismatches.append(f"program {i} (wide-cases/wide{i}/): {problems[0].splitlines()[0]}")
+            save(i, chunk, texts[i], problems, image, stimuli)
+        live = [(u, g) for u, g in zip(c.split.units, c.programs) if g]   # in the image
         counts["units"] += len(live)
         counts["lut_words"] += sum(len(g) for _, g in live)
         counts["unit_il"] += sum(u.size for u, _ in live)
         counts["fallbacks"] += c.fallbacks
         counts["pi_units"] += sum(any(x.startswith("PI") for x in u.inputs) for u, _ in live)
         counts["jump_programs"] += any(ins.mnemonic in ("JU", "JC", "JCN") for ins in p.instrs)
+    # a compiler that falls back everywhere would pass the comparisons: the chunk must
+    # have run LUT code, and fallen back rarely (none in the runs so far)
+    if counts["lut_words"] == 0 or counts["fallbacks"] * 20 > counts["units"]:
+        mismatches.append(f"chunk {chunk}: {counts['units']} units in {counts['lut_words']} "
+                          f"LUT words, {counts['fallbacks']} fallen back to scalar")
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / f"wide_chunk{chunk:05d}.json").write_text(json.dumps({
         "seed": SEED, "chunk": chunk, "programs": len(indexes), "mismatches": mismatches,

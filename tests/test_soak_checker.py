@@ -159,8 +159,12 @@ def test_report_fails_on_what_it_must(tmp_path, broken, capsys):
     assert ("hit: {0}; **missed: 0**.".format(len(coverage_count.legal_bins()))
             in text) == (broken != "bin missed")
     assert ("**Mismatches: 1.**" in text) == (broken in ("mismatch", "wide mismatch"))
-    assert ("## The wide bit engine" in text and
-            f"{25 if broken == 'wide chunk missing' else 50} random programs" in text)
+    wide = 25 if broken == "wide chunk missing" else 50
+    assert f"{wide} random programs (bit-only" in text
+    assert (f"{wide // 25 * 10} units ({wide // 25 * 40} IL instructions in "
+            f"{wide // 25 * 12} LUT words; {wide // 25 * 2} reading PI pins), 0 fallen "
+            f"back to scalar, {wide // 25 * 5} programs with jumps") in text
+    assert ("- program 3: Q0.0 scan 1" in text) == (broken == "wide mismatch")
 
 
 def test_plant_contention_by_hand():
