@@ -215,8 +215,9 @@ def test_link_command_prints_the_map_and_the_plan():
 
 
 def test_run_plant_command_line(tmp_path):
-    """`run PLANT.toml` runs the plant; what only a single CPU takes is refused."""
-    proc = bitbyte("run", EXAMPLE / "plant.toml", "--until-us", "25000",
+    """`run PLANT.toml` runs the plant; what only a single CPU takes is refused. (The
+    example at 1 MHz, plant_sim.toml: its scans as in time, a hundredth of the clocks.)"""
+    proc = bitbyte("run", EXAMPLE / "plant_sim.toml", "--until-us", "25000",
                    "--trace", tmp_path / "T.csv", "--watch", "p2.MW0")
     assert proc.returncode == 0, proc.stderr
     assert "core p1" in proc.stdout and "core p2" in proc.stdout
