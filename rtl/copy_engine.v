@@ -70,9 +70,12 @@ module copy_engine #(
   input  wire [15:0]                   w_rdata_i
 `ifdef FORMAL
   ,
-  // for the sequencer's proof (core_seq.v): the list has begun; a local read this clock
+  // for the sequencer's proof (core_seq.v): the list has begun; a local read this
+  // clock; the clocks this list has run before this one, and its length
   output wire                          f_started_o,
-  output wire                          f_local_rd_o
+  output wire                          f_local_rd_o,
+  output reg  [$clog2(PlanWords)+2:0]  f_runs_o,
+  output wire [$clog2(PlanWords):0]    f_len_o
 `endif
 );
   localparam integer PaW = $clog2(PlanWords);
@@ -246,6 +249,32 @@ module copy_engine #(
   // ---- the sequencer runs a list until it is copied
   always @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni)
     if ($past(run_i) && !run_i) assert ($past(done_o));
+
+  // ---- a list of n entries is done in its clock n + 2 at the latest (n fetch clocks,
+  // then stage I and stage C drain), counted from its first running clock (0) by a
+  // counter of the property's own; an empty list in its clock 0. (core_seq.v: the lock
+  // is therefore held at most n + 3 clocks.)
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni)                        f_runs_o <= 0;
+    else if (load_pre_i || load_post_i) f_runs_o <= 0;
+    else if (run_i && !done_o)          f_runs_o <= f_runs_o + 1'b1;
+  wire [PaW+2:0] f_len = {2'b00, len_q};
+  assign f_len_o = len_q;
+  always @(*) if (rst_ni && run_i) begin
+    assert (f_runs_o <= f_len + 2);
+    if (f_runs_o == f_len + 2 || (len_q == 0)) assert (done_o);
+    // the pipeline's position: one fetch a clock, then the drain
+    if (issued_q != len_q) f_inv_fetch: assert (f_runs_o == {2'b00, issued_q});
+    if (issued_q == len_q && len_q != 0 && f_valid_q) f_inv_drain_i: assert (f_runs_o == f_len);
+    if (issued_q == len_q && len_q != 0 && !f_valid_q) f_inv_drain_c: assert (f_runs_o > f_len);
+    if (issued_q == len_q && len_q != 0 && !f_valid_q && c_valid_q)
+      f_inv_drain_c2: assert (f_runs_o == f_len + 1);
+  end
+  // between lists: freshly loaded (nothing run yet), or done with the last one
+  always @(*) if (rst_ni && !run_i)
+    f_inv_idle: assert ((f_runs_o == 0 && issued_q == 0) ||
+                        (issued_q == len_q && (len_q == 0 ? f_runs_o == 0 :
+                                               (f_runs_o > f_len && f_runs_o <= f_len + 2))));
   always @(posedge clk_i) if (rst_ni)
     cover (!ping_i && sh_we_o && !sh_re_o && !m_we_o && gather_q != 32'd0);
 `endif

@@ -126,6 +126,8 @@ module core_seq #(
   wire begin_post = (state_q == StScan) && cpu_scan_done_i;
 `ifdef FORMAL
   wire f_started, f_local_rd;
+  wire [PaW+2:0] f_runs;
+  wire [PaW:0]   f_len;
 `endif
 
   copy_engine #(
@@ -171,7 +173,9 @@ module core_seq #(
 `ifdef FORMAL
     ,
     .f_started_o (f_started),
-    .f_local_rd_o(f_local_rd)
+    .f_local_rd_o(f_local_rd),
+    .f_runs_o    (f_runs),
+    .f_len_o     (f_len)
 `endif
   );
 
@@ -403,11 +407,30 @@ module core_seq #(
     if (state_q == StWait && !cycle_done_o) f_inv_wait_none: assert (f_wait == 32'd0);
   end
 
+  // ---- (i) the lock is held at most n + 3 clocks for a list of n entries (from the
+  // clock after the grant to the release, both included): a waiting core's wait is
+  // bounded by the other cores' lists (hsem grants round robin). Counted from the ports.
+  reg [PaW+2:0] f_held;                  // clocks owned before this one
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni)              f_held <= 0;
+    else if (grant_i)         f_held <= 0;
+    else if (f_owned && !release_o) f_held <= f_held + 1'b1;
+  wire [PaW+2:0] f_list = post ? {1'b0, post_len_i} : {1'b0, pre_len_i};
+  always @(*) if (rst_ni && f_owned) begin
+    assert (f_held <= f_list + 2);
+    f_inv_held: assert (f_held == f_runs);
+  end
+  // the engine's list is this phase's (the configuration is constant while running)
+  always @(*) if (rst_ni && state_q != StWait)
+    f_inv_list: assert (f_len == (post ? post_len_i : pre_len_i));
+
   // the interesting runs exist (formal/core_seq.sby, task cover; copy_engine.v has
   // the gathered postcycle write)
   always @(posedge clk_i) if (rst_ni) begin
     cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
     cover (f_sem && copy_fail_o && state_q == StScan);
+    // the hold bound (i) is reached: a list of items released in its owned clock n + 3
+    cover (f_owned && release_o && f_list != 0 && f_held == f_list + 2);
     // a precycle that waited for the lock, still in time, and is granted; one of a
     // later scan (a scan has completed: its nominal start is a period on) that gives up
     cover (f_past_valid && $past(f_pre_waits && !f_too_late) && grant_i);
