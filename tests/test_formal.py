@@ -111,6 +111,9 @@ MUTATIONS = [
      "end else if (locked_o && |release_i) begin", "locked_o == f_held"),  # anybody frees it
     ("hsem", "hsem.v", "      last_q   <= pick;",
      "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
+    # the wait in clocks rests on the holders' hold bound: without it, a core waits longer
+    ("hsem", "hsem.v", "f_hmax}) assume (release_i[f_holder]);", "f_hmax}) assume (1'b1);",
+     "assert ({24'd0, f_wclk} <= (Cores - 1) * f_turn"),
     # tc_status: the enable / pulse half (issue 16 item 1), against its shadow f_en/f_pulse
     ("tc_status", "tc_status.v", "wire                          en_we  = partitioned_i ? bit_we_i : ctl_we_i;",
      "wire                          en_we  = ctl_we_i;",
