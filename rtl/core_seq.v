@@ -424,11 +424,38 @@ module core_seq #(
   always @(*) if (rst_ni && state_q != StWait)
     f_inv_list: assert (f_len == (post ? post_len_i : pre_len_i));
 
+  // ---- (j) SEM_WAIT bounded in clocks: when hsem grants a request that has waited
+  // f_gmax clocks at the latest (an assumption here; hsem.v proves it in clocks from the
+  // other cores' hold bound (i)), a scan waits at most 2 * f_gmax clocks: once in its
+  // precycle, once in its postcycle
+  // (one bound, 1: any bound 0..15 takes the bmc task from seconds to minutes, and the
+  // proof's shape does not depend on it)
+  wire [3:0] f_gmax = 4'd1;
+  reg [4:0] f_reqrun;                    // clocks this request has waited before this one
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) f_reqrun <= 5'd0;
+    else         f_reqrun <= (lock_req_o && !grant_i) ? f_reqrun + 5'd1 : 5'd0;
+  always @(*) if (rst_ni && lock_req_o && f_reqrun >= {1'b0, f_gmax}) assume (grant_i);
+  wire [31:0] f_g = {28'd0, f_gmax};
+  always @(*) if (rst_ni) begin
+    if (cycle_done_o) assert (sem_wait_o <= 2 * f_g);
+    f_inv_reqrun: assert (f_reqrun <= {1'b0, f_gmax});
+    // (a precycle that gave up leaves its count for the RUN clock)
+    if (!lock_req_o && state_q != StRunStart) f_inv_reqrun0: assert (f_reqrun == 5'd0);
+    if (state_q == StPreLock) f_inv_prewait: assert (f_wait == {27'd0, f_reqrun});
+    if (state_q == StPreCopy || state_q == StRunStart || state_q == StScan)
+      f_inv_prewaited: assert (f_wait <= f_g);
+    if (state_q == StPostLock) f_inv_postwait: assert (f_wait <= f_g + {27'd0, f_reqrun});
+    if (state_q == StPostCopy) f_inv_postwaited: assert (f_wait <= 2 * f_g);
+  end
+
   // the interesting runs exist (formal/core_seq.sby, task cover; copy_engine.v has
   // the gathered postcycle write)
   always @(posedge clk_i) if (rst_ni) begin
     cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
     cover (f_sem && copy_fail_o && state_q == StScan);
+    // the wait bound (j) is reached: both waits as long as hsem may make them
+    cover (cycle_done_o && sem_wait_o == 2 * f_g);
     // the hold bound (i) is reached: a list of items released in its owned clock n + 3
     cover (f_owned && release_o && f_list != 0 && f_held == f_list + 2);
     // a precycle that waited for the lock, still in time, and is granted; one of a
