@@ -425,9 +425,11 @@ module core_seq #(
     f_inv_list: assert (f_len == (post ? post_len_i : pre_len_i));
 
   // ---- (j) SEM_WAIT bounded in clocks: when hsem grants a request that has waited
-  // f_gmax clocks at the latest (an assumption here; hsem.v proves it in clocks from the
+  // f_gmax clocks at the latest (an assumption, hsem.v proves it in clocks from the
   // other cores' hold bound (i)), a scan waits at most 2 * f_gmax clocks: once in its
-  // precycle, once in its postcycle
+  // precycle, once in its postcycle. Only in formal/core_seq_wait.sby
+  // (F_GRANT_BOUND): the assumption must not narrow what (a)-(i) are proved for.
+`ifdef F_GRANT_BOUND
   // (one bound, 1: any bound 0..15 takes the bmc task from seconds to minutes, and the
   // proof's shape does not depend on it)
   wire [3:0] f_gmax = 4'd1;
@@ -448,14 +450,15 @@ module core_seq #(
     if (state_q == StPostLock) f_inv_postwait: assert (f_wait <= f_g + {27'd0, f_reqrun});
     if (state_q == StPostCopy) f_inv_postwaited: assert (f_wait <= 2 * f_g);
   end
+  // the bound is reached: both waits as long as hsem may make them
+  always @(posedge clk_i) if (rst_ni) cover (cycle_done_o && sem_wait_o == 2 * f_g);
+`endif
 
   // the interesting runs exist (formal/core_seq.sby, task cover; copy_engine.v has
   // the gathered postcycle write)
   always @(posedge clk_i) if (rst_ni) begin
     cover (f_sem && cycle_done_o && $past(sh_we_o, 2) && pre_clocks_o > 32'd4);
     cover (f_sem && copy_fail_o && state_q == StScan);
-    // the wait bound (j) is reached: both waits as long as hsem may make them
-    cover (cycle_done_o && sem_wait_o == 2 * f_g);
     // the hold bound (i) is reached: a list of items released in its owned clock n + 3
     cover (f_owned && release_o && f_list != 0 && f_held == f_list + 2);
     // a precycle that waited for the lock, still in time, and is granted; one of a

@@ -165,7 +165,9 @@ module hsem #(
   // plan entries), a spinning core is granted at the latest after waiting
   // (Cores - 1) * (f_hmax + 1) + f_hmax clocks: the lock held when it began to wait is
   // free after f_hmax clocks at most, each other core's turn takes f_hmax + 1, and
-  // Cores - 1 turns at most come first (the bound in grants above).
+  // Cores - 1 turns at most come first (the bound in grants above). Only in
+  // formal/hsem_wait.sby (F_HOLD_BOUND): the assumption must not narrow the claims above.
+`ifdef F_HOLD_BOUND
   (* anyconst *) reg [3:0] f_hmax;        // 1..15 owned clocks at most
   reg [3:0] f_hcnt;                       // clocks the holder has owned it before this one
   reg [7:0] f_wclk;                       // clocks f_core has waited before this one
@@ -196,13 +198,14 @@ module hsem #(
     if (f_waiting && !f_held)
       f_inv_wclk_free: assert ({24'd0, f_wclk} <= {{(31-IdW){1'b0}}, f_others} * f_turn + {28'd0, f_hmax});
   end
-  always @(posedge clk_i) if (rst_ni) cover (f_past_valid && $past(grant_o[1]) && grant_o == 0 &&
-                                             lock_req_i[0]);
   // the bound in clocks is met but for its last term: the lock free when the core asks,
   // Cores - 1 whole turns of others (a core that asks while the lock is held waits
   // behind fewer turns, so the bound above is not reached; it is the simple one)
   always @(posedge clk_i) if (rst_ni)
     cover (grant_o[f_core] && {24'd0, f_wclk} == (Cores - 1) * f_turn && f_hmax == 4'd1);
+`endif
+  always @(posedge clk_i) if (rst_ni) cover (f_past_valid && $past(grant_o[1]) && grant_o == 0 &&
+                                             lock_req_i[0]);
   // a core waits through Cores - 1 other grants and is granted
   always @(posedge clk_i) if (rst_ni) cover (f_waiting && f_others == Cores - 1 && grant_o[f_core]);
 `endif

@@ -112,7 +112,7 @@ MUTATIONS = [
     ("hsem", "hsem.v", "      last_q   <= pick;",
      "      last_q   <= last_q;", "f_rival_grants <= 2'd1"),  # fixed priority: starvation
     # the wait in clocks rests on the holders' hold bound: without it, a core waits longer
-    ("hsem", "hsem.v", "f_hmax}) assume (release_i[f_holder]);", "f_hmax}) assume (1'b1);",
+    ("hsem_wait", "hsem.v", "f_hmax}) assume (release_i[f_holder]);", "f_hmax}) assume (1'b1);",
      "assert ({24'd0, f_wclk} <= (Cores - 1) * f_turn"),
     # tc_status: the enable / pulse half (issue 16 item 1), against its shadow f_en/f_pulse
     ("tc_status", "tc_status.v", "wire                          en_we  = partitioned_i ? bit_we_i : ctl_we_i;",
@@ -214,7 +214,7 @@ MUTATIONS = [
     ("core_seq", "copy_engine.v", "wire fetch = run_i && (issued_q != len_q);",
      "wire fetch = run_i && (issued_q != len_q) && !f_valid_q;", "assert (done_o)"),
     # the wait in clocks rests on hsem's grant bound: without it, a scan waits longer
-    ("core_seq", "core_seq.v", "f_reqrun >= {1'b0, f_gmax}) assume (grant_i);",
+    ("core_seq_wait", "core_seq.v", "f_reqrun >= {1'b0, f_gmax}) assume (grant_i);",
      "f_reqrun >= {1'b0, f_gmax}) assume (1'b1);", "assert (sem_wait_o <= 2 * f_g)"),
     # SEM_WAIT against the ports' count of refused requests
     ("core_seq", "core_seq.v", "      if (waiting) wait_cnt_q <= wait_cnt_q + 32'd1;",
