@@ -45,15 +45,13 @@ def assemble(path: str, outdir: str | None = None, config: Config = DEFAULT,
     program = parse_file(path, config, lang=lang, mnemonics=mnemonics, symbols=symbols)
     words, listing_text = encode(program, config, mode)
     pool = constant_pool(program)
-    stem = os.path.splitext(os.path.basename(path))[0]
-    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
-    os.makedirs(outdir, exist_ok=True)
-    paths = {ext: os.path.join(outdir, f"{stem}.{ext}") for ext in ("hex", "lst", "json")}
+    out = _output_dir(path, outdir)
+    paths = {ext: out(ext) for ext in ("hex", "lst", "json")}
     _write(paths["hex"], hex_image(words))
     _write(paths["lst"], _with_startup_line(listing_text, program))
     _write(paths["json"], json.dumps(summary(program, words, config), indent=2) + "\n")
     if pool:
-        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        paths["pool"] = out("pool.hex")
         _write(paths["pool"], hex_image(pool))
     return {**paths, "words": len(words), "program": program}
 
@@ -79,22 +77,28 @@ def assemble_wide(path: str, outdir: str | None, config: Config, mode: str,
     encode_words(program, config, mode)     # the scalar checks (SourceError at the line)
     image = wide_link.link(program, compile_program(program), config)
     pool = constant_pool(program)
-    stem = os.path.splitext(os.path.basename(path))[0]
-    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
-    os.makedirs(outdir, exist_ok=True)
-    paths = {ext: os.path.join(outdir, f"{stem}.{ext}")
-             for ext in ("hex", "ext.hex", "lst", "json")}
+    out = _output_dir(path, outdir)
+    paths = {ext: out(ext) for ext in ("hex", "ext.hex", "lst", "json")}
     _write(paths["hex"], hex_image(image.base))
     _write(paths["ext.hex"], wide_link.hex_ext(image.ext))
     _write(paths["lst"], _with_startup_line(wide_link.listing(image, config), program))
     _write(paths["json"], json.dumps({**summary(program, image.base, config),
                                       **wide_link.summary(image)}, indent=2) + "\n")
     if pool:
-        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        paths["pool"] = out("pool.hex")
         _write(paths["pool"], hex_image(pool))
     return {"hex": paths["hex"], "ext_hex": paths["ext.hex"], "lst": paths["lst"],
             "json": paths["json"], **({"pool": paths["pool"]} if pool else {}),
             "words": len(image.base), "program": program, "image": image}
+
+
+def _output_dir(path: str, outdir: str | None):
+    """`ext -> <outdir>/<stem>.<ext>` for the source at path (outdir made; default: beside
+    the source)."""
+    stem = os.path.splitext(os.path.basename(path))[0]
+    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
+    os.makedirs(outdir, exist_ok=True)
+    return lambda ext: os.path.join(outdir, f"{stem}.{ext}")
 
 
 def hex_image(words: list[int]) -> str:
@@ -156,16 +160,14 @@ def assemble_parallel(path: str, outdir: str | None = None, config: Config = DEF
     part = partition(program, channels or config.channels, config=config, tc_path=tc_path)
     report = report_text(part)
     view = side_by_side(part)
-    stem = os.path.splitext(os.path.basename(path))[0]
-    outdir = outdir if outdir is not None else (os.path.dirname(path) or ".")
-    os.makedirs(outdir, exist_ok=True)
-    paths = {key: os.path.join(outdir, f"{stem}.{ext}") for key, ext in (
+    out = _output_dir(path, outdir)
+    paths = {key: out(ext) for key, ext in (
         ("bit_hex", "bit.hex"), ("byte_hex", "byte.hex"), ("lst", "lst"),
         ("report", "partition.txt"), ("json", "json"))}
     _write(paths["bit_hex"], hex_image(part.bit_words))
     _write(paths["byte_hex"], hex_image(part.byte_words))
     if part.pool:
-        paths["pool"] = os.path.join(outdir, f"{stem}.pool.hex")
+        paths["pool"] = out("pool.hex")
         _write(paths["pool"], hex_image(part.pool))
     _write(paths["report"], report + "\n" + view)
     _write(paths["lst"], _with_startup_line(report + "\n" + view + part_listing(part),

@@ -39,6 +39,7 @@ from pathlib import Path
 import pytest
 
 from bitbyte.lang.parser import parse
+from bitbyte.lang.program import JUMPS
 from bitbyte.lang.stimulus import parse_stimulus
 from bitbyte.ref.refsim import refsim_trace
 from bitbyte.wide import iss, link, model
@@ -137,7 +138,7 @@ def test_wide_soak_chunk(chunk):
         counts["unit_il"] += sum(u.size for u, _ in live)
         counts["fallbacks"] += c.fallbacks
         counts["pi_units"] += sum(any(x.startswith("PI") for x in u.inputs) for u, _ in live)
-        counts["jump_programs"] += any(ins.mnemonic in ("JU", "JC", "JCN") for ins in p.instrs)
+        counts["jump_programs"] += any(ins.mnemonic in JUMPS for ins in p.instrs)
     # a compiler that falls back everywhere would pass the comparisons: the chunk must
     # have run LUT code, and fallen back rarely (none in the runs so far)
     if counts["lut_words"] == 0 or counts["fallbacks"] * 20 > counts["units"]:

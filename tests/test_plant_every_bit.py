@@ -49,6 +49,11 @@ def bit(i: int) -> str:
     return f"{i // 8}.{i % 8}"
 
 
+def il_text(lines: list[str]) -> str:
+    """Instructions indented, `label:` lines as they are, END appended."""
+    return "".join(x + "\n" if x.endswith(":") else f"  {x}\n" for x in lines) + "  END\n"
+
+
 def every_bit_program() -> str:
     lines = []
     for i in range(IN_BITS):
@@ -75,7 +80,7 @@ def every_bit_program() -> str:
                   f"over{k}:"]
     for k in range(CROSS - 1):
         lines += [f"L IW{k}", f"L IW{k + 1}", ">I", f"= M{bit(8 * CROSS_M + k)}"]
-    return "".join(x + "\n" if x.endswith(":") else f"  {x}\n" for x in lines) + "  END\n"
+    return il_text(lines)
 
 
 def watch_list() -> list[str]:
@@ -236,7 +241,7 @@ def long_program() -> str:
         lines += [f"LD I0.{k % 8}" if k < 8 else f"LD I1.{k - 8}", f"JC skip{k}"]
         lines += ["L IW1", "T MW1"] * (2 ** k // 2 or 1)
         lines += [f"skip{k}:"]
-    return "".join(x + "\n" if x.endswith(":") else f"  {x}\n" for x in lines) + "  END\n"
+    return il_text(lines)
 
 
 def test_long_scans_cycles_through_the_plant(tmp_path):

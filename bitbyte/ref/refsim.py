@@ -469,11 +469,14 @@ class RefSim:
             return False
         return True
 
+    def jump_taken(self, m: str) -> bool:
+        """Whether JU / JC / JCN jumps at the current RLO."""
+        return m == "JU" or (m == "JC" and self.rlo == 1) or (m == "JCN" and self.rlo == 0)
+
     def _jump(self, m: str, op: Operand, pc: int) -> tuple[int, int]:
         """JU / JC / JCN: a taken jump costs DEF.jump_taken_clocks (the instructions
         fetched behind it are squashed), one not taken DEF.bit_clocks."""
-        taken = m == "JU" or (m == "JC" and self.rlo == 1) or (m == "JCN" and self.rlo == 0)
-        if not taken:
+        if not self.jump_taken(m):
             return pc + 1, DEF.bit_clocks
         return self.program.labels[op.label.upper()], DEF.jump_taken_clocks
 

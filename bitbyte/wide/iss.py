@@ -19,17 +19,14 @@ from __future__ import annotations
 from bitbyte.encoding import isa
 from bitbyte.encoding.encoder import constant_pool, encode_instr
 from bitbyte.lang.config import DEFAULT
-from bitbyte.lang.definition import DEF
 from bitbyte.lang.program import Instr
 from bitbyte.lang.trace import trace_columns
 from bitbyte.ref.refsim import RefSim
-from bitbyte.wide.encode import _LOC, ZERO, decode
-from bitbyte.wide.lutmap import _IMAGES
-from bitbyte.wide.link import WideImage, jump_target
+from bitbyte.wide.encode import ZERO, decode
+from bitbyte.wide.model import read_location, write_location
+from bitbyte.wide.link import TARGET, WideImage, jump_target
 from bitbyte.wide.stretch import RLO, cut_reason
 
-LUT = DEF.lut
-_TARGET = DEF.fields["target"]
 _LUT_INSTR = Instr("(LUT word)", None, 0, 0)
 
 
@@ -56,7 +53,7 @@ class ImageSim(RefSim):
             return _LUT_INSTR
         ins = self.program.instrs[src]
         word = encode_instr(self.program, ins, "serial", self.pool)
-        mask = ~(_TARGET.mask << _TARGET.lo) if ins.mnemonic in isa.JUMP_OPS else ~0
+        mask = ~(TARGET.mask << TARGET.lo) if ins.mnemonic in isa.JUMP_OPS else ~0
         if (word ^ self.image.base[pc]) & mask or self.image.ext[pc]:
             raise ImageError(f"address {pc:04X}: word {self.image.base[pc]:08X} is not "
                              f"the encoding of `{ins.mnemonic}` (line {ins.line})")
@@ -64,56 +61,28 @@ class ImageSim(RefSim):
 
     # --- the machine state a LUT word reads and writes ---------------------------------
 
-    def _read_loc(self, x: str, clock: int, pin_clock: int) -> int:
+    def _read_loc(self, x: str, pin_clock: int) -> int:
         if x == ZERO:
             return 0
-        if x == RLO:
-            return self.rlo
         if x.startswith("S") and x[1:].isdigit():
             n = int(x[1:])
             if n not in self.scratch:
                 raise ImageError(f"scratch bit {x} read before a word of its unit wrote it")
             return self.scratch[n]
-        area, n, bit = self._split(x)
-        if area == "PI":
-            return self.pins(pin_clock) >> (8 * n + bit) & 1
-        if area == "T":
-            return self.timer_status(n) & 1
-        if area == "C":
-            return self.counter_status(n) & 1
-        return getattr(self, _IMAGES[area]) >> (8 * n + bit) & 1
+        return read_location(self, x, pin_clock)
 
     def _write_loc(self, x: str, v: int) -> None:
-        if x == RLO:
-            self.rlo = v
-            return
         if x.startswith("S") and x[1:].isdigit():
             self.scratch[int(x[1:])] = v
-            return
-        area, n, bit = self._split(x)
-        if area not in ("Q", "M"):
+        elif x == RLO or x.rstrip("0123456789.") in ("Q", "M"):
+            write_location(self, x, v)
+        else:
             raise ImageError(f"a LUT word writes {x}")
-        attr, b = _IMAGES[area], 8 * n + bit
-        setattr(self, attr, getattr(self, attr) & ~(1 << b) | (v << b))
-
-    @staticmethod
-    def _split(x: str) -> tuple[str, int, int]:
-        m = _LOC.match(x)
-        if not m:
-            raise ImageError(f"no location: {x}")
-        return m.group(1), int(m.group(2)), int(m.group(3) or 0)
 
     # --- one step ---------------------------------------------------------------------
 
     def _step(self, ins, pc, clock):
         if ins is not _LUT_INSTR:
-            if ins.mnemonic in isa.JUMP_OPS:
-                m = ins.mnemonic
-                taken = m == "JU" or (m == "JC") == (self.rlo == 1)
-                _, clocks = super()._step(ins, pc, clock)
-                self._byte_start = None
-                # taken: to the word's target (the source label's address is not used)
-                return (jump_target(self.image.base[pc]) if taken else pc + 1), clocks
             nxt, clocks = super()._step(ins, pc, clock)
             reason = cut_reason(ins)
             self._byte_start = clock if reason in ("byte", "timer/counter") else None
@@ -128,7 +97,7 @@ class ImageSim(RefSim):
             p, is_first, is_last = decode(self.image.base[a], self.image.ext[a])
             if is_first != first:
                 raise ImageError(f"address {a:04X}: first mark {is_first}")
-            vals = [self._read_loc(x, clock + a - pc, pin_clock) for x in p.inputs]
+            vals = [self._read_loc(x, pin_clock) for x in p.inputs]
             index = sum(v << j for j, v in enumerate(vals))
             for dst, table in p.outs:                  # both ports from the same operands
                 self._write_loc(dst, table >> index & 1)
@@ -137,6 +106,13 @@ class ImageSim(RefSim):
                 break
         self.lut_clocks += a - pc
         return a, a - pc
+
+
+    def _jump(self, m, op, pc):
+        """A taken jump goes to its word's target (the source label's address is not
+        used); its cost is the scalar interpreter's."""
+        nxt, clocks = super()._jump(m, op, pc)
+        return (jump_target(self.image.base[pc]) if self.jump_taken(m) else nxt), clocks
 
 
 def image_trace(image: WideImage, config=None, stimulus=None, watch=(),

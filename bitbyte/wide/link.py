@@ -31,7 +31,7 @@ from bitbyte.wide.stretch import RLO
 
 LUT = DEF.lut
 EXT_DIGITS = (LUT.ext_bits + 3) // 4      # hex digits of an extension word
-_TARGET = DEF.fields["target"]
+TARGET = DEF.fields["target"]   # a jump word's target field
 
 
 @dataclass
@@ -59,7 +59,7 @@ class LinkError(RuntimeError):
 
 def jump_target(word: int) -> int:
     """The target field of a jump word (a wide address in the wide image)."""
-    return word >> _TARGET.lo & _TARGET.mask
+    return word >> TARGET.lo & TARGET.mask
 
 
 def link(program: Program, compiled, config: Config = DEFAULT) -> WideImage:
@@ -96,7 +96,7 @@ def link(program: Program, compiled, config: Config = DEFAULT) -> WideImage:
             word = encode_instr(program, ins, "serial", pool)
             if ins.mnemonic in isa.JUMP_OPS:      # the target, relinked
                 target = addr[program.labels[ins.operand.label]]
-                word = word & ~(_TARGET.mask << _TARGET.lo) | target << _TARGET.lo
+                word = word & ~(TARGET.mask << TARGET.lo) | target << TARGET.lo
             base.append(word)
             ext.append(0)
             src.append(p)

@@ -45,6 +45,30 @@ BYTE_SIDE = ("byte", "timer/counter", "end")
 _AREA = re.compile(r"[A-Z]+")
 
 
+def read_location(sim: RefSim, x: str, pin_clock: int) -> int:
+    """A unit's input location in the interpreter's state: the RLO, a PI pin (the pins
+    of pin_clock), a T/C status bit, or a bit of an image."""
+    if x == RLO:
+        return sim.rlo
+    area = _AREA.match(x).group(0)
+    if area == "PI":
+        return (sim.pins(pin_clock) >> L._bit_number(x, area)) & 1
+    if area in ("T", "C"):
+        n = int(x[len(area):])
+        return (sim.timer_status(n) if area == "T" else sim.counter_status(n)) & 1
+    return (getattr(sim, L._IMAGES[area]) >> L._bit_number(x, area)) & 1
+
+
+def write_location(sim: RefSim, x: str, v: int) -> None:
+    """A unit's output location: the RLO or a bit of an image (M, Q)."""
+    if x == RLO:
+        sim.rlo = v
+        return
+    area = _AREA.match(x).group(0)
+    attr, b = L._IMAGES[area], L._bit_number(x, area)
+    setattr(sim, attr, getattr(sim, attr) & ~(1 << b) | (v << b))
+
+
 @dataclass
 class Compiled:
     """A program split into units, each with its checked LUT program (None: it runs
@@ -98,23 +122,10 @@ class WideRefSim(RefSim):
         self._byte_start: int | None = None   # the last step, if a byte instruction: its clock
 
     def _get(self, x: str, clock: int) -> int:
-        if x == RLO:
-            return self.rlo
-        area = _AREA.match(x).group(0)
-        if area == "PI":        # a direct pin read: the pins of `clock`
-            return (self.pins(clock) >> L._bit_number(x, area)) & 1
-        if area in ("T", "C"):
-            n = int(x[len(area):])
-            return self.timer_status(n) if area == "T" else self.counter_status(n)
-        return (getattr(self, L._IMAGES[area]) >> L._bit_number(x, area)) & 1
+        return read_location(self, x, clock)
 
     def _set(self, x: str, v: int) -> None:
-        if x == RLO:
-            self.rlo = v
-            return
-        area = _AREA.match(x).group(0)
-        attr, b = L._IMAGES[area], L._bit_number(x, area)
-        setattr(self, attr, getattr(self, attr) & ~(1 << b) | (v << b))
+        write_location(self, x, v)
 
     def pin_clock(self, clock: int) -> int:
         """The clock whose pins a unit starting at `clock` reads (once, for all its
