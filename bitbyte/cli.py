@@ -234,6 +234,10 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--costs", default="paper", metavar="TABLE",
                    help="byte processor cost table, in bit-processor clocks per "
                         "instruction: paper (S7-315-2DP weights, default) or c320")
+    r.add_argument("--bit-engine", choices=["scalar", "wide"], default="scalar",
+                   help="the bit processor's engine (spec section 4): scalar (default); "
+                        "wide is assembled by `asm --bit-engine wide` but has no RTL yet, "
+                        "so run refuses it")
     _source_options(r)
 
     k = sub.add_parser("link", formatter_class=_FORMAT,
@@ -388,6 +392,9 @@ def cmd_alloc(args) -> int:
 
 
 def cmd_run(args) -> int:
+    if args.bit_engine == "wide":
+        raise UsageError("--bit-engine wide: the wide engine has no RTL yet (issue 18); "
+                         "`bitbyte asm --bit-engine wide` writes its image")
     if args.program.lower().endswith(".toml"):
         return cmd_run_plant(args)
 

@@ -253,6 +253,17 @@ def test_asm_bit_engine_wide_writes_the_image(tmp_path):
     assert "LUT word 1/" in lst and ":=" in lst
 
 
+def test_run_takes_bit_engine_and_refuses_wide_for_now(tmp_path):
+    """spec §4: `run --bit-engine scalar|wide`; scalar is today's run, wide has no RTL."""
+    src = tmp_path / "p.il"
+    src.write_text("LD I0.0\n= Q0.0\nEND\n")
+    run = [sys.executable, "-m", "bitbyte.cli", "run", str(src), "--scans", "2"]
+    ok = subprocess.run(run + ["--bit-engine", "scalar"], capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stderr
+    wide = subprocess.run(run + ["--bit-engine", "wide"], capture_output=True, text=True)
+    assert wide.returncode == 2 and "no RTL yet" in wide.stderr and "Traceback" not in wide.stderr
+
+
 @pytest.mark.parametrize("args,message", [
     (("--mode", "parallel"), "serial mode only"),
     (("--profile", "hx8k"), "ECP5-25"),
