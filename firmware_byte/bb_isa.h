@@ -43,6 +43,7 @@
 #define BB_COUNT_FROM_ACCU2     0x800u /* shifts: the count is ACCU2's low byte, not index n */
 #define BB_LUT_TAG_SHIFT        30     /* a word whose bits from here are BB_LUT_TAG_VALUE: a LUT word */
 #define BB_LUT_TAG_VALUE        1u     /* (the wide engine, docs/wide-rtl-plan.md) */
+#define BB_LUT_EXT_BITS         144    /* a LUT word's extension word (prog_ext_wdata_i) */
 
 /* Byte-instruction opcodes (docs/isa.md, "Byte instructions"). */
 #define BB_OP_L_IMM             0x80u  /* L# */

@@ -45,7 +45,10 @@ module bit_proc #(
   parameter integer StatusBits  = 64,    // timers and counters each (T, C)
   parameter integer Channels    = 4,     // exchange channels (FBI, FBY)
   parameter integer NestDepth   = 8,     // parenthesis levels
-  parameter integer Cells       = 128    // marker area cells per direction (FBI/FBY k)
+  parameter integer Cells       = 128,   // marker area cells per direction (FBI/FBY k)
+  parameter integer BitEngine   = 0,     // 0: scalar (one IL instruction a clock); 1: wide
+                                         // (LUT words, issue 18; docs/wide-rtl-plan.md)
+  parameter integer LutWords    = ProgWords  // wide: extension words (LUT words at 0..LutWords-1)
 ) (
   input  wire                         clk_i,
   input  wire                         rst_ni,
@@ -53,6 +56,7 @@ module bit_proc #(
   input  wire                         prog_we_i,
   input  wire [$clog2(ProgWords)-1:0] prog_waddr_i,
   input  wire [31:0]                  prog_wdata_i,
+  input  wire [`LUT_EXT_BITS-1:0]     prog_ext_wdata_i, // a LUT word's extension (wide; else unused)
   // scan control
   input  wire                         start_i,     // the next clock starts a scan
   input  wire                         latch_i,     // this clock starts a scan
@@ -174,6 +178,16 @@ module bit_proc #(
   `PARAM_CHECK(g_bad_nest_depth, NestDepth < 1, "bit_proc: NestDepth must be at least 1")
   `PARAM_CHECK(g_bad_cells, Cells < 2 || Cells > 4096,
                "bit_proc: Cells must be 2..4096 (12-bit operand index)")
+  `PARAM_CHECK(g_bad_bit_engine, BitEngine != 0 && BitEngine != 1,
+               "bit_proc: BitEngine must be 0 (scalar) or 1 (wide)")
+  // A LUT word's operand and destination index is 11 bits (`LUT_OPND_INDEX`); its
+  // extension RAM is addressed with the low bits of the program address.
+  `PARAM_CHECK(g_bad_lut_words, BitEngine == 1 && (LutWords < 2 || LutWords > ProgWords ||
+                                                   (LutWords & (LutWords - 1)) != 0),
+               "bit_proc: LutWords must be a power of two in 2..ProgWords")
+  `PARAM_CHECK(g_bad_wide_sizes, BitEngine == 1 && (InBits > 2048 || OutBits > 2048 ||
+                                                    MarkerBits > 2048 || StatusBits > 2048),
+               "bit_proc: the wide engine's operands index at most 2048 bits an area")
 
   // ---------------------------------------------------------------- fetch / decode
   reg  [PcW-1:0] d_pc_q;        // address of the word now leaving the program RAM
@@ -212,6 +226,41 @@ module bit_proc #(
     .peek_data_o(unused_prog_peek)
   );
   wire d_is_end = d_valid_q && d_instr[23] && !d_instr[24 + `OP_BYTE_BIT];
+
+  // ---------------------------------------------------------------- LUT words (wide)
+  // The wide engine (BitEngine 1; docs/wide-rtl-plan.md): an address holds the base
+  // word above and an extension word in a RAM of its own, written with it and read
+  // with the same address and enable, so that both leave their RAMs in the same clock
+  // and fetch, jumps and END stay the scalar engine's. A LUT word's base word (tag 01:
+  // opcodes 0x40..0x7F, which the scalar decode below knows nothing of, bit 23 0, area
+  // field 0) passes the pipeline as a NOP, one clock; its execution is slice S6.
+  // The scalar build has no extension RAM and leaves the port unused.
+  wire [`LUT_EXT_BITS-1:0] d_ext;       // the extension word of d_instr
+  generate if (BitEngine == 1) begin : g_ext
+    localparam integer LwW = $clog2(LutWords);
+    // verilator lint_off UNUSEDSIGNAL
+    wire [`LUT_EXT_BITS-1:0] unused_ext_peek;   // no host looks at it
+    // verilator lint_on UNUSEDSIGNAL
+    sync_ram #(.Words(LutWords), .Width(`LUT_EXT_BITS)) u_ext_ram (
+      .clk_i      (clk_i),
+      .we_i       (prog_we_i && (prog_waddr_i >> LwW) == 0),  // no LUT word above
+      .waddr_i    (prog_waddr_i[LwW-1:0]),
+      .wdata_i    (prog_ext_wdata_i),
+      .re_i       (d_move),
+      .raddr_i    (fetch_addr[LwW-1:0]),   // a scalar word above: its word is not used
+      .rdata_o    (d_ext),
+      .peek_addr_i({LwW{1'b0}}),
+      .peek_data_o(unused_ext_peek)
+    );
+  end else begin : g_scalar
+    assign d_ext = {`LUT_EXT_BITS{1'b0}};
+    // verilator lint_off UNUSEDSIGNAL
+    wire unused_ext_port = ^prog_ext_wdata_i;
+    // verilator lint_on UNUSEDSIGNAL
+  end endgenerate
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_d_ext = ^d_ext;           // S4: LUT words are NOPs
+  // verilator lint_on UNUSEDSIGNAL
 
   // ---------------------------------------------------------------- operand stage
   reg  [31:0]    o_instr_q;

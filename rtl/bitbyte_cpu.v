@@ -1,5 +1,6 @@
 `default_nettype none
 `include "param_check.vh"
+`include "bit_isa.vh"
 // One bit-byte CPU, the FPGA part: bit processor, scan controller, binary I/O units,
 // the exchange circuits (buffered condition flip-flops, timer/counter status buffer,
 // serial dispatch) and the byte-side port through which the byte processor (a
@@ -19,7 +20,9 @@ module bitbyte_cpu #(
   parameter integer NestDepth   = 8,     // parenthesis nesting levels
   parameter integer InWords     = 16,    // word inputs IW n (analog)
   parameter integer OutWords    = 16,    // word outputs QW n (analog)
-  parameter integer ForceBits   = 128    // I / Q bits 0..ForceBits-1 can be forced (force_table.v; 1..128)
+  parameter integer ForceBits   = 128,   // I / Q bits 0..ForceBits-1 can be forced (force_table.v; 1..128)
+  parameter integer BitEngine   = 0,     // bit processor: 0 scalar, 1 wide (LUT words; bit_proc.v)
+  parameter integer LutWords    = ProgWords  // wide: LUT words at addresses 0..LutWords-1
 ) (
   input  wire                         clk_i,
   input  wire                         rst_ni,
@@ -27,6 +30,7 @@ module bitbyte_cpu #(
   input  wire                         prog_we_i,
   input  wire [$clog2(ProgWords)-1:0] prog_waddr_i,
   input  wire [31:0]                  prog_wdata_i,
+  input  wire [`LUT_EXT_BITS-1:0]     prog_ext_wdata_i,  // its extension word (wide; else unused)
   // control and status
   input  wire                         run_i,             // RUN/STOP switch
   input  wire                         time_start_i,      // plant: its clock 0 starts the time base
@@ -224,13 +228,16 @@ module bitbyte_cpu #(
     .StatusBits(StatusBits),
     .Channels  (Channels),
     .NestDepth (NestDepth),
-    .Cells     (MarkerCells)
+    .Cells     (MarkerCells),
+    .BitEngine (BitEngine),
+    .LutWords  (LutWords)
   ) u_bit_proc (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
     .prog_we_i       (prog_we_i),
     .prog_waddr_i    (prog_waddr_i),
     .prog_wdata_i    (prog_wdata_i),
+    .prog_ext_wdata_i(prog_ext_wdata_i),
     .start_i         (start),
     .latch_i         (latch),
     .exec_i          (exec),

@@ -1,5 +1,6 @@
 `default_nettype none
 `include "param_check.vh"
+`include "bit_isa.vh"
 // One core of a multi-core plant (docs/multicore.md): a complete bit-byte CPU, its
 // word markers MW in a RAM the byte processor reaches over the bus (bus addresses
 // 0x100 + n, so that the copy engine can reach them too), and the core sequencer
@@ -173,6 +174,7 @@ module plc_core #(
     .prog_we_i            (prog_we_i),
     .prog_waddr_i         (prog_waddr_i),
     .prog_wdata_i         (prog_wdata_i),
+    .prog_ext_wdata_i     ({`LUT_EXT_BITS{1'b0}}),  // a plant core is scalar
     .run_i                (cpu_run),
     .time_start_i         (run_i),                // timers on plant time
     .parallel_i           (parallel_i),

@@ -41,6 +41,10 @@ static const char* const kWaveExt = "";
 
 #include "harness_common.h"
 
+#ifndef BB_BIT_ENGINE
+#define BB_BIT_ENGINE 0   // the scalar build (harness_wide.cpp: the wide one)
+#endif
+
 // ------------------------------------------------------------------ the DUT
 // The port widths the harness relies on, checked against the generated build sizes.
 static_assert(sizeof(Vbitbyte_cpu::in_pins_i) * 8 == kInPins, "in_pins_i: InBytes * 8");
@@ -482,10 +486,21 @@ int main(int argc, char** argv) {
   top.eval();
   if (d.wave) d.wave->dump(0);
   d.tick();
+  // the wide image's extension words (a LUT word's tables and operands), written with
+  // their base words; every other word's is 0
+  constexpr unsigned kExtLimbs = (BB_LUT_EXT_BITS + 31) / 32;
+  std::map<uint32_t, HexWord> ext;
+  if (!rf.prog_ext.empty()) {
+    if (!BB_BIT_ENGINE) die("prog_ext: this harness is the scalar build (make harness-wide builds the wide one)");
+    for (auto& [a, v] : read_hex_limbs(rf.prog_ext, prog_words, kExtLimbs)) ext[a] = v;
+  }
   for (auto [a, w] : image) {  // one word per clock, under reset
     top.prog_we_i = 1;
     top.prog_waddr_i = a;
     top.prog_wdata_i = w;
+    const auto e = ext.find(a);
+    for (unsigned l = 0; l < kExtLimbs; ++l)
+      top.prog_ext_wdata_i[l] = e == ext.end() ? 0u : e->second[l];
     d.tick();
   }
   top.prog_we_i = 0;

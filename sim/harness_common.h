@@ -137,6 +137,7 @@ struct Progress {
 
 struct RunFile {
   std::string prog, trace, waves, gtkw = "sim/bitbyte.gtkw";
+  std::string prog_ext;       // the wide image's extension words (.ext.hex; wide harness)
   uint64_t clock_hz = 100000000, watchdog = 100000;
   int64_t scans = -1, until_clock = -1;                          // -1: not given
   uint64_t until_min_scans = 0;  // until_clock counts from this many scans on (startup)
@@ -197,6 +198,7 @@ static bool parse_run_key(RunFile& rf, const std::vector<std::string>& w,
   const std::string& k = w[0];
   auto want = [&](size_t n) { if (w.size() != n + 1) die("'%s' takes %zu value(s)", k.c_str(), n); };
   if (k == "prog")             { want(1); rf.prog = w[1]; }
+  else if (k == "prog_ext")    { want(1); rf.prog_ext = w[1]; }
   else if (k == "trace")       { want(1); rf.trace = w[1]; }
   else if (k == "waves")       { want(1); rf.waves = w[1]; }
   else if (k == "gtkw")        { want(1); rf.gtkw = w[1]; }
@@ -327,11 +329,14 @@ static void check_run(const RunFile& rf, bool need_stop) {
   if (rf.stim_kind == "none" && !rf.stim.empty()) die("stim rows with stim_kind none");
 }
 
-// $readmemh subset: hex words separated by white space, // comments, @ADDR jumps.
-static std::vector<std::pair<uint32_t, uint32_t>> read_hex(const std::string& path, uint32_t words) {
+// $readmemh subset: hex words separated by white space, // comments, @ADDR jumps; a
+// word of up to `limbs` x 32 bits, least significant limb first.
+using HexWord = std::vector<uint32_t>;
+static std::vector<std::pair<uint32_t, HexWord>> read_hex_limbs(const std::string& path,
+                                                                uint32_t words, unsigned limbs) {
   std::ifstream in(path);
   if (!in) die("cannot open program %s", path.c_str());
-  std::vector<std::pair<uint32_t, uint32_t>> image;  // (address, word), in file order
+  std::vector<std::pair<uint32_t, HexWord>> image;  // (address, word), in file order
   uint32_t addr = 0;
   std::string line;
   for (int lineno = 1; std::getline(in, line); ++lineno) {
@@ -339,20 +344,28 @@ static std::vector<std::pair<uint32_t, uint32_t>> read_hex(const std::string& pa
     std::istringstream ls(line);
     for (std::string t; ls >> t;) {
       bool jump = (t[0] == '@');
-      uint64_t v = 0;
+      HexWord v(limbs, 0);
       unsigned digits = 0;
       for (size_t i = jump; i < t.size(); ++i) {
         if (t[i] == '_') continue;
         const int d = hex_digit(t[i]);
         if (d < 0) die("%s:%d: bad hex '%s'", path.c_str(), lineno, t.c_str());
-        v = v * 16 + unsigned(d);
-        if (++digits > 8) die("%s:%d: '%s' wider than 32 bits", path.c_str(), lineno, t.c_str());
+        if (++digits > 8 * (jump ? 1 : limbs))
+          die("%s:%d: '%s' wider than %u bits", path.c_str(), lineno, t.c_str(), 32 * (jump ? 1 : limbs));
+        for (unsigned l = limbs; l-- > 1;) v[l] = v[l] << 4 | v[l - 1] >> 28;   // v = v*16 + d
+        v[0] = v[0] << 4 | unsigned(d);
       }
-      if (jump) { addr = uint32_t(v); continue; }
+      if (jump) { addr = v[0]; continue; }
       if (addr >= words) die("%s:%d: program longer than %u words", path.c_str(), lineno, words);
-      image.push_back({addr++, uint32_t(v)});
+      image.push_back({addr++, v});
     }
   }
+  return image;
+}
+
+static std::vector<std::pair<uint32_t, uint32_t>> read_hex(const std::string& path, uint32_t words) {
+  std::vector<std::pair<uint32_t, uint32_t>> image;
+  for (auto& [a, v] : read_hex_limbs(path, words, 1)) image.push_back({a, v[0]});
   return image;
 }
 

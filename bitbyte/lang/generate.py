@@ -210,6 +210,8 @@ def c_isa(d: Definition) -> str:
                "a word whose bits from here are BB_LUT_TAG_VALUE: a LUT word"),
          _cdef("BB_LUT_TAG_VALUE", f"{d.lut.tag_value}u",
                "(the wide engine, docs/wide-rtl-plan.md)"),
+         _cdef("BB_LUT_EXT_BITS", str(d.lut.ext_bits),
+               "a LUT word's extension word (prog_ext_wdata_i)"),
          "", "/* Byte-instruction opcodes (docs/isa.md, \"Byte instructions\"). */"]
     for op in d.byte_opcode_rows:
         b.append(_cdef(op.c, _h(op.value), op.mnemonic

@@ -59,6 +59,9 @@ class RunJob:
     # scans the hardware runs before scan 0 that are no scans of the trace (an S7
     # source's OB 100); bitbyte.run.startup.hardware_job adds them
     startup_scans: int = 0
+    # the wide bit engine's image (issue 18): its extension words, one per address of
+    # prog (0 for a scalar word); None: a scalar image, run on the scalar build
+    prog_ext: list[int] | None = None
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -68,12 +71,15 @@ class RunJob:
         return cls(**data)
 
     def to_harness_text(self, prog_path: str, trace_path: str, waves: str | None,
-                        byte_prog_path: str | None = None) -> str:
+                        byte_prog_path: str | None = None,
+                        prog_ext_path: str | None = None) -> str:
         lines = [f"prog {prog_path}", f"clock_hz {self.clock_hz}",
                  f"watchdog {self.watchdog}", f"mode {self.mode}",
                  f"exchange {self.exchange}"]
         if byte_prog_path:
             lines.append(f"byte_prog {byte_prog_path}")
+        if prog_ext_path:
+            lines.append(f"prog_ext {prog_ext_path}")
         if self.marker_write_buffer:
             lines.append("marker_write_buffer 1")
         if self.scans is not None:

@@ -16,9 +16,12 @@ from bitbyte.lang.errors import SimError
 from bitbyte.lang.trace import read_trace_rows, write_trace
 from bitbyte.run.startup import hardware_job, startup_cycles, traced
 from bitbyte.run.summary import RunStats, parse_block_status, parse_line_counts, parse_stats
+from bitbyte.wide.link import hex_ext
 
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS = ROOT / "sim" / "build" / "Vbitbyte_cpu"
+# the wide bit engine's build (BitEngine=1, `make harness-wide`): runs a wide image
+HARNESS_WIDE = ROOT / "sim" / "build" / "wide" / "Vbitbyte_cpu"
 HARNESS_WATCHDOG = 3      # the harness's exit status when the scan watchdog stopped a run
 GTKW = ROOT / "sim" / "bitbyte.gtkw"   # the waveform layout beside its waves
 
@@ -28,19 +31,24 @@ def harness_period_ps(clock_hz: int) -> int:
     return max(2, (10 ** 12 + clock_hz // 2) // clock_hz)
 
 
-def ensure_harness() -> Path:
-    """Build sim/build/Vbitbyte_cpu through the Makefile when it is missing or stale;
-    BITBYTE_HARNESS names another, built already (mutation/run_mutate.py's mutants)."""
-    if os.environ.get("BITBYTE_HARNESS"):
-        return Path(os.environ["BITBYTE_HARNESS"])
-    HARNESS.parent.mkdir(parents=True, exist_ok=True)
+def ensure_harness(wide: bool = False) -> Path:
+    """Build sim/build/Vbitbyte_cpu (wide: the wide bit engine's build,
+    sim/build/wide/) through the Makefile when it is missing or stale;
+    BITBYTE_HARNESS (BITBYTE_HARNESS_WIDE) names another, built already
+    (mutation/run_mutate.py's mutants)."""
+    given = os.environ.get("BITBYTE_HARNESS_WIDE" if wide else "BITBYTE_HARNESS")
+    if given:
+        return Path(given)
+    harness = HARNESS_WIDE if wide else HARNESS
+    harness.parent.mkdir(parents=True, exist_ok=True)
     with open(HARNESS.parent / ".lock", "w") as lock:   # concurrent runs build once
         fcntl.flock(lock, fcntl.LOCK_EX)
-        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "harness"],
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT),
+                               "harness-wide" if wide else "harness"],
                               capture_output=True, text=True)
-    if proc.returncode != 0 or not HARNESS.exists():
+    if proc.returncode != 0 or not harness.exists():
         raise SimError("building the Verilator harness failed:\n" + proc.stdout + proc.stderr)
-    return HARNESS
+    return harness
 
 
 def progress_fd() -> tuple[int, int] | None:
@@ -57,7 +65,7 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
     """Run `job`; returns (records, watchdog fault?, RunStats).  trace: where the
     harness writes the trace CSV (else a temporary file; with startup scans it is
     written here, without them); waves: FST/VCD."""
-    harness = ensure_harness()
+    harness = ensure_harness(wide=job.prog_ext is not None)
     user_job, job = job, hardware_job(job)
     with tempfile.TemporaryDirectory(prefix="bitbyte-") as tmp:
         hex_path = Path(tmp) / "prog.hex"
@@ -72,8 +80,13 @@ def run_harness(job, columns, trace: str | None = None, waves: str | None = None
         if job.mode in ("parallel", "free"):
             byte_path = Path(tmp) / "byte.hex"
             byte_path.write_text("".join(f"{w:08x}\n" for w in job.byte_prog))
+        ext_path = None
+        if job.prog_ext is not None:     # the wide image's extension words
+            ext_path = Path(tmp) / "prog.ext.hex"
+            ext_path.write_text(hex_ext(job.prog_ext))
         text = job.to_harness_text(str(hex_path), str(trace_path), waves,
-                                   str(byte_path) if byte_path else None)
+                                   str(byte_path) if byte_path else None,
+                                   str(ext_path) if ext_path else None)
         progress = progress_fd()
         if progress is not None:
             text += f"progress {progress[0]} {progress[1]}\n"
