@@ -233,8 +233,10 @@ module bit_proc #(
   // with the same address and enable, so that both leave their RAMs in the same clock
   // and fetch, jumps and END stay the scalar engine's. A LUT word's base word (tag 01:
   // opcodes 0x40..0x7F, which the scalar decode below knows nothing of, bit 23 0, area
-  // field 0) passes the pipeline as a NOP, one clock; its execution is slice S6.
-  // The scalar build has no extension RAM and leaves the port unused.
+  // field 0) passes the scalar decode as a NOP; in execute, lut_unit.v (g_lut, at the
+  // end) reads its operands and evaluates its tables, and its one bit write goes
+  // through the scalar write ports below (M, Q, RLO). It never waits: a unit's words
+  // run one a clock. The scalar build has neither and leaves the port unused.
   wire [`LUT_EXT_BITS-1:0] d_ext;       // the extension word of d_instr
   generate if (BitEngine == 1) begin : g_ext
     localparam integer LwW = $clog2(LutWords);
@@ -258,9 +260,8 @@ module bit_proc #(
     wire unused_ext_port = ^prog_ext_wdata_i;
     // verilator lint_on UNUSEDSIGNAL
   end endgenerate
-  // verilator lint_off UNUSEDSIGNAL
-  wire unused_d_ext = ^d_ext;           // S4: LUT words are NOPs
-  // verilator lint_on UNUSEDSIGNAL
+  wire e_lut;                           // a LUT word is in execute (0: scalar build)
+  wire lut_res_a;                       // its table A's result (port A's write)
 
   // ---------------------------------------------------------------- operand stage
   reg  [31:0]    o_instr_q;
@@ -417,7 +418,8 @@ module bit_proc #(
   wire [MW-1:0] m_waddr = clearing ? clear_addr_q[MW-1:0] :
                           copy_en_i ? copy_addr_i : e_instr_q[MW-1:0];
   wire          target_val;
-  wire          m_wdata = clearing ? 1'b0 : copy_en_i ? copy_wdata_i : target_val;
+  wire          wr_val;                 // the target's value (a LUT word's: table A)
+  wire          m_wdata = clearing ? 1'b0 : copy_en_i ? copy_wdata_i : wr_val;
   wire [MW-1:0] m_raddr = copy_en_i ? copy_addr_i : d_instr[MW-1:0];
   assign copy_rdata_o = m_rdata;
 
@@ -470,11 +472,19 @@ module bit_proc #(
   // them waits (a write to FBY goes through the channel, fby_write above).
   wire target_we = e_act && (e_assign_q || e_edge_q || ((e_setbit_q || e_rstbit_q) && rlo_o));
   assign target_val  = e_setbit_q ? 1'b1 : e_rstbit_q ? 1'b0 : rlo_o;
-  assign m_target_we = target_we && e_on_m_q;
+  // a LUT word's port A writes its destination (M, Q, the RLO, a scratch bit) with
+  // table A; its index sits where a scalar instruction's does
+  wire       lut_done   = e_done && e_lut;
+  wire [3:0] lut_dst    = e_instr_q[`LUT_DST_AREA];
+  wire       lut_wr_m   = lut_done && (lut_dst == `AREA_M);
+  wire       lut_wr_q   = lut_done && (lut_dst == `AREA_Q);
+  wire       lut_wr_rlo = lut_done && (lut_dst == `LAREA_RLO);
+  assign wr_val      = e_lut ? lut_res_a : target_val;
+  assign m_target_we = (target_we && e_on_m_q) || lut_wr_m;
 
-  assign out_wr_en_o     = target_we && e_on_q_q;
+  assign out_wr_en_o     = (target_we && e_on_q_q) || lut_wr_q;
   assign out_wr_idx_o    = e_instr_q[$clog2(OutBits)-1:0];
-  assign out_wr_val_o    = target_val;
+  assign out_wr_val_o    = wr_val;
   assign out_wr_direct_o = e_on_pq_q;
 
   // ---------------------------------------------------------------- operand select
@@ -649,7 +659,7 @@ module bit_proc #(
     end else if (w_busy) begin
       if (w_rlo_we) rlo_o <= w_rlo;
     end else if (e_done) begin
-      rlo_o <= rlo_d;
+      rlo_o <= lut_wr_rlo ? lut_res_a : rlo_d;
       // The assembler bounds the nesting; the stack saturates rather than wraps.
       if (e_end_q) begin
         sp_q <= {SpW{1'b0}};              // ... and with an empty stack
@@ -817,6 +827,64 @@ module bit_proc #(
       ret_opnd_o  <= w_busy ? (w_fwait_q && w_fbr_q && w_fb_bit) : e_opnd_eff;
     end
   end
+
+  // ---------------------------------------------------------------- LUT words (wide)
+  // The wide build's LUT word in execute: lut_unit.v picks its operands there and
+  // evaluates its tables; the writes are the ports above (M, Q, RLO) and the scratch
+  // file's (port A with area S, port B).
+  generate if (BitEngine == 1) begin : g_lut
+    wire o_lut = o_instr_q[`LUT_TAG] == `LUT_TAG_VALUE;
+    reg  e_lut_q;
+    // verilator lint_off UNUSEDSIGNAL
+    wire lut_res_b;
+    // verilator lint_on UNUSEDSIGNAL
+    always @(posedge clk_i or negedge rst_ni)
+      if (!rst_ni) e_lut_q <= 1'b0;
+      else if (e_load) e_lut_q <= o_lut;
+    assign e_lut = e_lut_q;
+    lut_unit #(
+      .InBits    (InBits),
+      .OutBits   (OutBits),
+      .MarkerBits(MarkerBits),
+      .StatusBits(StatusBits)
+    ) u_lut (
+      .clk_i           (clk_i),
+      .rst_ni          (rst_ni),
+      .d_ext_i         (d_ext),
+      .o_move_i        (o_move),
+      .o_first_i       (o_first_q),
+      .e_load_i        (e_load),
+      .o_unit_first_i  (o_lut && o_instr_q[`LUT_FIRST]),
+      .m_we_i          (m_we),
+      .m_waddr_i       (m_waddr),
+      .m_wdata_i       (m_wdata),
+      .lw_we_i         (lw_we_q),
+      .lw_addr_i       (lw_addr_q),
+      .lw_val_i        (lw_val_q),
+      .pins_i          (pins_i),
+      .pii_i           (pii_i),
+      .rise_i          (rise_i),
+      .fall_i          (fall_i),
+      .pio_i           (pio_i),
+      .q_rise_i        (q_rise_i),
+      .q_fall_i        (q_fall_i),
+      .timer_status_i  (timer_status_i),
+      .counter_status_i(counter_status_i),
+      .rlo_i           (rlo_o),
+      .scr_a_we_i      (lut_done && (lut_dst == `LAREA_S)),
+      .scr_a_idx_i     (e_instr_q[4:0]),
+      .scr_b_we_i      (lut_done && e_instr_q[`LUT_SCR_EN]),
+      .scr_b_idx_i     (e_instr_q[`LUT_SCR_INDEX]),
+      .res_a_o         (lut_res_a),
+      .res_b_o         (lut_res_b)      // port B: the scratch file's write, inside
+    );
+  end else begin : g_no_lut
+    assign e_lut     = 1'b0;
+    assign lut_res_a = 1'b0;
+    // verilator lint_off UNUSEDSIGNAL
+    wire unused_lut = ^d_ext;
+    // verilator lint_on UNUSEDSIGNAL
+  end endgenerate
 
   // Reserved instruction bits and the upper index bits of narrow areas are unused;
     // verilator lint_off UNUSEDSIGNAL

@@ -1,20 +1,26 @@
 """The wide bit engine's RTL on the Verilator harness (issue 18, docs/wide-rtl-plan.md).
 
-Slice S4, the scaffolding: `bitbyte_cpu #(.BitEngine(1))` holds the extension RAM
-beside the program RAM and loads a wide image's extension words (`prog_ext` in the
-harness's run file, `make harness-wide`); its LUT words pass the pipeline as NOPs, one
-clock each, until slice S6 executes them. Checked here against independent models:
+`bitbyte_cpu #(.BitEngine(1))` (`make harness-wide`) loads a wide image (base words
+and the extension words of its LUT words, `prog_ext` in the run file) and runs a LUT
+word a clock: rtl/lut_unit.v picks its operands in execute and evaluates its tables,
+bit_proc.v writes port A's bit (M, Q, the RLO) through its scalar write ports. Checked
+against independent models:
 
-* the wide build runs a scalar image (every extension word 0) exactly as the scalar
-  build does: every column, `cycles` and the end clock (`t_us`) of every scan, timers included (the
-  scalar engine inside the wide build is untouched);
-* a wide image with LUT words (units of the regression's random programs, the 64-bit
-  adder) runs as the image interpreter (bitbyte/wide/iss.py) runs it when a LUT word
-  is a one-clock NOP: every column and `cycles` (so a LUT word costs one clock, never
-  looks like END, a jump or a wait, and every relinked jump lands where the image
-  says);
-* the scalar build refuses an extension file (a wide image on the scalar build would
-  run its units as NOPs without a word).
+* the image interpreter (bitbyte/wide/iss.py, which runs the image's words as the
+  linker wrote them): every column and `cycles` of every scan equal, under scan
+  stimuli (random programs: bit-only with jumps, REFRESH, parentheses, edges, PI/PQ;
+  mixed ones with timers, counters and words, units behind byte instructions; with
+  `label: NOP` lines) and under pins changing in every clock (the clock a unit samples
+  its PI pins in, and where a blocked first word reads what);
+* the scalar engine (spec §4 `--bit-engine`): on timer-free programs under scan
+  stimuli every column but `cycles` and `t_us` equals the scalar build's;
+* the 64-bit adder's sums, read from the trace, are the integer sums of its pins, at
+  one clock a word (its 900 IL in 88 clocks);
+* the wide build runs a scalar image exactly as the scalar build does, `t_us`
+  included, and the scalar build refuses an extension file.
+Shown failing (docs/wide-engine.md): the PI snapshot taken per word, the forwarding of
+a marker write in the operand clock dropped, a held word's marker value not kept, a
+truth-table bit flipped in the image.
 """
 from __future__ import annotations
 
@@ -27,23 +33,14 @@ import pytest
 import randprog
 from bitbyte.lang.errors import SimError
 from bitbyte.run.prepare import prepare
-from bitbyte.sim.verilator import run_harness
+from bitbyte.sim.verilator import ensure_harness, run_harness
 from bitbyte.wide import iss, link, model
-from test_wide_model import adder_il, with_label_nops
+from test_wide_image import dense_stimulus
+from test_wide_model import _adder_stimulus, _operands, adder_il, with_label_nops
 
 PROGRAMS = int(os.environ.get("BITBYTE_WIDE_RTL_PROGRAMS", "24"))
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
-
-
-class NopLutImageSim(iss.ImageSim):
-    """The image interpreter with every LUT word a one-clock NOP (slice S4's RTL)."""
-
-    def _step(self, ins, pc, clock):
-        if ins is iss._LUT_INSTR:
-            self._byte_start = None
-            return pc + 1, 1
-        return super()._step(ins, pc, clock)
 
 
 def _prepared(tmp_path, name, text, stim, watch):
@@ -70,8 +67,78 @@ def _cases(kinds):
         else:                       # timers stripped, `label: NOP` lines put in
             text = with_label_nops(randprog.strip_timers(randprog.random_mixed_program(seed)),
                                    random.Random(seed))
-        out.append((f"p{k}", text, randprog.scan_stimulus(seed, SCANS)))
+        out.append((f"p{k}{kind[0]}", text, randprog.scan_stimulus(seed, SCANS)))
     return out
+
+
+def _image_rows(prep, image, scans=SCANS):
+    sim = iss.ImageSim(image, prep.config, prep.stimulus, prep.job.watchdog, prep.columns)
+    return _rows(sim.run(scans), prep.columns), sim
+
+
+def _run_image(prep, image):
+    job = dataclasses.replace(prep.job, prog=image.base, prog_ext=image.ext)
+    got, fault, _ = run_harness(job, prep.columns)
+    return _rows(got, prep.columns), fault
+
+
+def _compiled(preps):
+    return [link.link(p.program, c)
+            for p, c in zip(preps, model.compile_programs([p.program for p in preps]))]
+
+
+def test_random_images_run_as_the_image_interpreter(tmp_path):
+    """Every column and `cycles`, scan stimuli; the timer-free ones also every column
+    of the scalar build (spec §4)."""
+    cases = _cases(["bit", "nops", "mixed"])
+    preps = [_prepared(tmp_path, name, text, stim, randprog.FULL_WATCH)
+             for name, text, stim in cases]
+    bad, scalar_bad, lut_words, faults = [], [], 0, 0
+    for prep, (name, text, _), image in zip(preps, cases, _compiled(preps)):
+        got, fault = _run_image(prep, image)
+        want, sim = _image_rows(prep, image)
+        if (fault, got) != (sim.watchdog_fault, want):
+            bad.append(name)
+        faults += fault
+        lut_words += sim.lut_clocks
+        if not name.endswith("m"):          # no timers: the scalar build's trace too
+            scalar, sfault, _ = run_harness(prep.job, prep.columns)
+            if (sfault, [r[::2] for r in _rows(scalar, prep.columns)]) != \
+                    (fault, [r[::2] for r in got]):
+                scalar_bad.append(name)
+    assert bad == [] and scalar_bad == []
+    assert lut_words > 1000 and faults <= len(cases) // 4
+
+
+def test_pins_changing_every_clock_clock_for_clock(tmp_path):
+    """A `t_us` stimulus changing the pins in every clock: the clock a unit samples its
+    PI pins in (its first word's operand clock; behind a dispatched byte instruction,
+    that one's first) and what a word blocked there reads decide the trace."""
+    cases = [(name, text, dense_stimulus(BASE_SEED * 1000 + k, 3000))
+             for k, (name, text, _) in enumerate(_cases(["bit", "mixed"]))]
+    preps = [_prepared(tmp_path, name, text, stim, randprog.FULL_WATCH)
+             for name, text, stim in cases]
+    bad = []
+    for prep, (name, _, _), image in zip(preps, cases, _compiled(preps)):
+        got, fault = _run_image(prep, image)
+        want, sim = _image_rows(prep, image)
+        if (fault, got) != (sim.watchdog_fault, want):
+            bad.append(name)
+    assert bad == []
+
+
+def test_the_adder_sums_at_one_clock_a_word(tmp_path):
+    ops = _operands(BASE_SEED, SCANS)
+    watch = [f"Q{i // 8}.{i % 8}" for i in range(65)]
+    prep = _prepared(tmp_path, "adder", adder_il(), _adder_stimulus(ops), watch)
+    image = link.link(prep.program, model.compile_program(prep.program))
+    got, fault = _run_image(prep, image)
+    assert not fault and got == _image_rows(prep, image)[0]
+    at = {c.header: n for n, c in enumerate(prep.columns)}
+    for (a, b), (_, _, vals) in zip(ops, got):     # the sums, from the trace
+        assert sum(vals[at[q]] << i for i, q in enumerate(watch)) == a + b
+    # one clock a word: the two scalar words of R1, the LUT words, END; 900 IL
+    assert {cycles for _, cycles, _ in got} == {len(image.base)} and len(image.base) < 100
 
 
 def test_the_wide_build_runs_a_scalar_image_as_the_scalar_build(tmp_path):
@@ -87,54 +154,22 @@ def test_the_wide_build_runs_a_scalar_image_as_the_scalar_build(tmp_path):
     assert bad == []
 
 
-def _nop_rows(prep, image, scans):
-    sim = NopLutImageSim(image, prep.config, prep.stimulus, prep.job.watchdog, prep.columns)
-    return _rows(sim.run(scans), prep.columns), sim
-
-
-def test_lut_words_pass_the_pipeline_as_one_clock_nops(tmp_path):
-    """Random programs' wide images, relinked jumps and units after byte instructions
-    included: the RTL's trace is the NOP interpreter's, `cycles` included."""
-    bad, lut_words, faults = [], 0, 0
-    cases = _cases(["bit", "nops"])
-    progs = [_prepared(tmp_path, name, text, stim, randprog.FULL_WATCH)
-             for name, text, stim in cases]
-    for prep, (name, _, _), comp in zip(progs, cases,
-                                          model.compile_programs([p.program for p in progs])):
-        image = link.link(prep.program, comp)
-        job = dataclasses.replace(prep.job, prog=image.base, prog_ext=image.ext)
-        got, fault, _ = run_harness(job, prep.columns)
-        want, sim = _nop_rows(prep, image, SCANS)
-        if (fault, _rows(got, prep.columns)) != (sim.watchdog_fault, want):
-            bad.append((name, fault, [r[1] for r in _rows(got, prep.columns)], [r[1] for r in want]))
-        faults += fault
-        lut_words += sum(image.is_lut(a) for a in range(len(image.base)))
-    assert bad == []
-    print(f"{len(cases)} programs, {lut_words} LUT words, {faults} watchdog faults")
-    assert lut_words > 100       # the images held LUT words
-    # (a loop whose exit a unit computes never ends with NOP units: both sides fault)
-    assert faults <= len(cases) // 3
-
-
-def test_the_adder_image_runs_its_lut_words_in_one_clock_each(tmp_path):
-    prep = _prepared(tmp_path, "adder", adder_il(), "scan,I0.0\n0,1\n", ["Q0.0"])
-    image = link.link(prep.program, model.compile_program(prep.program))
-    job = dataclasses.replace(prep.job, prog=image.base, prog_ext=image.ext)
-    got, fault, _ = run_harness(job, prep.columns)
-    want, _ = _nop_rows(prep, image, SCANS)
-    assert not fault and _rows(got, prep.columns) == want
-    # one clock a word, as the scalar adder's 901 words take 901 (docs/wide-engine.md):
-    # the two scalar words of R1, the LUT words, END
-    assert {r.cycles for r in got} == {len(image.base)} and len(image.base) < 100
-
-
-def test_the_scalar_build_refuses_an_extension_file(tmp_path):
+def test_the_scalar_build_refuses_an_extension_file(tmp_path, monkeypatch):
     prep = _prepared(tmp_path, "s", "LD I0.0\n= Q0.0\n", "scan,I0.0\n0,1\n", [])
     job = dataclasses.replace(prep.job, prog_ext=[0] * len(prep.job.prog))
-    os.environ["BITBYTE_HARNESS_WIDE"] = str(__import__("bitbyte.sim.verilator",
-                                                        fromlist=["x"]).ensure_harness())
-    try:
-        with pytest.raises(SimError, match="scalar build"):
-            run_harness(job, prep.columns)
-    finally:
-        del os.environ["BITBYTE_HARNESS_WIDE"]
+    monkeypatch.setenv("BITBYTE_HARNESS_WIDE", str(ensure_harness()))
+    with pytest.raises(SimError, match="scalar build"):
+        run_harness(job, prep.columns)
+
+
+def test_a_flipped_table_bit_is_seen(tmp_path):
+    """The adder's check fails on an image whose every LUT word has one table-A bit
+    flipped (at the row its operands are at most often: all 0)."""
+    ops = _operands(BASE_SEED, 3)
+    watch = [f"Q{i // 8}.{i % 8}" for i in range(65)]
+    prep = _prepared(tmp_path, "adder", adder_il(), _adder_stimulus(ops), watch)
+    image = link.link(prep.program, model.compile_program(prep.program))
+    good, _ = _run_image(prep, image)
+    image.ext = [e ^ 1 if image.is_lut(a) else e for a, e in enumerate(image.ext)]
+    bad, _ = _run_image(prep, image)
+    assert bad != good

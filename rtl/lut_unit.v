@@ -1,0 +1,223 @@
+`default_nettype none
+`include "bit_isa.vh"
+`include "param_check.vh"
+// The wide bit engine's LUT word datapath (issue 18, docs/wide-rtl-plan.md): the
+// operands of the LUT word in execute and its two truth tables' results. bit_proc.v
+// instantiates it in its wide build (BitEngine 1) and keeps the pipeline control: it
+// says when a word moves on and does the writes (M, Q, RLO through its own ports; the
+// scratch file here).
+//
+// A LUT word reads up to `LUT_K operands, each an area and an index of its extension
+// word (definition.toml [lut]); its result is table[x], x = {operand K-1 .. operand 0}.
+// Every operand is picked in the execute clock from what holds it then, so that a word
+// sees the writes of the words before it as the scalar instructions they stand for
+// would:
+//   I, IR, IF, Q (and PQ reads), QR, QF, T, C   the image registers (a LUT word is
+//        never in operand or execute across a latch or a PIO update: the compiler keeps
+//        program positions 0 and 1 and the word after REFRESH scalar, R1/R2)
+//   PI   a snapshot of the pins taken as a unit's first word moves into execute: the
+//        pins of its operand clock, one value for all words of the unit (§2.3)
+//   M    one copy of the marker RAM per operand (written with the marker RAM, read with
+//        the operand's address as the word leaves decode), and every marker write since
+//        that read forwarded, as bit_proc does for its own marker read
+//   S    the scratch file (flip-flops), written by the words before
+//   RLO  the RLO register (rlo_i), ZERO  0
+module lut_unit #(
+  parameter integer InBits     = 128,
+  parameter integer OutBits    = 128,
+  parameter integer MarkerBits = 2048,
+  parameter integer StatusBits = 64
+) (
+  input  wire                          clk_i,
+  input  wire                          rst_ni,
+  // the pipeline (bit_proc.v): the extension word leaving the program RAM in decode,
+  // decode -> operand, the word in operand entered it at the last edge, operand ->
+  // execute; the word moving into execute is a unit's first
+  input  wire [`LUT_EXT_BITS-1:0]      d_ext_i,
+  input  wire                          o_move_i,
+  input  wire                          o_first_i,
+  input  wire                          e_load_i,
+  input  wire                          o_unit_first_i,
+  // every marker write, as the marker RAM takes it (clearing, execute, copy engine),
+  // and the one of the last clock (lw_*: the write at the edge a read happened at)
+  input  wire                          m_we_i,
+  input  wire [$clog2(MarkerBits)-1:0] m_waddr_i,
+  input  wire                          m_wdata_i,
+  input  wire                          lw_we_i,
+  input  wire [$clog2(MarkerBits)-1:0] lw_addr_i,
+  input  wire                          lw_val_i,
+  // operand sources (registers)
+  input  wire [InBits-1:0]             pins_i,
+  input  wire [InBits-1:0]             pii_i,
+  input  wire [InBits-1:0]             rise_i,
+  input  wire [InBits-1:0]             fall_i,
+  input  wire [OutBits-1:0]            pio_i,
+  input  wire [OutBits-1:0]            q_rise_i,
+  input  wire [OutBits-1:0]            q_fall_i,
+  input  wire [StatusBits-1:0]         timer_status_i,
+  input  wire [StatusBits-1:0]         counter_status_i,
+  input  wire                          rlo_i,
+  // the word in execute completes: its scratch writes (port A with area S, port B)
+  input  wire                          scr_a_we_i,
+  input  wire [4:0]                    scr_a_idx_i,
+  input  wire                          scr_b_we_i,
+  input  wire [4:0]                    scr_b_idx_i,
+  output wire                          res_a_o,     // table A at the operands
+  output wire                          res_b_o      // table B
+);
+  localparam integer K   = `LUT_K;
+  localparam integer EW  = `LUT_EXT_BITS;
+  localparam integer MW  = $clog2(MarkerBits);
+  localparam integer OB  = `LUT_OPND_BITS;
+  localparam integer TW  = 1 << K;               // a truth table's bits
+
+  `PARAM_CHECK(g_bad_k, K != 5 || `LUT_SCRATCH_BITS != 32,
+               "lut_unit: built for K = 5 operands and 32 scratch bits (definition.toml [lut])")
+  `PARAM_CHECK(g_bad_sizes, InBits < 2 || InBits > 2048 || OutBits < 2 || OutBits > 2048 ||
+                            MarkerBits < 2 || MarkerBits > 2048 ||
+                            StatusBits < 2 || StatusBits > 2048,
+               "lut_unit: every area 2..2048 bits (the 11-bit operand index)")
+
+  // operand j's area and index in an extension word
+  function automatic [3:0] f_area(input [EW-1:0] ext, input integer j);
+    f_area = ext[`LUT_OPND_BASE + OB * j + 11 +: 4];
+  endfunction
+  function automatic [10:0] f_index(input [EW-1:0] ext, input integer j);
+    f_index = ext[`LUT_OPND_BASE + OB * j +: 11];
+  endfunction
+
+  // ---------------------------------------------------------------- the word's stages
+  reg [EW-1:0] o_ext_q, e_ext_q;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      o_ext_q <= {EW{1'b0}};
+      e_ext_q <= {EW{1'b0}};
+    end else begin
+      if (o_move_i) o_ext_q <= d_ext_i;
+      if (e_load_i) e_ext_q <= o_ext_q;
+    end
+
+  // ---------------------------------------------------------------- PI snapshot
+  reg [InBits-1:0] pi_snap_q;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) pi_snap_q <= {InBits{1'b0}};
+    else if (e_load_i && o_unit_first_i) pi_snap_q <= pins_i;
+
+  // ---------------------------------------------------------------- scratch file
+  reg [31:0] scr_q;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) scr_q <= 32'd0;
+    else begin
+      if (scr_a_we_i) scr_q[scr_a_idx_i] <= res_a_o;
+      if (scr_b_we_i) scr_q[scr_b_idx_i] <= res_b_o;
+    end
+
+  // ---------------------------------------------------------------- operands
+  // every area as 2048 bits (the 11-bit index; what is past an area reads 0)
+  localparam integer PadW = 2048;
+  wire [PadW-1:0] x_i, x_pi, x_ir, x_if, x_q, x_qr, x_qf, x_t, x_c;
+  generate
+    if (InBits < PadW) begin : g_pad_in
+      wire [PadW-InBits-1:0] z = {(PadW - InBits){1'b0}};
+      assign {x_i, x_pi, x_ir, x_if} = {z, pii_i, z, pi_snap_q, z, rise_i, z, fall_i};
+    end else begin : g_in
+      assign {x_i, x_pi, x_ir, x_if} = {pii_i, pi_snap_q, rise_i, fall_i};
+    end
+    if (OutBits < PadW) begin : g_pad_out
+      wire [PadW-OutBits-1:0] z = {(PadW - OutBits){1'b0}};
+      assign {x_q, x_qr, x_qf} = {z, pio_i, z, q_rise_i, z, q_fall_i};
+    end else begin : g_out
+      assign {x_q, x_qr, x_qf} = {pio_i, q_rise_i, q_fall_i};
+    end
+    if (StatusBits < PadW) begin : g_pad_tc
+      wire [PadW-StatusBits-1:0] z = {(PadW - StatusBits){1'b0}};
+      assign {x_t, x_c} = {z, timer_status_i, z, counter_status_i};
+    end else begin : g_tc
+      assign {x_t, x_c} = {timer_status_i, counter_status_i};
+    end
+  endgenerate
+
+  wire [K-1:0] x;                                // the operands, in execute
+  genvar j;
+  generate for (j = 0; j < K; j = j + 1) begin : g_port
+    // M: this operand's copy of the marker RAM, read as the word leaves decode
+    wire [10:0] d_idx = f_index(d_ext_i, j);
+    wire [10:0] o_idx = f_index(o_ext_q, j);
+    wire        rdata;
+    // verilator lint_off UNUSEDSIGNAL
+    wire        unused_peek;
+    wire [21:0] unused_idx = {d_idx, o_idx};    // above MW: 0 in a word of the compiler
+    // verilator lint_on UNUSEDSIGNAL
+    sync_ram #(.Words(MarkerBits), .Width(1)) u_m_copy (
+      .clk_i      (clk_i),
+      .we_i       (m_we_i),
+      .waddr_i    (m_waddr_i),
+      .wdata_i    (m_wdata_i),
+      .re_i       (1'b1),
+      .raddr_i    (d_idx[MW-1:0]),
+      .rdata_o    (rdata),
+      .peek_addr_i({MW{1'b0}}),
+      .peek_data_o(unused_peek)
+    );
+    // the writes the read missed: the one at the read's edge (lw_*), then every one
+    // while the word is in operand; in execute the value is kept (bit_proc writes no
+    // marker while a word waits there)
+    reg  hold_q, o_fwd_q, o_fwd_val_q, e_fwd_q, e_fwd_val_q;
+    wire hit_now  = m_we_i && (m_waddr_i == o_idx[MW-1:0]);
+    wire hit_base = o_first_i ? (lw_we_i && (lw_addr_i == o_idx[MW-1:0])) : o_fwd_q;
+    wire val_base = o_first_i ? lw_val_i : o_fwd_val_q;
+    wire fwd_next = hit_now || hit_base;
+    wire fwd_val  = hit_now ? m_wdata_i : val_base;
+    wire m_val    = e_fwd_q ? e_fwd_val_q : hold_q;
+    always @(posedge clk_i or negedge rst_ni)
+      if (!rst_ni) begin
+        {hold_q, o_fwd_q, o_fwd_val_q, e_fwd_q, e_fwd_val_q} <= 5'd0;
+      end else begin
+        if (o_first_i) hold_q <= rdata;
+        o_fwd_q     <= fwd_next;
+        o_fwd_val_q <= fwd_val;
+        if (e_load_i) begin
+          e_fwd_q     <= fwd_next;
+          e_fwd_val_q <= fwd_val;
+        end else begin
+          e_fwd_q     <= 1'b1;          // hold_q takes the next word's
+          e_fwd_val_q <= m_val;
+        end
+      end
+
+    // the operand in execute
+    wire [3:0]  area = f_area(e_ext_q, j);
+    wire [10:0] idx  = f_index(e_ext_q, j);
+    reg v;
+    always @(*) begin
+      case (area)
+        `AREA_I:    v = x_i[idx];
+        `AREA_PI:   v = x_pi[idx];
+        `AREA_IR:   v = x_ir[idx];
+        `AREA_IF:   v = x_if[idx];
+        `AREA_Q:    v = x_q[idx];
+        `AREA_QR:   v = x_qr[idx];
+        `AREA_QF:   v = x_qf[idx];
+        `AREA_M:    v = m_val;
+        `AREA_T:    v = x_t[idx];
+        `AREA_C:    v = x_c[idx];
+        `LAREA_S:   v = scr_q[idx[4:0]];
+        `LAREA_RLO: v = rlo_i;
+        default:    v = 1'b0;           // ZERO
+      endcase
+    end
+    assign x[j] = v;
+  end endgenerate
+
+  // ---------------------------------------------------------------- the tables
+  wire [TW-1:0] table_a = e_ext_q[`LUT_TABLE_A];
+  wire [TW-1:0] table_b = e_ext_q[`LUT_TABLE_B];
+  assign res_a_o = table_a[x];
+  assign res_b_o = table_b[x];
+
+  // verilator lint_off UNUSEDSIGNAL
+  wire unused_ext = ^{o_ext_q[EW-1:`LUT_OPND_BASE + OB * K], o_ext_q[`LUT_OPND_BASE-1:0],
+                      e_ext_q[EW-1:`LUT_OPND_BASE + OB * K]};
+  // verilator lint_on UNUSEDSIGNAL
+endmodule
+`default_nettype wire
