@@ -236,8 +236,9 @@ def _parser() -> argparse.ArgumentParser:
                         "instruction: paper (S7-315-2DP weights, default) or c320")
     r.add_argument("--bit-engine", choices=["scalar", "wide"], default="scalar",
                    help="the bit processor's engine (spec section 4): scalar (default); "
-                        "wide is assembled by `asm --bit-engine wide` but has no RTL yet, "
-                        "so run refuses it")
+                        "wide: the program compiled into LUT words (as `asm --bit-engine "
+                        "wide`), run on the wide build (serial mode, --sim verilator; "
+                        "not yet with --status, --line-counts or --waves)")
     _source_options(r)
 
     k = sub.add_parser("link", formatter_class=_FORMAT,
@@ -391,10 +392,24 @@ def cmd_alloc(args) -> int:
     return 0
 
 
+def _check_wide_run(args) -> None:
+    """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; what
+    a host keys by the program address (the block status, line counts, the waveform's
+    instruction names) waits for the map from wide addresses to lines (slice S7)."""
+    for opt, given in (("a plant file", args.program.lower().endswith(".toml")),
+                       (f"--mode {args.mode}", args.mode != "serial"),
+                       (f"--sim {args.sim}", args.sim != "verilator"),
+                       ("--status", args.status is not None),
+                       ("--line-counts", args.line_counts is not None),
+                       ("--waves", args.waves is not None)):
+        if given:
+            raise UsageError(f"--bit-engine wide: {opt} is not supported yet (serial mode "
+                             "on Verilator; docs/wide-rtl-plan.md, slice S7)")
+
+
 def cmd_run(args) -> int:
     if args.bit_engine == "wide":
-        raise UsageError("--bit-engine wide: the wide engine has no RTL yet (issue 18); "
-                         "`bitbyte asm --bit-engine wide` writes its image")
+        _check_wide_run(args)
     if args.program.lower().endswith(".toml"):
         return cmd_run_plant(args)
 
@@ -407,6 +422,11 @@ def cmd_run(args) -> int:
         marker_write_buffer=args.marker_write_buffer, tc_path=args.tc_path)
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
+    if args.bit_engine == "wide":     # the wide image, on the wide build
+        from bitbyte.wide import link as wide_link
+        from bitbyte.wide.model import compile_program
+        image = wide_link.link(program, compile_program(program), prep.config)
+        job.prog, job.prog_ext = image.base, image.ext
     if args.status is not None:
         if args.mode == "free":
             raise UsageError("--status: serial and parallel mode (in free-running mode the "

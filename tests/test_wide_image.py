@@ -253,15 +253,30 @@ def test_asm_bit_engine_wide_writes_the_image(tmp_path):
     assert "LUT word 1/" in lst and ":=" in lst
 
 
-def test_run_takes_bit_engine_and_refuses_wide_for_now(tmp_path):
-    """spec §4: `run --bit-engine scalar|wide`; scalar is today's run, wide has no RTL."""
+def test_run_takes_bit_engine(tmp_path):
+    """spec §4: `run --bit-engine scalar|wide`: the same trace but `cycles` and `t_us`
+    (the wide build: tests/test_wide_rtl.py); what the wide run does not do yet is
+    refused with exit 2."""
     src = tmp_path / "p.il"
-    src.write_text("LD I0.0\n= Q0.0\nEND\n")
-    run = [sys.executable, "-m", "bitbyte.cli", "run", str(src), "--scans", "2"]
-    ok = subprocess.run(run + ["--bit-engine", "scalar"], capture_output=True, text=True)
-    assert ok.returncode == 0, ok.stderr
-    wide = subprocess.run(run + ["--bit-engine", "wide"], capture_output=True, text=True)
-    assert wide.returncode == 2 and "no RTL yet" in wide.stderr and "Traceback" not in wide.stderr
+    src.write_text("LD I0.0\nA I0.1\nO I0.2\n= Q0.0\nX Q0.0\n= Q0.1\nEND\n")
+    stim = tmp_path / "s.csv"
+    stim.write_text("scan,I0.0,I0.1,I0.2\n0,1,1,0\n1,0,1,0\n2,0,0,1\n")
+    run = [sys.executable, "-m", "bitbyte.cli", "run", str(src), "--scans", "3",
+           "--stimulus", str(stim)]
+    traces = {}
+    for engine in ("scalar", "wide"):
+        trace = tmp_path / f"{engine}.csv"
+        r = subprocess.run(run + ["--bit-engine", engine, "--trace", str(trace)],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        rows = [line.split(",") for line in trace.read_text().splitlines()]
+        traces[engine] = [[v for h, v in zip(rows[0], row) if h not in ("t_us", "cycles")]
+                          for row in rows]
+    assert traces["wide"] == traces["scalar"] and len(traces["wide"]) == 4
+    for opt in (["--mode", "parallel"], ["--sim", "icarus"], ["--status", "0"],
+                ["--line-counts", str(tmp_path / "c.csv")], ["--waves", str(tmp_path / "w.fst")]):
+        r = subprocess.run(run + ["--bit-engine", "wide", *opt], capture_output=True, text=True)
+        assert r.returncode == 2 and "not supported yet" in r.stderr and "Traceback" not in r.stderr
 
 
 @pytest.mark.parametrize("args,message", [
