@@ -124,8 +124,8 @@ clean:          ## remove build products (keeps .venv)
 # programs of each of three kinds (BITBYTE_STL_SOAK_N) against awlsim, on the reference
 # interpreter and the harness in serial and parallel mode (build/soak/stl-cases/).
 # soak/test_wide_soak.py: N programs of its own families compiled for the wide bit engine,
-# each image run against the scalar reference and the wide model (build/soak/wide-cases/;
-# no wide RTL yet; about 17 CPU-minutes for N=10000).
+# each image run against the scalar reference and the wide model, and on the wide RTL
+# (make harness-wide) against the image interpreter (build/soak/wide-cases/).
 # Not part of `make test` (docs/soak.md has the last run's time; the S7 soak about 10 min more).
 # BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak

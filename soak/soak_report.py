@@ -144,16 +144,19 @@ def main(argv=None) -> int:
     wide_mismatches = [m for c in wide for m in c["mismatches"]]
     total = {k: sum(c[k] for c in wide) for k in
              ("units", "lut_words", "unit_il", "fallbacks", "pi_units", "jump_programs")}
+    rtl_runs = sum(c.get("rtl_runs", 0) for c in wide)      # chunks of before the RTL: 0
     lines += [
         "",
-        "## The wide bit engine: compiler, image and model (soak/test_wide_soak.py)",
+        "## The wide bit engine: compiler, image, model and RTL (soak/test_wide_soak.py)",
         "",
         f"{wide_programs} random programs (bit-only, mixed with the timers stripped, "
         "bit-only with `label: NOP` lines) compiled for the wide engine and relinked "
-        "into its image, the image run word by word (bitbyte/wide/iss.py; no wide RTL "
-        "yet): against the scalar reference interpreter in every column but `t_us` and "
-        "`cycles` (scan-keyed stimulus), and against the wide model in every column, "
-        "`cycles` included (scan-keyed, and pins changing in every clock). "
+        "into its image, the image run word by word (bitbyte/wide/iss.py): against the "
+        "scalar reference interpreter in every column but `t_us` and `cycles` "
+        "(scan-keyed stimulus), and against the wide model in every column, `cycles` "
+        "included (scan-keyed, and pins changing in every clock); and the image on the "
+        "wide RTL (`BitEngine=1`, Verilator) against the interpreter in every column, "
+        f"`cycles` included, under both stimuli ({rtl_runs} RTL runs). "
         f"{total['units']} units ({total['unit_il']} IL instructions in "
         f"{total['lut_words']} LUT words; {total['pi_units']} reading PI pins), "
         f"{total['fallbacks']} fallen back to scalar, {total['jump_programs']} programs "

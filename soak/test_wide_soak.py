@@ -1,9 +1,9 @@
 """The wide bit engine's soak (`make soak`, issue 18): N random programs compiled for
 the wide engine (bitbyte/wide: units of straight-line bit code as LUT words, each
 unit checked exhaustively when compiled) and relinked into the wide image
-(bitbyte/wide/link.py), the image run word by word (bitbyte/wide/iss.py). No RTL yet:
-this is the compiler, the linker and the model at scale, before the wide RTL is
-checked against them.
+(bitbyte/wide/link.py), the image run word by word (bitbyte/wide/iss.py) and on the
+wide RTL (`make harness-wide`, tests/test_wide_rtl.py): the compiler, the linker, the
+model and the RTL at scale.
 
 Per program (serial mode, as spec §4 `--bit-engine` says):
 
@@ -13,7 +13,9 @@ Per program (serial mode, as spec §4 `--bit-engine` says):
   in every column, `cycles` included;
 * pins changing in every clock (`t_us`) for as long as the scan-keyed run took: the
   image against the wide model in every column, `cycles` included (the unit's pin
-  sample clock, docs/wide-rtl-plan.md §2.3).
+  sample clock, docs/wide-rtl-plan.md §2.3);
+* the wide RTL (the Verilator harness of `BitEngine=1`) under both stimuli against the
+  image interpreter: every column, `cycles` included.
 
 Program i has the seed BITBYTE_SEED * 100000 + i and comes from tests/randprog.py by
 i % 3: bit-only (jumps, REFRESH, parentheses, edges, PI/PQ), mixed with its timers
@@ -29,6 +31,7 @@ them up.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import random
@@ -41,6 +44,8 @@ import pytest
 from bitbyte.lang.parser import parse
 from bitbyte.lang.program import JUMPS
 from bitbyte.lang.stimulus import parse_stimulus
+from bitbyte.run.prepare import prepare
+from bitbyte.sim.verilator import run_harness
 from bitbyte.ref.refsim import refsim_trace
 from bitbyte.wide import iss, link, model
 from randprog import (FULL_WATCH, random_mixed_program, random_program, random_scan_stimulus,
@@ -82,6 +87,28 @@ def scalar_differences(program, image, stimulus) -> tuple[list[str], int]:
     return out, max((r.end_clock for r in want), default=0)
 
 
+def rtl_differences(text: str, image, stimulus_text: str, tmp: Path) -> list[str]:
+    """The image on the wide RTL against the image interpreter: every column and
+    `cycles` of every scan (the interpreter's columns are the run's)."""
+    (tmp / "p.il").write_text(text)
+    (tmp / "s.csv").write_text(stimulus_text)
+    prep = prepare(str(tmp / "p.il"), stimulus=str(tmp / "s.csv"), watch=",".join(FULL_WATCH),
+                   scans=SCANS)
+    job = dataclasses.replace(prep.job, prog=image.base, prog_ext=image.ext)
+    got, got_fault, _ = run_harness(job, prep.columns)
+    sim = iss.ImageSim(image, prep.config, prep.stimulus, prep.job.watchdog, prep.columns)
+    want = sim.run(SCANS)
+    out = [] if (sim.watchdog_fault, len(want)) == (got_fault, len(got)) else \
+        [f"fault/scans: RTL {got_fault}/{len(got)}, image {sim.watchdog_fault}/{len(want)}"]
+    for w, g in zip(want, got):
+        if w.cycles != g.cycles:
+            out.append(f"cycles scan {w.scan}: RTL {g.cycles}, image {w.cycles}")
+        out += [f"{c.header} scan {w.scan}: RTL {g.values[c.header]}, image "
+                f"{w.values[c.header]}" for c in prep.columns
+                if w.values[c.header] != g.values[c.header]]
+    return out
+
+
 def save(index: int, chunk: int, text: str, problems: list[str], image,
          stimuli: dict[str, str]) -> None:
     """The case: program, stimuli, the image as linked in its chunk (Yosys maps a
@@ -103,14 +130,14 @@ def save(index: int, chunk: int, text: str, problems: list[str], image,
 
 
 @pytest.mark.parametrize("chunk", range((N + CHUNK - 1) // CHUNK))
-def test_wide_soak_chunk(chunk):
+def test_wide_soak_chunk(chunk, tmp_path):
     t0 = time.monotonic()
     indexes = range(chunk * CHUNK, min(N, (chunk + 1) * CHUNK))
     texts = {i: program_text(i) for i in indexes}
     progs = {i: parse(f"wide{i}.il", t) for i, t in texts.items()}
     compiled = dict(zip(indexes, model.compile_programs([progs[i] for i in indexes])))
     mismatches, counts = [], {"units": 0, "lut_words": 0, "unit_il": 0, "fallbacks": 0,
-                              "pi_units": 0, "jump_programs": 0}
+                              "pi_units": 0, "jump_programs": 0, "rtl_runs": 0}
     for i in indexes:
         p, c = progs[i], compiled[i]
         problems: list[str] = []
@@ -127,6 +154,10 @@ def test_wide_soak_chunk(chunk):
             stimuli["dense"] = dense_stimulus(SEED * 100000 + i, last + 200)
             problems += [f"t_us model: {d}" for d in differences(
                 p, c, image, parse_stimulus(stimuli["dense"]), FULL_WATCH)]
+            for kind in ("scan", "dense"):     # the RTL, both stimuli
+                problems += [f"{kind} RTL: {d}" for d in
+                             rtl_differences(texts[i], image, stimuli[kind], tmp_path)]
+                counts["rtl_runs"] += 1
         except Exception as exc:       # any error is this program's case, not the chunk's
             problems.append(f"{type(exc).__name__}: {exc}\n{traceback.format_exc()}")
         if problems:

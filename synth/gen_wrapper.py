@@ -178,8 +178,8 @@ def generate(core: Module, core_file: str) -> tuple[str, dict]:
     if has_prog:
         take("SPI 0x01 program load", PROG_PORTS)
     has_ext = EXT_PORT in ports
-    if has_ext:   # the scalar build leaves it unused; the wide build's load is open
-        take("LUT extension word: 0 (scalar build)", [EXT_PORT])
+    if has_ext:   # loaded beside the base word (a scalar build leaves it unused)
+        take("SPI 0x06 LUT extension word (32-bit pieces at addr 0, 1, ...)", [EXT_PORT])
     has_bus = all(n in ports for n in BUS_PORTS) and not ports["bus_we_i"].vector
     if has_bus:
         take("SPI 0x04/0x05 byte-side bus", BUS_PORTS)
@@ -272,7 +272,23 @@ def generate(core: Module, core_file: str) -> tuple[str, dict]:
         w("  assign c_prog_wdata_i = spi_data;")
         w("")
     if has_ext:
-        w(f"  assign c_{EXT_PORT} = {{({ports[EXT_PORT].width}){{1'b0}}}};")
+        w("  // 0x06: the wide engine's extension word, 32 bits at a time (piece addr), written")
+        w("  // with the next 0x01 base word; the scalar build does not read it (Yosys removes it)")
+        w(f"  localparam integer ExtW = {ports[EXT_PORT].width};")
+        w("  localparam integer ExtPieces = (ExtW + 31) / 32;")
+        w("  reg [ExtPieces*32-1:0] ext_q;")
+        w("  genvar ext_i;")
+        w("  generate for (ext_i = 0; ext_i < ExtPieces; ext_i = ext_i + 1) begin : g_ext")
+        w("    always @(posedge clk or negedge rst_s_n)")
+        w("      if (!rst_s_n) ext_q[ext_i*32 +: 32] <= 32'd0;")
+        w("      else if (spi_wr && spi_cmd == 8'h06 && {8'd0, spi_addr} == ext_i) ext_q[ext_i*32 +: 32] <= spi_data;")
+        w("  end endgenerate")
+        w(f"  assign c_{EXT_PORT} = ext_q[ExtW-1:0];")
+        w("  generate if (ExtPieces * 32 > ExtW) begin : g_ext_spare")
+        w("    // verilator lint_off UNUSEDSIGNAL")
+        w("    wire unused_ext = ^ext_q[ExtPieces*32-1:ExtW];")
+        w("    // verilator lint_on UNUSEDSIGNAL")
+        w("  end endgenerate")
         w("")
     w("  // 0x02: host registers")
     w("  wire [HostWords*32-1:0] host_q;")

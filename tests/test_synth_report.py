@@ -96,16 +96,20 @@ def test_plant_wrapper_keeps_per_core_ports_behind_host_registers(tmp_path):
     assert "bus_we_i" in roles["SPI 0x02 host registers"]
     assert "prog_we_i" in roles["SPI 0x02 host registers"]
     assert not any("byte-side bus" in r for r in roles)
+    (tmp_path / "cpu").mkdir()
+    cpu_top = tmp_path / "cpu" / "synth_top.v"
     cpu = gen_wrapper.write_wrapper(ROOT / "rtl" / "bitbyte_cpu.v", "bitbyte_cpu",
-                                    tmp_path / "cpu_top.v", "rtl/bitbyte_cpu.v")["roles"]
+                                    cpu_top, "rtl/bitbyte_cpu.v")["roles"]
     assert "bus_we_i" in cpu["SPI 0x04/0x05 byte-side bus"]
+    assert any("0x06 LUT extension word" in r and "prog_ext_wdata_i" in cpu[r] for r in cpu)
     verilator, env = _verilator()
-    proc = subprocess.run([verilator, "--lint-only", "-Wall", "--quiet", f"-I{ROOT / 'rtl'}",
-                           f"-I{ROOT / 'synth'}", "--top-module", "synth_top", str(out),
-                           *map(str, sorted((ROOT / "synth").glob("synth_*.v"))),
-                           *map(str, sorted((ROOT / "rtl").glob("*.v")))],
-                          capture_output=True, text=True, env=env)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
+    for top, extra in ((out, []), (cpu_top, []), (cpu_top, ["-GBitEngine=1"])):  # wide too
+        proc = subprocess.run([verilator, "--lint-only", "-Wall", "--quiet", f"-I{ROOT / 'rtl'}",
+                               f"-I{ROOT / 'synth'}", "--top-module", "synth_top", *extra, str(top),
+                               *map(str, sorted((ROOT / "synth").glob("synth_*.v"))),
+                               *map(str, sorted((ROOT / "rtl").glob("*.v")))],
+                              capture_output=True, text=True, env=env)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
 
 
 def test_over_capacity_reads_nextpnr_utilisation():
