@@ -137,6 +137,54 @@ module lut_unit #(
     end
   endgenerate
 
+`ifdef FORMAL
+  // ================================================================ formal environment
+  // formal/lut_unit.sby: the pipeline around this module as bit_proc drives it, and a
+  // shadow of the marker memory (every write the RAM takes); each port's property is
+  // in g_port below.
+`include "formal_past.vh"
+  reg [MarkerBits-1:0] f_mem;          // the marker memory, as written
+  (* anyconst *) reg [MW-1:0] f_pa;    // the proof follows the bit at this address
+  // a word in operand, a word in execute; the word in execute leaves it in this clock
+  // (completes, or moves into the wait slot): any clock, as bit_proc decides
+  reg f_o_valid, f_e_valid;
+  (* anyseq *) reg f_leave;
+  always @(posedge clk_i)                // every write the RAM copies take, reset or not
+    if (m_we_i) f_mem[m_waddr_i] <= m_wdata_i;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      {f_o_valid, f_e_valid} <= 2'b00;
+    end else begin
+      if (o_move_i) f_o_valid <= 1'b1;
+      else if (e_load_i) f_o_valid <= 1'b0;
+      if (e_load_i) f_e_valid <= f_o_valid;
+      else if (f_leave) f_e_valid <= 1'b0;
+    end
+  // bit_proc: lw_* is the last clock's marker write (registers); o_first_q the last
+  // clock's o_move; the operand stage passes its word on only into execute (o_move with
+  // a word there is e_load); a word stays in execute until it leaves; a marker write
+  // is the leaving word's own (its target, written as it completes) or comes while
+  // execute is empty (the clearing, the copy engine: between scans)
+  reg f_lw_we = 1'b0, f_lw_val, f_o_first = 1'b0;
+  reg [MW-1:0] f_lw_addr;
+  always @(posedge clk_i) begin
+    f_lw_we   <= rst_ni && m_we_i;
+    f_lw_addr <= m_waddr_i;
+    f_lw_val  <= m_wdata_i;
+    f_o_first <= rst_ni && o_move_i;
+  end
+  always @(*) begin
+    if (rst_ni) begin
+      assume (lw_we_i == f_lw_we);
+      if (f_lw_we) assume (lw_addr_i == f_lw_addr && lw_val_i == f_lw_val);
+      assume (o_first_i == f_o_first);
+      if (o_move_i && f_o_valid) assume (e_load_i);
+      if (f_e_valid && !f_leave) assume (!e_load_i);
+      if (m_we_i) assume (!f_e_valid || f_leave);
+    end
+  end
+`endif
+
   wire [K-1:0] x;                                // the operands, in execute
   genvar j;
   generate for (j = 0; j < K; j = j + 1) begin : g_port
@@ -156,7 +204,11 @@ module lut_unit #(
       .re_i       (1'b1),
       .raddr_i    (d_idx[MW-1:0]),
       .rdata_o    (rdata),
+`ifdef FORMAL
+      .peek_addr_i(f_pa),
+`else
       .peek_addr_i({MW{1'b0}}),
+`endif
       .peek_data_o(unused_peek)
     );
     // the writes the read missed: the one at the read's edge (lw_*), then every one
@@ -207,6 +259,36 @@ module lut_unit #(
       endcase
     end
     assign x[j] = v;
+`ifdef FORMAL
+    // the marker operand of the word in execute is the memory's bit at its address,
+    // in every clock it is there (the read in decode, the writes of the words before it
+    // at distance 1, 2 and 3 and the one at the read's edge, and a hold)
+    always @(*) begin
+      // the copy holds what was written (the shadow starts as the copy's contents)
+      if (!f_past_valid) assume (unused_peek == f_mem[f_pa]);
+      else assert (unused_peek == f_mem[f_pa]);
+      if (rst_ni && f_past_valid && f_e_valid && idx[MW-1:0] == f_pa)
+        assert (m_val == f_mem[f_pa]);
+      // (for the induction: the same for the word in operand, in its first clock there
+      // the copy's read and the write at its edge, later the hold and the forwarding)
+      if (rst_ni && f_past_valid && f_o_valid && o_idx[MW-1:0] == f_pa) begin
+        if (o_first_i) assert (((lw_we_i && lw_addr_i == f_pa) ? lw_val_i : rdata) == f_mem[f_pa]);
+        else assert ((o_fwd_q ? o_fwd_val_q : hold_q) == f_mem[f_pa]);
+      end
+    end
+    // the cases (port 0): the copy's own read; a write the read missed forwarded; a
+    // word held in execute for a second clock
+    if (j == 0) begin : g_cover
+      reg f_held = 1'b0;
+      always @(posedge clk_i) f_held <= rst_ni && f_e_valid && !f_leave && !e_load_i;
+      always @(*)
+        if (rst_ni && f_e_valid && idx[MW-1:0] == f_pa) begin
+          cover (!e_fwd_q && hold_q != f_mem[f_pa ^ 1'b1]);
+          cover (e_fwd_q && e_fwd_val_q != hold_q);
+          cover (f_held && e_fwd_q && f_mem[f_pa]);
+        end
+    end
+`endif
   end endgenerate
 
   // ---------------------------------------------------------------- the tables

@@ -284,6 +284,16 @@ MUTATIONS = [
      "sp_q <= sp_q;"),                                     # ... or the stack (4)
     ("bit_proc", "bit_proc.v", "wire        prog_end   = prog_wdata_i[`ISA_OPCODE] == `OP_END;",
      "wire        prog_end   = 1'b0;"),                     # END not marked as it is loaded (4)
+    # lut_unit (the wide engine's operand ports): each port's marker bit in execute
+    # against a shadow of the marker memory
+    ("lut_unit", "lut_unit.v", "wire hit_now  = m_we_i && (m_waddr_i == o_idx[MW-1:0]);",
+     "wire hit_now  = 1'b0;", "m_val == f_mem"),        # a write in the operand clock lost
+    ("lut_unit", "lut_unit.v", "wire hit_base = o_first_i ? (lw_we_i && (lw_addr_i == o_idx[MW-1:0])) : o_fwd_q;",
+     "wire hit_base = o_first_i ? 1'b0 : o_fwd_q;", "m_val == f_mem"),   # ... at the read's edge
+    ("lut_unit", "lut_unit.v", "          e_fwd_q     <= 1'b1;          // hold_q takes the next word's",
+     "          e_fwd_q     <= e_fwd_q;", "m_val == f_mem"),   # a held word's bit not kept
+    ("lut_unit", "lut_unit.v", "        if (o_first_i) hold_q <= rdata;",
+     "        hold_q <= rdata;", "m_val == f_mem"),         # the copy's word not held
 ]
 
 
