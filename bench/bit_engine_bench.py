@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Bit-engine throughput (issue 18): IL bit instructions per clock and ns per IL bit
-instruction of the bit processor on the issue's benchmark programs, beside Siemens'
-published figures. Today's engine is the scalar one (one instruction per clock); this
-is the baseline a wide engine is measured against.
+instruction of the bit processor's two engines on the issue's benchmark programs,
+beside Siemens' published figures: the scalar engine (one instruction per clock) and
+the wide one (`--bit-engine wide`: straight-line stretches compiled into LUT words,
+several IL instructions a clock; docs/wide-engine.md).
 
     python bench/bit_engine_bench.py [--quick]
 
@@ -12,12 +13,15 @@ The programs:
   I8.0..I15.7, the sum on Q0.0..Q8.0, each bit the plain full adder
   `LD a / X b / A c / O( / LD a / A b / ) / = c1 / LD c / X a / X b / = s / LD c1 / = c`
   (14 instructions, no hand optimisation), the carry c in M0.0, c1 in M0.1;
-* the interlock and star-delta examples (examples/*.il).
+* random straight-line bit programs of the wide engine's measurement
+  (bench/wide_map_bench.py: parentheses, edges, S/R, assignments mid-rung, PI/PQ);
+* the interlock and star-delta examples (examples/*.il), and the Table-1 program
+  (bench/programs/table1.il: byte instructions and jumps, clocks only).
 
-Each runs through `bitbyte run` (serial mode) on the Verilator harness; the clocks per
-scan come from its trace, the instruction counts from the parser (spec §3), the clock
-from docs/synthesis.md's `Fmax` lines. Writes the section of docs/performance.md
-between its markers.
+Each runs through `bitbyte run` (serial mode) on the Verilator harness of each engine;
+the clocks per scan come from its trace, the instruction counts from the parser (spec
+§3), the clock from docs/synthesis.md's `Fmax` lines (`ECP5-25 (wide)` for the wide
+engine). Writes the section of docs/performance.md between its markers.
 """
 from __future__ import annotations
 
@@ -83,11 +87,43 @@ def sums_from_trace(header: list[str], rows: list[list[int]], bits: int = BITS) 
 
 
 def fmax_lines() -> dict[str, Fraction]:
-    """`Fmax <part>: <n> MHz` lines of docs/synthesis.md (spec §6)."""
+    """`Fmax <part>: <n> MHz` lines of docs/synthesis.md (spec §6; `ECP5-25 (wide)`)."""
     path = bl.ROOT / "docs" / "synthesis.md"
     text = path.read_text() if path.exists() else ""
     return {m.group(1): Fraction(m.group(2))
-            for m in re.finditer(r"^Fmax (\S+):\s*([0-9.]+)\s*MHz\s*$", text, re.M)}
+            for m in re.finditer(r"^Fmax ([^:\n]+):\s*([0-9.]+)\s*MHz\s*$", text, re.M)}
+
+
+ENGINES = ("scalar", "wide")
+RANDOM = 10            # random straight-line programs
+
+
+def cases(work: Path, operands) -> list[tuple[str, list[tuple[Path, Path]], str, bool]]:
+    """(title, [(program, stimulus)], watch, straight-line?)"""
+    sys.path.insert(0, str(bl.ROOT / "tests"))
+    from randprog import scan_stimulus
+    from wide_map_bench import random_programs
+    adder = work / "adder64.il"
+    adder.write_text(adder_il())
+    stim = work / "adder64.csv"
+    stim.write_text(adder_stimulus(operands))
+    rand = []
+    for k, text in enumerate(random_programs(RANDOM, True)):
+        il, st = work / f"rand{k}.il", work / f"rand{k}.csv"
+        il.write_text(text)
+        st.write_text(scan_stimulus(1818 + k, len(operands), in_bytes=16))
+        rand.append((il, st))
+    ex = bl.ROOT / "examples"
+    t1 = HERE / "programs" / "table1.il"
+    t1_stim = work / "table1.csv"
+    t1_stim.write_text(scan_stimulus(1818, len(operands), in_bytes=16))
+    return [("64-bit ripple-carry adder", [(adder, stim)], adder_watch(), True),
+            (f"{RANDOM} random straight-line bit programs", rand, "", True),
+            ("examples/interlock.il", [(ex / "interlock.il", ex / "interlock.stim.csv")], "",
+             True),
+            ("examples/star_delta.il", [(ex / "star_delta.il", ex / "star_delta.stim.csv")],
+             "", True),
+            ("Table-1 program (serial: byte instructions, jumps)", [(t1, t1_stim)], "", False)]
 
 
 def measure(quick: bool = False) -> dict:
@@ -96,55 +132,66 @@ def measure(quick: bool = False) -> dict:
     work.mkdir(parents=True, exist_ok=True)
     rng = random.Random(18)
     scans = 4 if quick else 16
-    adder = work / "adder64.il"
-    adder.write_text(adder_il())
-    stim = work / "adder64.csv"
     operands = [(rng.getrandbits(BITS), rng.getrandbits(BITS)) for _ in range(scans)]
-    stim.write_text(adder_stimulus(operands))
-    cases = [("64-bit ripple-carry adder", adder, stim, adder_watch())]
-    for name in ("interlock", "star_delta"):
-        il = bl.ROOT / "examples" / f"{name}.il"
-        cases.append((f"examples/{name}.il", il, il.with_suffix(".stim.csv"), ""))
     runs = []
-    for title, il, st, watch in cases:
-        trace = work / f"{il.stem}.trace.csv"
-        run = bl.run_bitbyte(il, clock_mhz=bl.DEFAULT_CLOCK_MHZ, stimulus=st,
-                             scans=scans, trace=trace, watch=watch)
-        if run.rc != 0:
-            raise SystemExit(f"bit_engine_bench: bitbyte run {il} failed:\n{run.stderr}")
-        header, rows = run.header, run.rows
-        cycles = [r[header.index("cycles")] for r in rows]
-        instrs = [i for i in parse_file(str(il)).instrs if i.mnemonic != "END"]
-        r = {"title": title, "instructions": len(instrs),
-             "clocks": statistics.median(cycles), "scans": len(rows)}
-        if il == adder:
-            want = [a + b for a, b in operands[:len(rows)]]
-            r["sums_ok"] = sums_from_trace(header, rows) == want
+    for title, programs, watch, straight in cases(work, operands):
+        r = {"title": title, "programs": len(programs), "straight": straight,
+             "instructions": 0, "clocks": {e: 0.0 for e in ENGINES}}
+        for il, st in programs:
+            r["instructions"] += len([i for i in parse_file(str(il)).instrs
+                                      if i.mnemonic != "END"])
+            for engine in ENGINES:
+                trace = work / f"{il.stem}.{engine}.trace.csv"
+                run = bl.run_bitbyte(il, clock_mhz=bl.DEFAULT_CLOCK_MHZ, stimulus=st,
+                                     scans=scans, trace=trace, watch=watch,
+                                     extra=["--bit-engine", engine])
+                if run.rc != 0:
+                    raise SystemExit(f"bit_engine_bench: bitbyte run {il} --bit-engine "
+                                     f"{engine} failed:\n{run.stderr}")
+                header, rows = run.header, run.rows
+                r["clocks"][engine] += statistics.median(row[header.index("cycles")] for row in rows)
+                if watch:       # the adder: its sums on both engines
+                    want = [a + b for a, b in operands[:len(rows)]]
+                    r.setdefault("sums_ok", True)
+                    r["sums_ok"] &= sums_from_trace(header, rows) == want
         runs.append(r)
-    return {"runs": runs, "fmax": {k: str(v) for k, v in fmax_lines().items()}}
+    return {"runs": runs, "fmax": {k: str(v) for k, v in fmax_lines().items()},
+            "rev": bl.source_rev()}
 
 
 def markdown(res: dict) -> list[str]:
     fmax = {k: Fraction(v) for k, v in res["fmax"].items()}
-    parts = [p for p in ("HX8K", "ECP5-25") if p in fmax]
-    L = [BEGIN, "", "### Bit-engine throughput (issue 18): the scalar engine's baseline", "",
-         "IL bit instructions per clock and ns per IL bit instruction at the `make synth` "
-         "clock (`Fmax` lines of docs/synthesis.md), serial mode, programs without jumps "
-         "(bench/bit_engine_bench.py). *Instructions* are the program's IL instructions "
-         "without `END`; *clocks* the median scan from the trace (`END` included; the "
-         "star-delta program's timers are byte instructions, dispatched in serial mode, "
-         "which is why it runs slower than one per clock). The 64-bit adder's sums are checked against a + b for every scan "
-         "(tests/test_bit_engine_bench.py). The scalar engine executes one instruction "
-         "per clock, so its figure is the clock period; a wide engine (issue 18: ≥ 4 "
-         "per clock, ≤ 1.25 ns on ECP5-25) is measured against it here.", "",
-         "| program | instructions | clocks / scan | instr. / clock | "
-         + " | ".join(f"ns / instr. at {p} {float(fmax[p]):g} MHz" for p in parts) + " |",
-         "|---|---:|---:|---:|" + "---:|" * len(parts)]
+    clock = {"scalar": fmax.get("ECP5-25"), "wide": fmax.get("ECP5-25 (wide)")}
+    hx = fmax.get("HX8K")
+    mhz = lambda f: f"{float(f):g} MHz" if f else "no Fmax line"   # noqa: E731
+    L = [BEGIN, "", "### Bit-engine throughput (issue 18): the scalar and the wide engine", "",
+         f"Measured by `bench/bit_engine_bench.py` at commit `{res['rev']}` on the Verilator "
+         "harness of each engine (`bitbyte run --bit-engine scalar|wide`, serial mode; "
+         "the wide build runs the program compiled into LUT words, docs/wide-engine.md). "
+         "*IL* are the programs' IL instructions without `END`, all executed once a scan "
+         "in the straight-line programs; *clocks* the median scan from the trace (`END` "
+         "included; summed over a row's programs); *IL / clock* their ratio, the issue's "
+         "figure (≥ 4 for the adder, ≥ 2.5 for random straight-line programs); *ns / IL* "
+         "at each engine's ECP5-25 clock of `make synth` (docs/synthesis.md: scalar "
+         f"{mhz(clock['scalar'])}, wide {mhz(clock['wide'])}; the scalar engine on the "
+         f"HX8K: {mhz(hx)}). The star-delta program's timers and the Table-1 program's "
+         "byte instructions are dispatched to the byte processor at their cost in both "
+         "engines. The adder's sums are checked against a + b for every scan on both "
+         "engines (tests/test_bit_engine_bench.py, tests/test_wide_rtl.py).", "",
+         "| program | IL | clocks / scan scalar | clocks / scan wide | speed-up | "
+         "IL / clock scalar | IL / clock wide | ns / IL scalar | ns / IL wide |",
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in res["runs"]:
-        ipc = r["instructions"] / r["clocks"]
-        ns = [f"{1000 / float(fmax[p]) / ipc:.1f}" for p in parts]
-        L.append(f"| {r['title']} | {r['instructions']} | {r['clocks']:g} | {ipc:.2f} | "
-                 + " | ".join(ns) + " |")
+        c = r["clocks"]
+        cells = [f"{c['scalar']:g}", f"{c['wide']:g}", f"{c['scalar'] / c['wide']:.2f}"]
+        if r["straight"]:
+            ipc = {e: r["instructions"] / c[e] for e in ENGINES}
+            cells += [f"{ipc['scalar']:.2f}", f"{ipc['wide']:.2f}"]
+            cells += [f"{1000 / float(clock[e]) / ipc[e]:.2f}" if clock[e] else "–"
+                      for e in ENGINES]
+        else:
+            cells += ["–"] * 4
+        L.append(f"| {r['title']} | {r['instructions']} | " + " | ".join(cells) + " |")
     L += ["", "Published, per bit instruction: " + ", ".join(
         f"{name} {ns:g} ns" for name, ns in S7) + " (Siemens technical data).", "", END]
     return L
