@@ -12,6 +12,7 @@ line mistakes) and a non-zero exit status, never a traceback:
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import importlib.metadata
 import json
 import sys
@@ -238,7 +239,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="the bit processor's engine (spec section 4): scalar (default); "
                         "wide: the program compiled into LUT words (as `asm --bit-engine "
                         "wide`), run on the wide build (serial mode, --sim verilator; "
-                        "not yet with --status, --line-counts or --waves)")
+                        "not yet with --status or --waves)")
     _source_options(r)
 
     k = sub.add_parser("link", formatter_class=_FORMAT,
@@ -393,14 +394,14 @@ def cmd_alloc(args) -> int:
 
 
 def _check_wide_run(args) -> None:
-    """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; what
-    a host keys by the program address (the block status, line counts, the waveform's
-    instruction names) waits for the map from wide addresses to lines (slice S7)."""
+    """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; the
+    line counts go through the image's map to the source (bitbyte/wide/link.py
+    source_counts); the block status and the waveform's instruction names, keyed by
+    the program address too, wait for theirs (slice S7)."""
     for opt, given in (("a plant file", args.program.lower().endswith(".toml")),
                        (f"--mode {args.mode}", args.mode != "serial"),
                        (f"--sim {args.sim}", args.sim != "verilator"),
                        ("--status", args.status is not None),
-                       ("--line-counts", args.line_counts is not None),
                        ("--waves", args.waves is not None)):
         if given:
             raise UsageError(f"--bit-engine wide: {opt} is not supported yet (serial mode "
@@ -422,6 +423,7 @@ def cmd_run(args) -> int:
         marker_write_buffer=args.marker_write_buffer, tc_path=args.tc_path)
     program, columns, job, f = prep.program, prep.columns, prep.job, prep.f
     _warnings(args, program)
+    image = None
     if args.bit_engine == "wide":     # the wide image, on the wide build
         from bitbyte.wide import link as wide_link
         from bitbyte.wide.model import compile_program
@@ -464,6 +466,10 @@ def cmd_run(args) -> int:
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
     waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
     if args.line_counts is not None:
+        if image is not None:          # wide addresses -> the source's (scalar) ones
+            from bitbyte.wide.link import source_counts
+            stats = dataclasses.replace(stats, line_counts=source_counts(
+                image, stats.line_counts or {}))
         _write_line_counts(args.line_counts, prep, stats)
     print(summary_text(records, f, stats, args.trace, waves,
                        None if args.force else response_times(prep, records),

@@ -274,7 +274,7 @@ def test_run_takes_bit_engine(tmp_path):
                           for row in rows]
     assert traces["wide"] == traces["scalar"] and len(traces["wide"]) == 4
     for opt in (["--mode", "parallel"], ["--sim", "icarus"], ["--status", "0"],
-                ["--line-counts", str(tmp_path / "c.csv")], ["--waves", str(tmp_path / "w.fst")]):
+                ["--waves", str(tmp_path / "w.fst")]):
         r = subprocess.run(run + ["--bit-engine", "wide", *opt], capture_output=True, text=True)
         assert r.returncode == 2 and "not supported yet" in r.stderr and "Traceback" not in r.stderr
 

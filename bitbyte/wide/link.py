@@ -184,3 +184,25 @@ def summary(image: WideImage) -> dict:
     to lines with it)."""
     return {"bit_engine": "wide", "words": len(image.base), "labels": wide_labels(image),
             "units": image.units, "addr": image.addr[:-1]}
+
+
+def source_counts(image: WideImage, counts: dict[int, int]) -> dict[int, int | str]:
+    """How often each source instruction ran, from the retirements the wide build
+    counted per wide address (`--line-counts`): a scalar word's count is its
+    instruction's; a unit is entered only at its first word and runs to its last, so
+    that word's count is every instruction's of the unit. A unit of no word has no
+    address and no count: its instructions get "" (unknown). In serial mode a source
+    instruction's index is its address in the scalar image, so the rows are the scalar
+    run's."""
+    out: dict[int, int | str] = {}
+    first = {u["addr"]: u for u in image.units}
+    for a, src in enumerate(image.src):
+        if isinstance(src, int):
+            out[src] = counts.get(a, 0)
+        elif a in first:
+            for p in range(*first[a]["src"]):
+                out[p] = counts.get(a, 0)
+    for p in range(len(image.program.instrs)):
+        out.setdefault(p, "")
+    return out
+
