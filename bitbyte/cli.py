@@ -239,7 +239,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="the bit processor's engine (spec section 4): scalar (default); "
                         "wide: the program compiled into LUT words (as `asm --bit-engine "
                         "wide`), run on the wide build (serial mode, --sim verilator; "
-                        "not yet with --status or --waves)")
+                        "not yet with --waves)")
     _source_options(r)
 
     k = sub.add_parser("link", formatter_class=_FORMAT,
@@ -395,13 +395,12 @@ def cmd_alloc(args) -> int:
 
 def _check_wide_run(args) -> None:
     """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; the
-    line counts go through the image's map to the source (bitbyte/wide/link.py
-    source_counts); the block status and the waveform's instruction names, keyed by
-    the program address too, wait for theirs (slice S7)."""
+    line counts and the block status go through the image's map to the source
+    (bitbyte/wide/link.py source_counts, source_status); the waveform's instruction
+    names, keyed by the program address too, wait for theirs (slice S7)."""
     for opt, given in (("a plant file", args.program.lower().endswith(".toml")),
                        (f"--mode {args.mode}", args.mode != "serial"),
                        (f"--sim {args.sim}", args.sim != "verilator"),
-                       ("--status", args.status is not None),
                        ("--waves", args.waves is not None)):
         if given:
             raise UsageError(f"--bit-engine wide: {opt} is not supported yet (serial mode "
@@ -485,7 +484,11 @@ def cmd_run(args) -> int:
                                              prep.byte_listing, stats.byte_status or {},
                                              args.status, args.sim, faulted), end="")
         else:
-            print(block_status_text(prep.listing, stats.block_status or {}, args.status,
+            status = stats.block_status or {}
+            if image is not None:      # wide addresses -> the source's
+                from bitbyte.wide.link import source_status
+                status = source_status(image, status)
+            print(block_status_text(prep.listing, status, args.status,
                                     args.sim, ended_by_watchdog=faulted), end="")
     if fault:
         print(f"scan watchdog: {fault_scan_name(len(records), stats)} exceeded "

@@ -175,6 +175,14 @@ def test_a_flipped_table_bit_is_seen(tmp_path):
     assert bad != good
 
 
+def _run_args(tmp_path, name, text, stim, engine) -> list[str]:
+    """`bitbyte run` of a case on one engine (its files written)."""
+    il, st = tmp_path / f"{name}.il", tmp_path / f"{name}.csv"
+    il.write_text(text)
+    st.write_text(stim)
+    return ["run", str(il), "--stimulus", str(st), "--scans", str(SCANS), "--bit-engine", engine]
+
+
 def test_line_counts_are_the_scalar_runs_line_by_line(tmp_path):
     """`run --line-counts` on the wide build: the counts per wide address, mapped back
     through the image (a unit's first word counts for its lines), equal the scalar
@@ -182,14 +190,11 @@ def test_line_counts_are_the_scalar_runs_line_by_line(tmp_path):
     from bitbyte import cli
     bad, unknown, rows_seen = [], 0, 0
     for name, text, stim in _cases(["bit", "nops", "mixed"])[:12]:
-        il, st = tmp_path / f"{name}.il", tmp_path / f"{name}.csv"
-        il.write_text(text)
-        st.write_text(stim)
         got, rcs = {}, set()
         for engine in ("scalar", "wide"):
             out = tmp_path / f"{name}.{engine}.counts.csv"
-            rcs.add(cli.main(["run", str(il), "--stimulus", str(st), "--scans", str(SCANS),
-                              "--bit-engine", engine, "--line-counts", str(out)]))
+            rcs.add(cli.main(_run_args(tmp_path, name, text, stim, engine)
+                             + ["--line-counts", str(out)]))
             got[engine] = [line.split(",") for line in out.read_text().splitlines()]
         if rcs != {0}:      # a watchdog fault ends the engines' runs at different lines
             assert rcs == {3}
@@ -202,3 +207,40 @@ def test_line_counts_are_the_scalar_runs_line_by_line(tmp_path):
         rows_seen += len(got["scalar"])
         assert len(got["scalar"]) == len(got["wide"])
     assert bad == [] and unknown < rows_seen // 10
+
+
+def test_block_status_is_the_scalar_runs_where_a_line_has_one(tmp_path):
+    """`run --status K` on the wide build: every scalar line as on the scalar build
+    (RLO, STA, accumulators, count); a line inside a unit shows its unit's count and
+    `–` for RLO and STA (not observable); a unit of no word says so."""
+    import contextlib
+    import io
+    from bitbyte import cli
+    bad, dashes, same = [], 0, 0
+    for name, text, stim in _cases(["bit", "nops", "mixed"])[:9]:
+        got, rcs = {}, set()
+        for engine in ("scalar", "wide"):
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                rcs.add(cli.main(_run_args(tmp_path, name, text, stim, engine)
+                                 + ["--status", str(SCANS - 1)]))
+            text_out = out.getvalue()
+            got[engine] = text_out[text_out.find("block status"):].splitlines()[2:]
+        if rcs != {0}:      # a watchdog fault (both engines: the programs loop for ever)
+            assert len(rcs) == 1
+            continue
+        assert len(got["scalar"]) == len(got["wide"])
+        for s, w in zip(got["scalar"], got["wide"]):
+            ws, ss = w.split(), s.split()
+            if "(no word in the wide image)" in w:
+                continue
+            if "–" in ws:                 # a unit's line: the count as the scalar line's
+                dashes += 1
+                count = lambda t: t.split("(")[1] if "times)" in t else "1"   # noqa: E731
+                if ("not executed" in s) or count(s) != count(w):
+                    bad.append((name, s, w))
+            else:
+                same += 1
+                if s != w:
+                    bad.append((name, s, w))
+    assert bad == [] and dashes > 50 and same > 50

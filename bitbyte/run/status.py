@@ -77,6 +77,9 @@ def _rows(listing: list[Instr], status: dict[int, Retired], rlo_name: str,
         if r is None:
             lines.append(f"{row} not executed")
             continue
+        if r.count is None:       # the wide engine compiled it into no word
+            lines.append(f"{row} (no word in the wide image)")
+            continue
         sta = str(r.operand) if not byte_part and _reads_bit(instr) else ""
         accus = (f"{r.accu1:>7} {r.accu2:>7}" if byte_part or _is_word(instr)
                  else f"{'':>7} {'':>7}")

@@ -44,10 +44,12 @@ class RunStats:
 class Retired:
     """The block status of one program address in the chosen scan (bitbyte run
     --status): how often it retired, and at its last retirement the RLO after it, the
-    operand bit it read, the byte processor's ACCU1 / ACCU2 after it."""
-    count: int
-    rlo: int
-    operand: int
+    operand bit it read, the byte processor's ACCU1 / ACCU2 after it. The wide engine's
+    lines inside a unit (LUT words) have no RLO or operand of their own ("–"), and a
+    unit of no word no count (None)."""
+    count: int | None
+    rlo: int | str
+    operand: int | str
     accu1: int
     accu2: int
 
