@@ -9,19 +9,23 @@
 //
 // A LUT word reads up to `LUT_K operands, each an area and an index of its extension
 // word (definition.toml [lut]); its result is table[x], x = {operand K-1 .. operand 0}.
-// Every operand is picked in the execute clock from what holds it then, so that a word
-// sees the writes of the words before it as the scalar instructions they stand for
-// would:
-//   I, IR, IF, Q (and PQ reads), QR, QF, T, C   the image registers (a LUT word is
-//        never in operand or execute across a latch or a PIO update: the compiler keeps
-//        program positions 0 and 1 and the word after REFRESH scalar, R1/R2)
-//   PI   a snapshot of the pins taken as a unit's first word moves into execute: the
-//        pins of its operand clock, one value for all words of the unit (§2.3)
+// Every operand is what holds it in the execute clock, so that a word sees the writes
+// of the words before it as the scalar instructions they stand for would. The image
+// registers are picked a clock early, in the operand stage, as they will be then (the
+// wide selects stay out of the execute clock); the rest in execute:
+//   I, IR, IF, QR, QF   in operand (a LUT word is never in operand or execute across a
+//        latch or a PIO update: the compiler keeps program positions 0 and 1 and the
+//        word after REFRESH scalar, R1/R2)
+//   Q (and PQ reads)    in operand, the write of the instruction in execute forwarded
+//   T, C in operand, the byte side's write of this clock forwarded; while the word is
+//        held in execute (blocked behind the wait slot), its writes are caught there
+//   PI   the pins of the operand clock of a unit's first word, one value for all words
+//        of the unit (a snapshot taken as that word moves into execute; §2.3)
 //   M    one copy of the marker RAM per operand (written with the marker RAM, read with
 //        the operand's address as the word leaves decode), and every marker write since
 //        that read forwarded, as bit_proc does for its own marker read
-//   S    the scratch file (flip-flops), written by the words before
-//   RLO  the RLO register (rlo_i), ZERO  0
+//   S    in execute: the scratch file (flip-flops), written by the words before
+//   RLO  in execute: the RLO register (rlo_i); ZERO  0
 module lut_unit #(
   parameter integer InBits     = 128,
   parameter integer OutBits    = 128,
@@ -57,6 +61,15 @@ module lut_unit #(
   input  wire [StatusBits-1:0]         timer_status_i,
   input  wire [StatusBits-1:0]         counter_status_i,
   input  wire                          rlo_i,
+  // the writes of this clock the registers take at its edge: the instruction in
+  // execute's to Q/PQ (bit_proc's output-unit port), the byte side's to T/C
+  input  wire                          out_wr_en_i,
+  input  wire [$clog2(OutBits)-1:0]    out_wr_idx_i,
+  input  wire                          out_wr_val_i,
+  input  wire                          tc_we_i,
+  input  wire                          tc_is_counter_i,
+  input  wire [$clog2(StatusBits)-1:0] tc_idx_i,
+  input  wire                          tc_val_i,
   // the word in execute completes: its scratch writes (port A with area S, port B)
   input  wire                          scr_a_we_i,
   input  wire [4:0]                    scr_a_idx_i,
@@ -113,15 +126,17 @@ module lut_unit #(
     end
 
   // ---------------------------------------------------------------- operands
-  // every area as 2048 bits (the 11-bit index; what is past an area reads 0)
+  // every area as 2048 bits (the 11-bit index; what is past an area reads 0); PI: the
+  // pins now for a unit's first word, else its unit's snapshot
   localparam integer PadW = 2048;
   wire [PadW-1:0] x_i, x_pi, x_ir, x_if, x_q, x_qr, x_qf, x_t, x_c;
+  wire [InBits-1:0] o_pins = o_unit_first_i ? pins_i : pi_snap_q;
   generate
     if (InBits < PadW) begin : g_pad_in
       wire [PadW-InBits-1:0] z = {(PadW - InBits){1'b0}};
-      assign {x_i, x_pi, x_ir, x_if} = {z, pii_i, z, pi_snap_q, z, rise_i, z, fall_i};
+      assign {x_i, x_pi, x_ir, x_if} = {z, pii_i, z, o_pins, z, rise_i, z, fall_i};
     end else begin : g_in
-      assign {x_i, x_pi, x_ir, x_if} = {pii_i, pi_snap_q, rise_i, fall_i};
+      assign {x_i, x_pi, x_ir, x_if} = {pii_i, o_pins, rise_i, fall_i};
     end
     if (OutBits < PadW) begin : g_pad_out
       wire [PadW-OutBits-1:0] z = {(PadW - OutBits){1'b0}};
@@ -237,44 +252,65 @@ module lut_unit #(
         end
       end
 
-    // the operand in execute
-    wire [3:0]  area = f_area(e_ext_q, j);
-    wire [10:0] idx  = f_index(e_ext_q, j);
-    reg v;
+    // a register area, picked in operand as it will be in execute: this clock's write
+    // to Q (the instruction in execute) or T/C (the byte side) forwarded
+    wire [3:0]  o_area = f_area(o_ext_q, j);
+    wire        o_q_fwd = out_wr_en_i && (out_wr_idx_i == o_idx[$clog2(OutBits)-1:0]);
+    wire        o_tc_fwd = tc_we_i && (tc_idx_i == o_idx[$clog2(StatusBits)-1:0]) &&
+                           (tc_is_counter_i == (o_area == `AREA_C));
+    reg pre;
     always @(*) begin
-      case (area)
-        `AREA_I:    v = x_i[idx];
-        `AREA_PI:   v = x_pi[idx];
-        `AREA_IR:   v = x_ir[idx];
-        `AREA_IF:   v = x_if[idx];
-        `AREA_Q:    v = x_q[idx];
-        `AREA_QR:   v = x_qr[idx];
-        `AREA_QF:   v = x_qf[idx];
-        `AREA_M:    v = m_val;
-        `AREA_T:    v = x_t[idx];
-        `AREA_C:    v = x_c[idx];
-        `LAREA_S:   v = scr_q[idx[4:0]];
-        `LAREA_RLO: v = rlo_i;
-        default:    v = 1'b0;           // ZERO
+      case (o_area)
+        `AREA_I:  pre = x_i[o_idx];
+        `AREA_PI: pre = x_pi[o_idx];
+        `AREA_IR: pre = x_ir[o_idx];
+        `AREA_IF: pre = x_if[o_idx];
+        `AREA_Q:  pre = o_q_fwd ? out_wr_val_i : x_q[o_idx];
+        `AREA_QR: pre = x_qr[o_idx];
+        `AREA_QF: pre = x_qf[o_idx];
+        `AREA_T:  pre = o_tc_fwd ? tc_val_i : x_t[o_idx];
+        `AREA_C:  pre = o_tc_fwd ? tc_val_i : x_c[o_idx];
+        default:  pre = 1'b0;
       endcase
     end
-    assign x[j] = v;
+    // in execute: held there, the byte side's writes to its T/C follow it
+    wire [3:0]  area = f_area(e_ext_q, j);
+    // verilator lint_off UNUSEDSIGNAL
+    wire [10:0] idx  = f_index(e_ext_q, j);     // (the bits of the widest area in use)
+    // verilator lint_on UNUSEDSIGNAL
+    wire        e_tc_fwd = tc_we_i && (tc_idx_i == idx[$clog2(StatusBits)-1:0]) &&
+                           (((area == `AREA_T) && !tc_is_counter_i) ||
+                            ((area == `AREA_C) && tc_is_counter_i));
+    reg e_pre_q;
+    always @(posedge clk_i or negedge rst_ni)
+      if (!rst_ni) e_pre_q <= 1'b0;
+      else if (e_load_i) e_pre_q <= pre;
+      else if (e_tc_fwd) e_pre_q <= tc_val_i;
+    assign x[j] = (area == `AREA_M)    ? m_val :
+                  (area == `LAREA_S)   ? scr_q[idx[4:0]] :
+                  (area == `LAREA_RLO) ? rlo_i : e_pre_q;
 `ifdef FORMAL
     // the marker operand of the word in execute is the memory's bit at its address,
     // in every clock it is there (the read in decode, the writes of the words before it
     // at distance 1, 2 and 3 and the one at the read's edge, and a hold)
     always @(*) begin
-      // the copy holds what was written (the shadow starts as the copy's contents)
+      // the shadow starts as the copy's contents
       if (!f_past_valid) assume (unused_peek == f_mem[f_pa]);
+`ifndef F_NO_INV
       else assert (unused_peek == f_mem[f_pa]);
+`endif
       if (rst_ni && f_past_valid && f_e_valid && idx[MW-1:0] == f_pa)
         assert (m_val == f_mem[f_pa]);
-      // (for the induction: the same for the word in operand, in its first clock there
-      // the copy's read and the write at its edge, later the hold and the forwarding)
+      // (helper invariants for the induction, left out by the bmc task (F_NO_INV) so
+      // that a mutant must break the claim above: the copy holds what was written; the
+      // same claim for the word in operand: in its first clock there the copy's read
+      // and the write at its edge, later the hold and the forwarding)
+`ifndef F_NO_INV
       if (rst_ni && f_past_valid && f_o_valid && o_idx[MW-1:0] == f_pa) begin
         if (o_first_i) assert (((lw_we_i && lw_addr_i == f_pa) ? lw_val_i : rdata) == f_mem[f_pa]);
         else assert ((o_fwd_q ? o_fwd_val_q : hold_q) == f_mem[f_pa]);
       end
+`endif
     end
     // the cases (port 0): the copy's own read; a write the read missed forwarded; a
     // word held in execute for a second clock

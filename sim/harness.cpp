@@ -492,7 +492,15 @@ int main(int argc, char** argv) {
   std::map<uint32_t, HexWord> ext;
   if (!rf.prog_ext.empty()) {
     if (!BB_BIT_ENGINE) die("prog_ext: this harness is the scalar build (make harness-wide builds the wide one)");
-    for (auto& [a, v] : read_hex_limbs(rf.prog_ext, prog_words, kExtLimbs)) ext[a] = v;
+    for (auto& [a, v] : read_hex_limbs(rf.prog_ext, prog_words, kExtLimbs, BB_LUT_EXT_BITS)) ext[a] = v;
+    // every LUT word (tag BB_LUT_TAG_VALUE) has its extension word, every extension
+    // word its base word: a missing one would run as a table of 0s without a word
+    std::map<uint32_t, uint32_t> base(image.begin(), image.end());
+    for (auto& [a, v] : ext)
+      if (!base.count(a)) die("%s: an extension word at @%X, no program word there", rf.prog_ext.c_str(), a);
+    for (auto& [a, w] : base)
+      if ((w >> BB_LUT_TAG_SHIFT) == BB_LUT_TAG_VALUE && !ext.count(a))
+        die("%s: the LUT word at @%X has no extension word", rf.prog_ext.c_str(), a);
   }
   for (auto [a, w] : image) {  // one word per clock, under reset
     top.prog_we_i = 1;

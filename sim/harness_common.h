@@ -333,7 +333,9 @@ static void check_run(const RunFile& rf, bool need_stop) {
 // word of up to `limbs` x 32 bits, least significant limb first.
 using HexWord = std::vector<uint32_t>;
 static std::vector<std::pair<uint32_t, HexWord>> read_hex_limbs(const std::string& path,
-                                                                uint32_t words, unsigned limbs) {
+                                                                uint32_t words, unsigned limbs,
+                                                                unsigned bits = 0) {
+  if (bits == 0) bits = 32 * limbs;   // a word's width (at most limbs x 32 bits)
   std::ifstream in(path);
   if (!in) die("cannot open program %s", path.c_str());
   std::vector<std::pair<uint32_t, HexWord>> image;  // (address, word), in file order
@@ -350,8 +352,8 @@ static std::vector<std::pair<uint32_t, HexWord>> read_hex_limbs(const std::strin
         if (t[i] == '_') continue;
         const int d = hex_digit(t[i]);
         if (d < 0) die("%s:%d: bad hex '%s'", path.c_str(), lineno, t.c_str());
-        if (++digits > 8 * (jump ? 1 : limbs))
-          die("%s:%d: '%s' wider than %u bits", path.c_str(), lineno, t.c_str(), 32 * (jump ? 1 : limbs));
+        if (++digits > (jump ? 8 : (bits + 3) / 4))
+          die("%s:%d: '%s' wider than %u bits", path.c_str(), lineno, t.c_str(), jump ? 32 : bits);
         for (unsigned l = limbs; l-- > 1;) v[l] = v[l] << 4 | v[l - 1] >> 28;   // v = v*16 + d
         v[0] = v[0] << 4 | unsigned(d);
       }
