@@ -145,13 +145,20 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 # cell counts for Xilinx 7-series and generic gates, a parameter sweep. Writes
 # docs/synthesis.md and docs/synthesis_resources.png; logs stay in synth/build/.
 # Not part of `make test` (11 to 18 minutes on 2 cores; synth-quick about 3 to 5).
-.PHONY: synth synth-quick synth-depth
+.PHONY: synth synth-quick synth-depth synth-wide
 
 synth: $(VENV_STAMP)  ## synthesis + place and route, all targets and the sweep -> docs/synthesis.md
 	$(VENV)/bin/python synth/run_synth.py --jobs $(JOBS)
 
 synth-quick: $(VENV_STAMP)  ## the same for the default parameters only (no sweep, 3 to 5 min)
 	$(VENV)/bin/python synth/run_synth.py --quick --jobs $(JOBS)
+
+# The wide bit engine's build alone (BitEngine=1, ECP5-25, three placement seeds; about
+# 40 minutes on 2 cores): docs/synthesis-wide.md, its `Fmax ECP5-25 (wide)` line read by
+# make bench until a full make synth report carries one.
+synth-wide: $(VENV_STAMP)  ## the wide bit engine on ECP5-25 (3 seeds) -> docs/synthesis-wide.md
+	$(VENV)/bin/python synth/run_synth.py --quick --targets ecp5wide --jobs $(JOBS) \
+	  --build synth/build-wide --out docs/synthesis-wide.md
 
 # LUT levels in front of each register of the HX8K design (make synth's flow, no place
 # and route: about a minute), deepest first; DEPTH_ARGS="--match u_bit_proc --path e_opnd_q"
