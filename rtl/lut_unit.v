@@ -281,14 +281,19 @@ module lut_unit #(
     wire        e_tc_fwd = tc_we_i && (tc_idx_i == idx[$clog2(StatusBits)-1:0]) &&
                            (((area == `AREA_T) && !tc_is_counter_i) ||
                             ((area == `AREA_C) && tc_is_counter_i));
-    reg e_pre_q;
+    // (the area decoded in operand too: no compare in front of the tables)
+    reg e_pre_q, e_is_m_q, e_is_s_q, e_is_rlo_q;
     always @(posedge clk_i or negedge rst_ni)
-      if (!rst_ni) e_pre_q <= 1'b0;
-      else if (e_load_i) e_pre_q <= pre;
-      else if (e_tc_fwd) e_pre_q <= tc_val_i;
-    assign x[j] = (area == `AREA_M)    ? m_val :
-                  (area == `LAREA_S)   ? scr_q[idx[4:0]] :
-                  (area == `LAREA_RLO) ? rlo_i : e_pre_q;
+      if (!rst_ni) {e_pre_q, e_is_m_q, e_is_s_q, e_is_rlo_q} <= 4'd0;
+      else if (e_load_i) begin
+        e_pre_q    <= pre;
+        e_is_m_q   <= o_area == `AREA_M;
+        e_is_s_q   <= o_area == `LAREA_S;
+        e_is_rlo_q <= o_area == `LAREA_RLO;
+      end else if (e_tc_fwd) e_pre_q <= tc_val_i;
+    assign x[j] = e_is_m_q   ? m_val :
+                  e_is_s_q   ? scr_q[idx[4:0]] :
+                  e_is_rlo_q ? rlo_i : e_pre_q;
 `ifdef FORMAL
     // the marker operand of the word in execute is the memory's bit at its address,
     // in every clock it is there (the read in decode, the writes of the words before it
