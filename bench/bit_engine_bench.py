@@ -177,9 +177,9 @@ def markdown(res: dict) -> list[str]:
          "in the straight-line programs; *clocks* the median scan from the trace (`END` "
          "included; summed over a row's programs); *IL / clock* their ratio, the issue's "
          "figure (≥ 4 for the adder, ≥ 2.5 for random straight-line programs); *ns / IL* "
-         "at each engine's ECP5-25 clock of `make synth` (docs/synthesis.md: scalar "
-         f"{mhz(clock['scalar'])}, wide {mhz(clock['wide'])}; the scalar engine on the "
-         f"HX8K: {mhz(hx)}). The star-delta program's timers and the Table-1 program's "
+         "at each engine's ECP5-25 clock (`Fmax` lines of docs/synthesis.md, `make synth`: "
+         f"scalar {mhz(clock['scalar'])}, the scalar engine on the HX8K {mhz(hx)}; "
+         f"docs/synthesis-wide.md, `make synth-wide`: wide {mhz(clock['wide'])}). The star-delta program's timers and the Table-1 program's "
          "byte instructions are dispatched to the byte processor at their cost in both "
          "engines. The adder's sums are checked against a + b for every scan on both "
          "engines (tests/test_bit_engine_bench.py, tests/test_wide_rtl.py).", "",
