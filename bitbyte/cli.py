@@ -396,7 +396,7 @@ def cmd_alloc(args) -> int:
 def _check_wide_run(args) -> None:
     """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; the
     line counts and the block status go through the image's map to the source
-    (bitbyte/wide/link.py source_counts, source_status); the waveform's instruction
+    (bitbyte/wide/link.py source_counts, bitbyte/run/status.py source_status); the waveform's instruction
     names, keyed by the program address too, wait for theirs (slice S7)."""
     for opt, given in (("a plant file", args.program.lower().endswith(".toml")),
                        (f"--mode {args.mode}", args.mode != "serial"),
@@ -486,7 +486,7 @@ def cmd_run(args) -> int:
         else:
             status = stats.block_status or {}
             if image is not None:      # wide addresses -> the source's
-                from bitbyte.wide.link import source_status
+                from bitbyte.run.status import source_status
                 status = source_status(image, status)
             print(block_status_text(prep.listing, status, args.status,
                                     args.sim, ended_by_watchdog=faulted), end="")

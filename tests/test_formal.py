@@ -255,8 +255,8 @@ MUTATIONS = [
      "wire o_in_bit  = 1'b0 ? (latch_i ? o_in_two : o_in_one)"),  # I after REFRESH stale (5)
     ("bit_proc", "bit_proc.v", "wire o_in_bit  = refresh_o ? (latch_i ? o_in_two : o_in_one)",
      "wire o_in_bit  = refresh_o ? o_in_one"),   # REFRESH first: IR/IF of the scan start's latch
-    ("bit_proc", "bit_proc.v", "end else if (e_done) begin\n      rlo_o <= rlo_d;",
-     "end else if (e_go) begin\n      rlo_o <= rlo_d;"),  # a stalled instruction sets the RLO (2)
+    ("bit_proc", "bit_proc.v", "end else if (e_done) begin\n      rlo_o <= lut_wr_rlo ? lut_res_a : rlo_d;",
+     "end else if (e_go) begin\n      rlo_o <= lut_wr_rlo ? lut_res_a : rlo_d;"),  # a stalled instruction sets the RLO (2)
     ("bit_proc", "bit_proc.v", "if (!e_hold) e_valid_q <= 1'b0;",
      "e_valid_q <= 1'b0;"),                                # a stalled instruction is dropped (2)
     ("bit_proc", "bit_proc.v", ".re_i   (d_move),", ".re_i   (1'b1),"),

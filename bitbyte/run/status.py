@@ -14,6 +14,7 @@ from __future__ import annotations
 from bitbyte.encoding.isa import READ_OPS, is_byte_instruction
 from bitbyte.lang.program import Instr, display_text
 from bitbyte.run.summary import Retired
+from bitbyte.wide.link import WideImage
 
 SOURCE_WIDTH = 34
 
@@ -86,3 +87,28 @@ def _rows(listing: list[Instr], status: dict[int, Retired], rlo_name: str,
         times = f"  ({r.count} times)" if r.count > 1 else ""
         lines.append(f"{row} {r.rlo:>3} {sta:>3} {accus}{times}".rstrip())
     return lines
+
+
+def source_status(image: WideImage, status: dict) -> dict:
+    """The block status (`--status`) by source instruction, from the retirements the wide
+    build reported per wide address (bitbyte.run.summary.Retired): a scalar word's is its
+    instruction's; a unit's lines take its first word's count and accumulators (no bit
+    instruction changes them), their RLO and operand are not observable ("–"); a unit
+    of no word has no count (None)."""
+    out = {}
+    first = {u["addr"]: u for u in image.units}
+    for a, src in enumerate(image.src):
+        r = status.get(a)
+        if isinstance(src, int):
+            if r is not None:
+                out[src] = r
+        elif a in first and r is not None:
+            for p in range(*first[a]["src"]):
+                out[p] = Retired(r.count, "–", "–", r.accu1, r.accu2)
+    covered = {src for src in image.src if isinstance(src, int)}
+    covered |= {p for u in image.units for p in range(*u["src"])}
+    for p in range(len(image.program.instrs)):
+        if p not in covered:
+            out[p] = Retired(None, "–", "–", 0, 0)
+    return out
+

@@ -206,28 +206,3 @@ def source_counts(image: WideImage, counts: dict[int, int]) -> dict[int, int | s
         out.setdefault(p, "")
     return out
 
-
-def source_status(image: WideImage, status: dict) -> dict:
-    """The block status (`--status`) by source instruction, from the retirements the wide
-    build reported per wide address (bitbyte.run.summary.Retired): a scalar word's is its
-    instruction's; a unit's lines take its first word's count and accumulators (no bit
-    instruction changes them), their RLO and operand are not observable ("–"); a unit
-    of no word has no count (None)."""
-    from bitbyte.run.summary import Retired
-    out = {}
-    first = {u["addr"]: u for u in image.units}
-    for a, src in enumerate(image.src):
-        r = status.get(a)
-        if isinstance(src, int):
-            if r is not None:
-                out[src] = r
-        elif a in first and r is not None:
-            for p in range(*first[a]["src"]):
-                out[p] = Retired(r.count, "–", "–", r.accu1, r.accu2)
-    covered = {src for src in image.src if isinstance(src, int)}
-    covered |= {p for u in image.units for p in range(*u["src"])}
-    for p in range(len(image.program.instrs)):
-        if p not in covered:
-            out[p] = Retired(None, "–", "–", 0, 0)
-    return out
-
