@@ -42,7 +42,8 @@ from bitbyte.wide import iss, link, model
 from test_wide_image import dense_stimulus
 from test_wide_model import _adder_stimulus, _operands, adder_il, with_label_nops
 
-PROGRAMS = int(os.environ.get("BITBYTE_WIDE_RTL_PROGRAMS", "24"))
+# (the wide part of `make soak` runs 10 000: docs/wide-engine.md)
+PROGRAMS = int(os.environ.get("BITBYTE_WIDE_RTL_PROGRAMS", "15"))
 SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
 
@@ -111,7 +112,7 @@ def test_random_images_run_as_the_image_interpreter(tmp_path):
                     (fault, [r[::2] for r in got]):
                 scalar_bad.append(name)
     assert bad == [] and scalar_bad == []
-    assert lut_words > 1000 and faults <= len(cases) // 4
+    assert lut_words > 40 * len(cases) and faults <= len(cases) // 4
 
 
 def test_pins_changing_every_clock_clock_for_clock(tmp_path):
