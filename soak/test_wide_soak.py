@@ -31,7 +31,6 @@ them up.
 """
 from __future__ import annotations
 
-import dataclasses
 import json
 import os
 import random
@@ -44,14 +43,13 @@ import pytest
 from bitbyte.lang.parser import parse
 from bitbyte.lang.program import JUMPS
 from bitbyte.lang.stimulus import parse_stimulus
-from bitbyte.run.prepare import prepare
-from bitbyte.sim.verilator import run_harness
 from bitbyte.ref.refsim import refsim_trace
 from bitbyte.wide import iss, link, model
 from randprog import (FULL_WATCH, random_mixed_program, random_program, random_scan_stimulus,
                       strip_timers)
 from test_wide_image import dense_stimulus, differences
 from test_wide_model import with_label_nops
+from test_wide_rtl import _image_rows, _prepared, _run_image
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = Path(os.environ.get("BITBYTE_SOAK_OUT", ROOT / "build" / "soak"))
@@ -89,23 +87,16 @@ def scalar_differences(program, image, stimulus) -> tuple[list[str], int]:
 
 def rtl_differences(text: str, image, stimulus_text: str, tmp: Path) -> list[str]:
     """The image on the wide RTL against the image interpreter: every column and
-    `cycles` of every scan (the interpreter's columns are the run's)."""
-    (tmp / "p.il").write_text(text)
-    (tmp / "s.csv").write_text(stimulus_text)
-    prep = prepare(str(tmp / "p.il"), stimulus=str(tmp / "s.csv"), watch=",".join(FULL_WATCH),
-                   scans=SCANS)
-    job = dataclasses.replace(prep.job, prog=image.base, prog_ext=image.ext)
-    got, got_fault, _ = run_harness(job, prep.columns)
-    sim = iss.ImageSim(image, prep.config, prep.stimulus, prep.job.watchdog, prep.columns)
-    want = sim.run(SCANS)
+    `cycles` of every scan (tests/test_wide_rtl.py's runs of both)."""
+    prep = _prepared(tmp, "p", text, stimulus_text, FULL_WATCH, SCANS)
+    (got, got_fault), (want, sim) = _run_image(prep, image), _image_rows(prep, image, SCANS)
     out = [] if (sim.watchdog_fault, len(want)) == (got_fault, len(got)) else \
         [f"fault/scans: RTL {got_fault}/{len(got)}, image {sim.watchdog_fault}/{len(want)}"]
-    for w, g in zip(want, got):
-        if w.cycles != g.cycles:
-            out.append(f"cycles scan {w.scan}: RTL {g.cycles}, image {w.cycles}")
-        out += [f"{c.header} scan {w.scan}: RTL {g.values[c.header]}, image "
-                f"{w.values[c.header]}" for c in prep.columns
-                if w.values[c.header] != g.values[c.header]]
+    for (scan, w_cycles, w), (_, g_cycles, g) in zip(want, got):
+        if w_cycles != g_cycles:
+            out.append(f"cycles scan {scan}: RTL {g_cycles}, image {w_cycles}")
+        out += [f"{c.header} scan {scan}: RTL {gv}, image {wv}"
+                for c, wv, gv in zip(prep.columns, w, g) if wv != gv]
     return out
 
 

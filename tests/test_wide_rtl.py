@@ -48,12 +48,12 @@ SCANS = 6
 BASE_SEED = int(os.environ.get("BITBYTE_SEED", "1"))
 
 
-def _prepared(tmp_path, name, text, stim, watch):
+def _prepared(tmp_path, name, text, stim, watch, scans=SCANS):
     il = tmp_path / f"{name}.il"
     il.write_text(text)
     st = tmp_path / f"{name}.csv"
     st.write_text(stim)
-    return prepare(str(il), stimulus=str(st), watch=",".join(watch), scans=SCANS)
+    return prepare(str(il), stimulus=str(st), watch=",".join(watch), scans=scans)
 
 
 def _rows(records, columns):
