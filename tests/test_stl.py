@@ -1096,9 +1096,11 @@ def test_block_errors(tmp_path, capsys, text, message):
 # Random programs against awlsim
 # --------------------------------------------------------------------------------------
 
-def random_cases(tmp: Path, count: int, offset: int = 0):
+def random_cases(tmp: Path, count: int, offset: int = 0, base: int | None = None):
+    """base: the run's seed (BITBYTE_SEED) unless given."""
+    base = BASE_SEED if base is None else base
     for index in range(offset, offset + count):
-        seed = BASE_SEED * 10_000 + index
+        seed = base * 10_000 + index
         text, lang = random_program(seed)
         path = tmp / f"stl{seed}.awl"
         path.write_text(text)
@@ -1239,8 +1241,11 @@ def test_seal_in_on_verilator(tmp_path):
 # --------------------------------------------------------------------------------------
 
 def mismatches(tmp: Path, count: int = 60) -> int:
+    """Random programs disagreeing with awlsim. The seeds are fixed (not the run's
+    BITBYTE_SEED): a check that a broken translation is caught must not depend on
+    whether this run's programs happen to use the broken construct."""
     found = 0
-    for seed, path, lang, inputs in random_cases(tmp, count, offset=90_000):
+    for seed, path, lang, inputs in random_cases(tmp, count, offset=90_000, base=0):
         try:
             got = bitbyte_scans(path, inputs, tmp, words=WORDS, in_words=IN_WORDS)
         except SourceError:
@@ -1279,7 +1284,18 @@ def test_oracle_catches_or_strictly_in_sequence(tmp_path, monkeypatch):
             return True
         return real(self, stmt, st, edges)
 
+    path = write(tmp_path, "or_seq.awl", """
+        U     E 0.0
+        U     E 0.1
+        O
+        U     E 0.2
+        =     A 0.0
+        """)
+    inputs = every_input()
+    same_as_awlsim(path, "de", inputs, tmp_path)
     monkeypatch.setattr(stl.StlFrontEnd, "statement", no_and_before_or)
+    assert first_difference(awlsim_scans(path, inputs, mnemonics="de"),
+                            bitbyte_scans(path, inputs, tmp_path)) is not None
     assert mismatches(tmp_path) > 0
 
 
