@@ -177,77 +177,93 @@ def test_yosys_equivalence_step(queue_netlist, tmp_path):
     assert step(1) and not step(3)
 
 
-@pytest.fixture(scope="module")
-def clearing_netlist(tmp_path_factory):
-    """shared_mem (2 cores, 2 words a buffer: 4 words cleared after reset) with
-    1 = bit 1 of the clearing counter's next value inverted (the words cleared in the
-    order 0, 3, 2, 1), 2 = the clearing's data bit 0 stuck at 1 (every word reads 1
-    once ready), 3 = bit 1 of the clearing counter's hold value inverted (once done,
-    that bit toggles every clock: the counter's low bits differ for ever, and nothing
-    reads them then), 4 = bit 0 of one bank's clearing address stuck at 0 (words 1 and 3
-    of that bank are never cleared: after reset from power-up they are 0 anyway, after
-    a later reset they keep what was written)."""
-    work = mutlib.prepare_dir(tmp_path_factory.mktemp("settle") / "elab")
-    script = mutlib.elab_script("shared_mem", {"Cores": 2, "SharedWords": 2})
-    cands = mutlib.candidates(work, script, ["shared_mem"], "all")
-    src = (mutlib.RTL / "shared_mem.v").read_text().splitlines()
-    clr = next(i for i, t in enumerate(src, 1) if "clear_q <= clear_q + 1'b1" in t)
-    zero = next(i for i, t in enumerate(src, 1) if "clearing ? 32'd0 :" in t)
-    addr = next(i for i, t in enumerate(src, 1) if "clearing ? clear_q[AW-1:0] :" in t)
-    picked = [next(c for c in cands if c.cell.startswith("$add$") and c.port == "A"
-                   and c.portbit == 1 and c.mode == "inv"
-                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
-              next(c for c in cands if c.cell.startswith("$ternary$") and c.port == "B"
-                   and c.portbit == 0 and c.mode == "const1"
-                   and any(s.startswith(f"shared_mem.v:{zero}.") for s in c.srcs)),
-              next(c for c in cands if c.cell.startswith("$procmux$") and c.port == "B"
-                   and c.portbit == 1 and c.mode == "inv"
-                   and any(s.startswith(f"shared_mem.v:{clr}.") for s in c.srcs)),
-              next(c for c in cands if c.cell.startswith(f"$ternary$shared_mem.v:{addr}$")
-                   and c.port == "A" and c.portbit == 0 and c.mode == "const0")]
-    for k, m in enumerate(picked, 1):
-        m.id = k
-    return mutlib.write_netlist(work, script, "shared_mem", picked, "mutants")
+# settled_equivalence on a small copy of shared_mem's clearing (four words of four bits,
+# solved in seconds; make mutate applies it to shared_mem itself, whose mutants 1-4
+# below are the campaign's): 1 = bit 1 of the clearing counter's next value inverted
+# (the words cleared in the order 0, 3, 2, 1), 2 = the clearing's data bit 0 stuck at 1
+# (every word reads 1 once ready), 3 = bit 1 of the counter's hold value inverted (once
+# done, that bit toggles every clock: the counter's low bits differ for ever, and
+# nothing reads them then), 4 = bit 0 of the clearing address stuck at 0 (words 1 and 3
+# are never cleared: after reset from power-up they are 0 anyway, after a later reset
+# they keep what was written). Reset in the first clock, four clearing clocks, the
+# registered read: ready and settled at clock 6.
+CLEARING_RAM = """\
+// A RAM of four words cleared after reset, as shared_mem's banks are (a small copy
+// that the checker's tests solve in seconds); `MUTSEL picks a mutant.
+module clearing_ram (input clk_i, input rst_ni, input we_i, input [1:0] waddr_i,
+                     input [3:0] wdata_i, input [1:0] raddr_i, output [3:0] rdata_o,
+                     output ready_o);
+  wire [2:0] mutsel = `MUTSEL;
+  reg  [3:0] mem [0:3];
+  reg  [3:0] rdata_q;
+  reg  [2:0] clear_q;                    // 4 when done
+  wire       clearing = !clear_q[2];
+  // 1: bit 1 of the counter's next value inverted (the words cleared 0, 3, 2, 1)
+  wire [2:0] next = (clear_q ^ ((mutsel == 3'd1) ? 3'b010 : 3'b000)) + 3'd1;
+  // 3: bit 1 of its hold value inverted (once done it toggles; nothing reads it then)
+  wire [2:0] hold = clear_q ^ ((mutsel == 3'd3) ? 3'b010 : 3'b000);
+  // 4: the clearing address's bit 0 stuck at 0 (words 1 and 3 never cleared)
+  wire [1:0] caddr = clear_q[1:0] & ((mutsel == 3'd4) ? 2'b10 : 2'b11);
+  // 2: the clearing's data bit 0 stuck at 1
+  wire [3:0] cdata = (mutsel == 3'd2) ? 4'd1 : 4'd0;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) clear_q <= 3'd0;
+    else         clear_q <= clearing ? next : hold;
+  always @(posedge clk_i) begin
+    if (clearing || we_i) mem[clearing ? caddr : waddr_i] <= clearing ? cdata : wdata_i;
+    rdata_q <= mem[raddr_i];
+  end
+  assign rdata_o = rdata_q;
+  assign ready_o = !clearing;
+endmodule
+"""
+
+
+@pytest.fixture
+def clearing_netlist(tmp_path):
+    netlist = tmp_path / "clearing_ram.v"
+    netlist.write_text(CLEARING_RAM)
+    return netlist
 
 
 def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp_path):
-    settle = mutlib.Settle("ready_o", 8, ("rdata_o",))
-    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "shared_mem", 1,
+    settle = mutlib.Settle("ready_o", 6, ("rdata_o",))
+    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "clearing_ram", 1,
                                       settle, 300) == "equivalent"
-    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 2,
+    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "clearing_ram", 2,
                                       settle, 300) == "different"
     # a clearing that misses words: equal after the power-up reset (every word starts
     # at 0 there), different after a later one; the check starts anywhere
-    assert mutlib.settled_equivalence(tmp_path / "m", clearing_netlist, "shared_mem", 4,
+    assert mutlib.settled_equivalence(tmp_path / "m", clearing_netlist, "clearing_ram", 4,
                                       settle, 300) == "different"
     # a contract the original does not keep (ready after 3 clocks) proves nothing
     early = mutlib.Settle("ready_o", 3, ("rdata_o",))
-    assert mutlib.settled_equivalence(tmp_path / "c", clearing_netlist, "shared_mem", 1,
+    assert mutlib.settled_equivalence(tmp_path / "c", clearing_netlist, "clearing_ram", 1,
                                       early, 300) == "different"
 
 
 def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path):
     """Settle.free: the counter's low bits differ for ever after mutant 3, so the
     copies are equal once settled only with them left free; leaving free a register the
-    outputs read (word 2 of every bank) proves nothing, and a name that is no register
-    is refused. (A register loaded from the inputs every clock, as rbank_q, may be left
+    outputs read (word 2 of the memory) proves nothing, and a name that is no register
+    is refused. (A register loaded from the inputs every clock, as rdata_q, may be left
     free: it is equal again one clock later, which is what the induction step sees.)"""
-    strict = mutlib.Settle("ready_o", 8, ("rdata_o",))
-    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "shared_mem", 3,
+    strict = mutlib.Settle("ready_o", 6, ("rdata_o",))
+    assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "clearing_ram", 3,
                                       strict, 300) == "fail (state)"
-    free = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q",))
-    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "shared_mem", 3,
+    free = mutlib.Settle("ready_o", 6, ("rdata_o",), free=("clear_q",))
+    assert mutlib.settled_equivalence(tmp_path / "b", clearing_netlist, "clearing_ram", 3,
                                       free, 300) == "equivalent"
     # freeing a read memory word: the induction step fails (SBY's UNKNOWN)
-    read = mutlib.Settle("ready_o", 8, ("rdata_o",), free=("clear_q", "mem[2]"))
-    assert mutlib.settled_equivalence(tmp_path / "d", clearing_netlist, "shared_mem", 1,
+    read = mutlib.Settle("ready_o", 6, ("rdata_o",), free=("clear_q", "mem[2]"))
+    assert mutlib.settled_equivalence(tmp_path / "d", clearing_netlist, "clearing_ram", 1,
                                       read, 300) == "unknown (step)"
     with pytest.raises(mutlib.MutationError, match="no_such_q"):
-        mutlib.settled_equivalence(tmp_path / "e", clearing_netlist, "shared_mem", 1,
-                                   mutlib.Settle("ready_o", 8, free=("no_such_q",)), 300)
+        mutlib.settled_equivalence(tmp_path / "e", clearing_netlist, "clearing_ram", 1,
+                                   mutlib.Settle("ready_o", 6, free=("no_such_q",)), 300)
     with pytest.raises(mutlib.MutationError, match="clearing.*no registers"):
-        mutlib.settled_equivalence(tmp_path / "f", clearing_netlist, "shared_mem", 1,
-                                   mutlib.Settle("ready_o", 8, free=("clearing",)), 300)
+        mutlib.settled_equivalence(tmp_path / "f", clearing_netlist, "clearing_ram", 1,
+                                   mutlib.Settle("ready_o", 6, free=("clearing",)), 300)
 
 
 # Equivalence by contract (mutlib.Contract): a read register a RAM's users read only in

@@ -115,7 +115,7 @@ def test_no_tearing_with_protection(tmp_path, protection):
 
 
 def test_tearing_detected_without_protection(tmp_path):
-    seed = SEED + 3
+    seed = 4      # fixed, not the run's seed: that tearing is seen must not be luck
     scans, torn, _ = _tearing_runs(tmp_path, "none", seed, until_torn=True)
     assert torn > 0, f"no torn group in {scans} reader scans: the test cannot fail"
     assert _met_both("none"), sorted(CROSS.items())   # both layouts tear, too

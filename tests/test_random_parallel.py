@@ -154,12 +154,12 @@ def test_status_read_first_in_the_bit_part(tmp_path, sim):
 PLANT_PROGRAMS = 10
 
 
-def _plant_case(tmp: Path, index: int):
+def _plant_case(tmp: Path, index: int, base: int = BASE_SEED):
     import random
     import sys
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
     import gen_programs
-    seed = BASE_SEED * 1000 + 900 + index
+    seed = base * 1000 + 900 + index
     rng = random.Random(seed)
     g = gen_programs.generate(rng.randrange(60, 200), rng.randrange(10, 40), seed,
                               jumps=rng.randrange(0, 4))
@@ -177,8 +177,11 @@ def test_scheduled_plant_programs_on_harness(tmp_path, capsys):
     from bitbyte.lang.parser import parse_file
     from bitbyte.compiler.partition import partition
     moved = 0
-    for index in range(PLANT_PROGRAMS):
-        seed, il, stim, watch = _plant_case(tmp_path, index)
+    # two fixed programs the compiler reschedules (seeds 901 and 904), the rest from
+    # this run's seed: the check of rescheduled parts on the hardware is never luck
+    cases = [(1, 0), (4, 0)] + [(k, BASE_SEED) for k in range(PLANT_PROGRAMS - 2)]
+    for index, base in cases:
+        seed, il, stim, watch = _plant_case(tmp_path, index, base)
         part = partition(parse_file(str(il)))
         moved += part.schedule is not None
         kw = dict(stimulus=str(stim), watch=watch, scans=SCANS, watchdog=WATCHDOG)
@@ -196,6 +199,6 @@ def test_scheduled_plant_programs_on_harness(tmp_path, capsys):
             got = (outputs(read_trace_rows(trace, columns)), rc == cli.EXIT_WATCHDOG)
             assert got == expected, f"plant program seed {seed} ({il}), {exchange}"
     # the point is that rescheduled parts run serial-equivalent on the harness, so some
-    # of the programs must have been rescheduled; how many depends on the seed (4 of 10
-    # at BITBYTE_SEED=156412), so demanding half made the test fail by chance
+    # of the programs must have been rescheduled; how many of the run's depends on its
+    # seed (4 of 10 at BITBYTE_SEED=156412), the two fixed ones always are
     assert moved >= 2, f"only {moved} of {PLANT_PROGRAMS} rescheduled"

@@ -28,6 +28,7 @@ def test_long_timers_by_hand():
 
 def test_the_programs_agree_and_are_counted(tmp_path, monkeypatch):
     monkeypatch.setattr(soak, "OUT", tmp_path / "out")
+    monkeypatch.setattr(soak, "SEED", 1)      # fixed: the counts below must not be luck
     cov = coverage_count.Coverage()
     for index in range(4):
         family = soak.FAMILIES[index]

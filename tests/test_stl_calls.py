@@ -588,9 +588,9 @@ def test_random_programs_with_calls_against_awlsim(tmp_path):
     the calls, UC/CC): 0 mismatches; rejections stay `unsupported:` and rare.
     BITBYTE_STL_CALL_PROGRAMS=<n> for a soak (docs/s7.md)."""
     compared, rejected, seen = random_call_programs(tmp_path, CALL_PROGRAMS)
-    # (6 programs at about 10 % rejected: 2 rejected in about one run of nine, 4 in
-    # about one of 800; the soak holds the 25 % bound over 1 000)
-    assert len(rejected) <= max(3, CALL_PROGRAMS * 0.25), rejected
+    # (6 programs at about 15 % rejected: 5 or more in about one run of 2 500; the
+    # soak holds the 25 % bound over 1 000)
+    assert len(rejected) <= max(4, CALL_PROGRAMS * 0.25), rejected
     if CALL_PROGRAMS >= 50:
         assert {"CALL", "UC", "CC", "FB"} <= seen, seen
     print(f"{compared} random STL programs with calls equal awlsim's, "

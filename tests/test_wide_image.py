@@ -48,11 +48,11 @@ def differences(program, compiled, image, stimulus, watch, scans=SCANS) -> list:
     return out
 
 
-def _random_set():
-    texts = [randprog.random_program(BASE_SEED * 1000 + k) if k % 2 == 0 else
-             randprog.strip_timers(randprog.random_mixed_program(BASE_SEED * 1000 + k))
+def _random_set(base: int = BASE_SEED):
+    texts = [randprog.random_program(base * 1000 + k) if k % 2 == 0 else
+             randprog.strip_timers(randprog.random_mixed_program(base * 1000 + k))
              for k in range(PROGRAMS)]
-    texts += [with_label_nops(t, random.Random(BASE_SEED * 1000 + k))
+    texts += [with_label_nops(t, random.Random(base * 1000 + k))
               for k, t in enumerate(texts)]
     progs = [parse(f"img{k}.il", t) for k, t in enumerate(texts)]
     return progs, model.compile_programs(progs)
@@ -187,13 +187,23 @@ def test_a_non_live_rlo_write_is_refused(random_set):
     raise AssertionError("no unit with a dead RLO")
 
 
+# Fixed seeds, not the run's: that a broken image is seen must not depend on whether
+# this run's programs happen to have a JU whose target's neighbour differs.
+FIXED_BASE = 1
+
+
+@pytest.fixture(scope="module")
+def fixed_set():
+    return _random_set(FIXED_BASE)
+
+
 @pytest.mark.parametrize("fault", ["table_bit", "jump_target", "scalar_word", "first_mark"])
-def test_a_broken_image_is_seen(random_set, fault):
-    progs, comp = random_set
+def test_a_broken_image_is_seen(fixed_set, fault):
+    progs, comp = fixed_set
     seen = 0
     for k, (p, c) in enumerate(zip(progs, comp)):
         img = link.link(p, c)
-        st = parse_stimulus(randprog.scan_stimulus(BASE_SEED * 1000 + k % PROGRAMS, SCANS))
+        st = parse_stimulus(randprog.scan_stimulus(FIXED_BASE * 1000 + k % PROGRAMS, SCANS))
         if fault == "table_bit":
             if not img.units:
                 continue

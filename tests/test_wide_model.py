@@ -144,11 +144,11 @@ def test_a_broken_wide_program_is_seen(fault):
         p = parse("jump.il", JUMP_PROGRAM)
         c = model.compile_program(p)
         assert any(u.rlo_live for u in c.split.units) and c.fallbacks == 0
-        st = parse_stimulus(randprog.scan_stimulus(BASE_SEED, SCANS))
-        watch, scans = ["Q0.0", "Q0.1"], SCANS
+        st = parse_stimulus(randprog.scan_stimulus(1, SCANS))    # fixed seeds: a
+        watch, scans = ["Q0.0", "Q0.1"], SCANS                   # check must not be luck
     else:
         p, c = _adder()
-        ops = _operands(BASE_SEED + 1, 6)
+        ops = _operands(2, 6)
         st = parse_stimulus(_adder_stimulus(ops))
         watch, scans = [f"Q{i // 8}.{i % 8}" for i in range(65)], len(ops)
     assert model.compare(p, st, watch=watch, scans=scans, compiled=c)[0] == []
