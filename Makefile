@@ -126,6 +126,7 @@ clean:          ## remove build products (keeps .venv)
 # soak/test_wide_soak.py: N programs of its own families compiled for the wide bit engine,
 # each image run against the scalar reference and the wide model, and on the wide RTL
 # (make harness-wide) against the image interpreter (build/soak/wide-cases/).
+# Every formal mutant of tests/test_formal.py (make test runs a fixed quarter of them).
 # Not part of `make test` (docs/soak.md has the last run's time; the S7 soak about 10 min more).
 # BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak
@@ -135,10 +136,18 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; t0=$$(date +%s); \
 	echo "soak: BITBYTE_SEED=$$seed N=$(N)"; \
 	BITBYTE_SEED=$$seed BITBYTE_SOAK_N=$(N) BITBYTE_TEARING_SCANS=100000 \
-	  BITBYTE_PLANT_COVERAGE=build/soak $(VENV)/bin/pytest -q -n $(JOBS) \
-	  -p no:cacheprovider soak/ tests/test_plant_tearing.py; rc=$$?; \
+	  BITBYTE_PLANT_COVERAGE=build/soak BITBYTE_FORMAL_MUTANTS=all \
+	  $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider soak/ tests/test_plant_tearing.py \
+	  tests/test_formal.py::test_mutation_is_caught; rc=$$?; \
 	$(VENV)/bin/python soak/soak_report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
 	exit $$rc
+
+# Every mutant of tests/test_formal.py's list must break its proof (make test runs a
+# fixed quarter of them, at least two a .sby; about 6 CPU-minutes for all 91).
+.PHONY: formal-mutants
+formal-mutants: $(VENV_STAMP)  ## every formal mutant fails its proof (make test: a sample)
+	BITBYTE_FORMAL_MUTANTS=all $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider \
+	  tests/test_formal.py::test_mutation_is_caught
 
 # ------------------------------------------------------------------ synthesis (synth/)
 # Feasibility reports: Yosys + nextpnr for iCE40 HX8K/UP5K and ECP5-25 (speed 8), Yosys
