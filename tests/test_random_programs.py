@@ -30,7 +30,7 @@ MIXED_PROGRAMS = int(os.environ.get("BITBYTE_MIXED_PROGRAMS", "200"))
 # cocotb it takes the first ICARUS_PROGRAMS of them (BITBYTE_ICARUS_PROGRAMS; Verilator
 # takes all), the mixed ones a quarter of that. Every program still meets the reference
 # on the Verilator harness.
-ICARUS_PROGRAMS = int(os.environ.get("BITBYTE_ICARUS_PROGRAMS", "80"))
+ICARUS_PROGRAMS = int(os.environ.get("BITBYTE_ICARUS_PROGRAMS", "40"))
 SCANS = 12
 BASE_SEED = int(os.environ["BITBYTE_SEED"])
 
