@@ -306,6 +306,10 @@ def _failed_assertions(stdout: str, rtl_dir: Path) -> list[str]:
     return lines
 
 
+# mutants whose BMC takes over 15 s (their original text): in the full run only
+SLOW_MUTANTS = {"if (!started_q || period_i == 64'd0) nominal_q <= now_m;"}
+
+
 def mutant_sample(mutations: list, which: str) -> list:
     """"all", or make test's fixed sample: of each .sby's mutants a quarter (at least
     two, or all it has), evenly spread over its list. make formal-mutants and make soak
@@ -315,7 +319,8 @@ def mutant_sample(mutations: list, which: str) -> list:
         return list(mutations)
     by_name: dict[str, list] = {}
     for m in mutations:
-        by_name.setdefault(m[0], []).append(m)
+        if m[2] not in SLOW_MUTANTS:
+            by_name.setdefault(m[0], []).append(m)
     picked = []
     for ms in by_name.values():
         n = min(len(ms), max(2, -(-len(ms) // 4)))
@@ -335,6 +340,8 @@ def test_the_mutant_sample_covers_every_proof():
         have = sum(m[0] == name for m in MUTATIONS)
         assert sum(m[0] == name for m in sample) >= min(2, have)
     assert len(sample) < len(MUTATIONS) and mutant_sample(MUTATIONS, "all") == MUTATIONS
+    assert {m[2] for m in MUTATIONS} >= SLOW_MUTANTS      # (a stale entry is seen)
+    assert not {m[2] for m in sample} & SLOW_MUTANTS
 
 
 # a mutant with a fifth element must break the assertion whose source line contains it

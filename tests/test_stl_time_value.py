@@ -120,8 +120,8 @@ def test_time_values_on_verilator(tmp_path, mode):
 def test_the_check_fails_on_broken_translations(tmp_path, monkeypatch):
     """Never frozen (a stopped SI/SE timer's value from its stopped IL timer: the
     preset), IL timers on their instructions' time instead of the scan's latch time,
-    and one unit added to every value: each is caught."""
-    expected, got = run(tmp_path, "de", 0, 900)
+    and one unit added to every value: each is caught (within 300 scans)."""
+    expected, got = run(tmp_path, "de", 0, 300)
     shifted = [dict(row) for row in got]
     for row in shifted:
         row["MW22"] += 1                        # T 4's binary value, one unit more
@@ -133,12 +133,12 @@ def test_the_check_fails_on_broken_translations(tmp_path, monkeypatch):
         code = real(self, n, start)
         return [("SET", None)] if start else code
     monkeypatch.setattr(stl.StlFrontEnd, "timer_running", never_frozen)
-    expected, got = run(tmp_path, "de", 0, 900)
+    expected, got = run(tmp_path, "de", 0, 300)
     assert time_value_difference(expected, got) is not None
     monkeypatch.setattr(stl.StlFrontEnd, "timer_running", real)
 
     monkeypatch.setattr(stl, "IL_TIMER_STARTS", ())     # no timer at_latch
-    expected, got = run(tmp_path, "de", 0, 900)
+    expected, got = run(tmp_path, "de", 0, 300)
     assert time_value_difference(expected, got) is not None
 
 
