@@ -239,7 +239,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="the bit processor's engine (spec section 4): scalar (default); "
                         "wide: the program compiled into LUT words (as `asm --bit-engine "
                         "wide`), run on the wide build (serial mode, --sim verilator; "
-                        "not yet with --waves)")
+                        "--waves names a LUT word by its unit's lines)")
     _source_options(r)
 
     k = sub.add_parser("link", formatter_class=_FORMAT,
@@ -396,12 +396,12 @@ def cmd_alloc(args) -> int:
 def _check_wide_run(args) -> None:
     """`run --bit-engine wide` (issue 18): the wide build on Verilator, serial mode; the
     line counts and the block status go through the image's map to the source
-    (bitbyte/wide/link.py source_counts, bitbyte/run/status.py source_status); the waveform's instruction
-    names, keyed by the program address too, wait for theirs (slice S7)."""
+    (bitbyte/wide/link.py source_counts, bitbyte/run/status.py source_status), the
+    waveform's `executing` row through its listing (wave_listing: a LUT word as its
+    unit's lines)."""
     for opt, given in (("a plant file", args.program.lower().endswith(".toml")),
                        (f"--mode {args.mode}", args.mode != "serial"),
-                       (f"--sim {args.sim}", args.sim != "verilator"),
-                       ("--waves", args.waves is not None)):
+                       (f"--sim {args.sim}", args.sim != "verilator")):
         if given:
             raise UsageError(f"--bit-engine wide: {opt} is not supported yet (serial mode "
                              "on Verilator; docs/wide-rtl-plan.md, slice S7)")
@@ -463,7 +463,8 @@ def cmd_run(args) -> int:
         if args.waves:
             raise UsageError("--waves is written by the Verilator harness; use --sim verilator")
         records, fault, stats = run_cocotb(job, columns, args.sim, f, args.trace)
-    waves = (args.waves, _wave_layout(args, prep, records, stats)) if args.waves else None
+    waves = (args.waves, _wave_layout(args, prep, records, stats, image)) if args.waves \
+        else None
     if args.line_counts is not None:
         if image is not None:          # wide addresses -> the source's (scalar) ones
             from bitbyte.wide.link import source_counts
@@ -508,14 +509,18 @@ def _write_line_counts(path: str, prep, stats) -> None:
         raise UsageError(f"--line-counts: cannot write {path}: {e.strerror}") from None
 
 
-def _wave_layout(args, prep, records, stats) -> str:
-    """W.gtkw beside the waves W.fst: the layout in the program's names (spec §4)."""
+def _wave_layout(args, prep, records, stats, image=None) -> str:
+    """W.gtkw beside the waves W.fst: the layout in the program's names (spec §4);
+    image: the wide build's (its words, not the program's instructions, execute)."""
     gtkw = str(Path(args.waves).with_suffix(".gtkw"))
     t0_ps = stats.wave_t0_ps     # clock 0; with OB 100 scan 0 latches after the startup
     if t0_ps is not None and stats.startup_cycles:
         t0_ps += sum(stats.startup_cycles) * harness_period_ps(prep.job.clock_hz)
     try:
-        write_gtkw(gtkw, args.waves, prep.program, prep.listing,
+        if image is not None:
+            from bitbyte.wide.link import wave_listing
+        write_gtkw(gtkw, args.waves, prep.program,
+                   prep.listing if image is None else wave_listing(image),
                    serial=args.mode == "serial", clock_mhz=prep.f,
                    t0_ps=t0_ps, scan_clocks=records[0].cycles if records else None,
                    hardware_scans=len(stats.startup_cycles) + len(records))

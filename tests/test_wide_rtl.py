@@ -31,6 +31,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import random
+import re
 
 import pytest
 
@@ -294,3 +295,64 @@ def test_a_held_first_word_keeps_its_marker_bits(tmp_path):
     assert not fault and got == _image_rows(prep, image)[0]
     scalar, _, _ = run_harness(prep.job, prep.columns)
     assert [r[::2] for r in got] == [r[::2] for r in _rows(scalar, prep.columns)]
+
+
+def _vcd_values(path, name: str, width: int) -> list[tuple[int, int]]:
+    """(time, value) of every change of the first VCD variable `name` of `width` bits,
+    read here with a parser of its own."""
+    ident, out, t = None, [], 0
+    for line in path.read_text().splitlines():
+        parts = line.split()
+        if ident is None and line.startswith("$var") and parts[4] == name \
+                and int(parts[2]) == width:
+            ident = parts[3]
+        elif line.startswith("#"):
+            t = int(line[1:])
+        elif ident is not None and line.startswith("b") and parts[1] == ident:
+            out.append((t, int(parts[0][1:].replace("x", "0"), 2)))
+        elif ident is not None and width == 1 and line[1:] == ident:
+            out.append((t, int(line[0] == "1")))
+    return out
+
+
+def test_waves_of_the_wide_build_name_its_words(tmp_path):
+    """`run --bit-engine wide --waves`: the `executing` row names every word of the
+    image (a scalar word as `line: source`, a LUT word as its unit's lines and its place
+    in the unit), and the waves show the straight-line adder's words executed in
+    address order, each once a scan (hand-worked: no jump, no byte instruction but
+    none); GTKWave displays every signal the layout names."""
+    from bitbyte import cli
+    from test_waves_layout import gtkwave_displays
+    ops = _operands(BASE_SEED, 3)
+    il, st, waves = tmp_path / "adder.il", tmp_path / "adder.csv", tmp_path / "adder.vcd"
+    il.write_text(adder_il())
+    st.write_text(_adder_stimulus(ops))
+    assert cli.main(["run", str(il), "--stimulus", str(st), "--scans", str(len(ops)),
+                     "--bit-engine", "wide", "--waves", str(waves)]) == 0
+    prep = _prepared(tmp_path, "adder", adder_il(), _adder_stimulus(ops), [])
+    image = link.link(prep.program, model.compile_program(prep.program))
+    rows = dict(line.split(" ", 1) for line in
+                (tmp_path / "adder.instr.txt").read_text().splitlines())
+    assert sorted(map(int, rows)) == list(range(len(image.base)))
+    lut = [a for a in range(len(image.base)) if image.is_lut(a)]
+    assert len(lut) > 80
+    for a in range(len(image.base)):
+        if image.is_lut(a):
+            assert re.fullmatch(r"\d+-\d+: LUT word \d+/\d+ \(.+ \.\.\)", rows[str(a)]), rows[str(a)]
+        else:
+            ins = prep.program.instrs[image.src[a]]
+            assert rows[str(a)].startswith(f"{ins.line}: {ins.mnemonic}"), rows[str(a)]
+    # every unit's words numbered 1..n in address order
+    for u in image.units:
+        assert [rows[str(u["addr"] + k)].split("LUT word ")[1].split(" ")[0]
+                for k in range(u["words"])] == [f"{k}/{u['words']}" for k in
+                                                 range(1, u["words"] + 1)]
+    pcs = [v for _, v in _vcd_values(waves, "exec_pc", 12)]
+    run = pcs[pcs.index(0):]
+    n = len(image.base)
+    assert len(run) >= 2 * n and run[:2 * n] == list(range(n)) * 2, run[:2 * n]
+    shown = gtkwave_displays(tmp_path, waves, tmp_path / "adder.gtkw")
+    text = (tmp_path / "adder.gtkw").read_text().splitlines()
+    asked = sum(1 for line in text if line.startswith(("+{", "TOP.bitbyte_cpu")))
+    asked += sum(len(line.split("} ", 1)[1].split()) for line in text if line.startswith("#{"))
+    assert len(shown) == asked and "TOP.bitbyte_cpu.out_pins_o[64]" in shown

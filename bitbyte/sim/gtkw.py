@@ -105,9 +105,10 @@ def scan_states(scan_ctrl_v: Path = SCAN_CTRL_V) -> dict[int, str]:
     return states
 
 
-def instruction_text(instr: Instr) -> str:
-    """`line: source text` of an instruction (bitbyte.lang.program.display_text)."""
-    return f"{instr.line}: {display_text(instr)}"
+def instruction_text(instr: Instr | str) -> str:
+    """`line: source text` of an instruction (bitbyte.lang.program.display_text); a
+    text as it is (a wide image's LUT word: bitbyte/wide/link.py wave_listing)."""
+    return instr if isinstance(instr, str) else f"{instr.line}: {display_text(instr)}"
 
 
 def filter_text(rows: dict[int, str]) -> str:
@@ -210,7 +211,7 @@ def scan_names(startup_scans: int, hardware_scans: int) -> dict[int, str]:
             for n in range(hardware_scans + 1)}
 
 
-def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr], *,
+def _cpu_groups(lay: Layout, cpu: str, program: Program, listing: list[Instr | str], *,
                 serial: bool, stem: str, filter_dir: Path, title: str = "",
                 mw_ram: str | None = None, hardware_scans: int = 0) -> None:
     """One CPU's groups (its scope `cpu`): Scan, Program, then its operands by kind;
@@ -289,13 +290,14 @@ def _write(lay: Layout, gtkw_path: Path, wave_file, what: str, filter_dir: Path,
 
 
 def write_gtkw(gtkw_path: str | Path, wave_file: str | Path, program: Program,
-               listing: list[Instr], *, serial: bool, clock_mhz: Fraction,
+               listing: list[Instr | str], *, serial: bool, clock_mhz: Fraction,
                t0_ps: int | None, scan_clocks: int | None,
                hardware_scans: int = 0) -> list[str]:
     """Write the layout (and its filter files) for a run; returns the signals it names.
 
     listing: the bit processor's program memory, word by word (serial mode: the whole
-    program; parallel mode: the bit part); t0_ps: the waveform time of scan 0's latch
+    program; parallel mode: the bit part; the wide build: its image, a LUT word as a
+    text); t0_ps: the waveform time of scan 0's latch
     (clock 0, or after the startup scan of an OB 100); scan_clocks: a typical scan's
     length (the first view shows a few); hardware_scans: the scans the waves hold,
     the startup scans included (the scan row's names)."""

@@ -25,7 +25,7 @@ from bitbyte.encoding.encoder import constant_pool, encode_instr
 from bitbyte.lang.config import DEFAULT, Config
 from bitbyte.lang.definition import DEF
 from bitbyte.lang.errors import SourceError
-from bitbyte.lang.program import Program
+from bitbyte.lang.program import Program, display_text
 from bitbyte.wide.encode import ZERO, decode, encode_unit
 from bitbyte.wide.stretch import RLO
 
@@ -206,3 +206,24 @@ def source_counts(image: WideImage, counts: dict[int, int]) -> dict[int, int | s
         out.setdefault(p, "")
     return out
 
+
+
+def wave_listing(image: WideImage) -> list:
+    """What the waveform's `executing` row shows at each wide address (`--waves`): a
+    scalar word's source instruction (gtkw shows `line: source`); a LUT word as the
+    lines its unit runs and its place in the unit, `12-25: LUT word 2/3 (LD I0.0 ..)`:
+    a unit has no single source instruction, it runs all of them in its words."""
+    out: list = []
+    first = {u["addr"]: u for u in image.units}
+    unit, k = None, 0
+    for a, src in enumerate(image.src):
+        if isinstance(src, int):
+            out.append(image.program.instrs[src])
+            continue
+        if a in first:
+            unit, k = first[a], 0
+        k += 1
+        lo, hi = unit["lines"]
+        head = image.program.instrs[unit["src"][0]]
+        out.append(f"{lo}-{hi}: LUT word {k}/{unit['words']} ({display_text(head)} ..)")
+    return out
