@@ -77,13 +77,24 @@ sim: $(HARNESS)       ## star-delta and the two-core plant on Verilator: wavefor
 	bitbyte run examples/plant_6_1/plant_sim.toml --until-us 300000 \
 	  --watch p1.MW20,p2.MW0 --trace sim/waves/plant_6_1.csv --waves sim/waves/plant_6_1.fst
 
-test: $(VENV_STAMP)   ## the whole regression (lint, unit, cocotb on Icarus and Verilator)
+# make test leaves out the tests marked slow (within 10 minutes on 2 cores); make
+# test-slow runs them, make soak too. Three pytest workers on two cores: about a sixth
+# of a worker's time is spent waiting on its simulators and tools (measured: 1.76 of 2
+# cores busy with two).
+TEST_JOBS ?= 3
+test: $(VENV_STAMP)   ## the regression (lint, unit, cocotb on Icarus and Verilator), the slow tier left out
 	@$(MAKE) --no-print-directory lint
 	@$(MAKE) --no-print-directory -C firmware_byte test
 	@$(MAKE) --no-print-directory -C sim check
 	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
 	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \
-	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider --durations=15
+	BITBYTE_SEED=$$seed pytest -q -n $(TEST_JOBS) -p no:cacheprovider -m "not slow" --durations=15
+
+.PHONY: test-slow
+test-slow: $(VENV_STAMP)  ## the slow tier: tb benches on Verilator, plant cocotb-Verilator, the equivalence tools' own tests
+	@seed=$${BITBYTE_SEED:-$$(( $$(date +%s) % 1000000 ))}; \
+	echo "random programs: BITBYTE_SEED=$$seed (set it to repeat this run)"; \
+	BITBYTE_SEED=$$seed pytest -q -n $(JOBS) -p no:cacheprovider -m slow --durations=15
 
 # Every default task of every .sby (prove: k-induction, cover: the states are reachable;
 # tests/test_formal.py checks each tracked .sby has both). One failing file does not stop
@@ -126,7 +137,8 @@ clean:          ## remove build products (keeps .venv)
 # soak/test_wide_soak.py: N programs of its own families compiled for the wide bit engine,
 # each image run against the scalar reference and the wide model, and on the wide RTL
 # (make harness-wide) against the image interpreter (build/soak/wide-cases/).
-# Every formal mutant of tests/test_formal.py (make test runs a fixed quarter of them).
+# Every formal mutant of tests/test_formal.py (make test runs a fixed quarter of them),
+# and the slow tier of tests/ and tb/ (make test-slow).
 # Not part of `make test` (docs/soak.md has the last run's time; the S7 soak about 10 min more).
 # BITBYTE_SEED=<n> repeats a run.
 .PHONY: soak
@@ -139,6 +151,7 @@ soak: $(HARNESS)  ## N random programs, every mode, against the reference -> doc
 	  BITBYTE_PLANT_COVERAGE=build/soak BITBYTE_FORMAL_MUTANTS=all \
 	  $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider soak/ tests/test_plant_tearing.py \
 	  tests/test_formal.py::test_mutation_is_caught; rc=$$?; \
+	BITBYTE_SEED=$$seed $(VENV)/bin/pytest -q -n $(JOBS) -p no:cacheprovider -m slow || rc=1; \
 	$(VENV)/bin/python soak/soak_report.py --n $(N) --jobs $(JOBS) --seconds $$(( $$(date +%s) - t0 )) || rc=1; \
 	exit $$rc
 

@@ -14,7 +14,8 @@ Two ways a test reaches the mutated design:
   elaboration samples the mutations; a later one with other parameters gets them
   mapped by key (mutlib.map_mutations), the unmapped ones skipped there.
 - the Verilator harness (campaign "harness"): the netlist of bitbyte_cpu is built into
-  its own harness binary at the start; BITBYTE_HARNESS names it and
+  its own harness binary at the start (the wide campaign: with BitEngine=1, the wide
+  harness, BITBYTE_HARNESS_WIDE); BITBYTE_HARNESS names it and
   BITBYTE_HARNESS_ARGS passes +mutsel=<id> (bitbyte/sim/verilator.py).
 - the plant harness (campaign "plant"): the netlist of plc_system with two cores is
   built into its own plant harness; BITBYTE_PLANT_HARNESS_2 names it and the same
@@ -125,17 +126,22 @@ def mutant_run_cocotb(sim, toplevel, test_module, parameters=None, extra_env=Non
 
 
 def build_harness(cfg: dict) -> None:
-    """The mutant netlist of bitbyte_cpu in its own Verilator harness (sim/Makefile)."""
-    path, _ = CAMPAIGN.netlist("bitbyte_cpu", dict(cfg.get("params", {})))
+    """The mutant netlist of bitbyte_cpu in its own Verilator harness (sim/Makefile);
+    cfg "wide": elaborated with BitEngine=1 into the wide harness (harness_wide.cpp;
+    the netlist has the parameter set already), named by BITBYTE_HARNESS_WIDE."""
+    wide = bool(cfg.get("wide"))
+    params = dict(cfg.get("params", {}), **({"BitEngine": 1} if wide else {}))
+    path, _ = CAMPAIGN.netlist("bitbyte_cpu", params)
     out = path.parent / "harness"
     t0 = time.time()
     proc = subprocess.run(["make", "-s", "-C", str(mutlib.ROOT / "sim"), "harness",
-                           f"OUT={out}", f"RTL_SOURCES={path}", "TRACE=none"],
+                           f"OUT={out}", f"RTL_SOURCES={path}", "TRACE=none"]
+                          + (["BIT_ENGINE=wide", "ENGINE_FLAGS="] if wide else []),
                           capture_output=True, text=True)
     if proc.returncode != 0:
         raise mutlib.MutationError(f"{path}: harness build failed:\n{proc.stderr[-3000:]}")
     CAMPAIGN.elabs[-1]["harness_build_s"] = round(time.time() - t0, 1)
-    os.environ["BITBYTE_HARNESS"] = str(out / "Vbitbyte_cpu")
+    os.environ["BITBYTE_HARNESS_WIDE" if wide else "BITBYTE_HARNESS"] = str(out / "Vbitbyte_cpu")
 
 
 def build_plant_harness(cfg: dict) -> None:

@@ -41,6 +41,7 @@ class Campaign:
     keyword: str = ""      # pytest -k (the benches: Icarus only, the faster build)
     harness: bool = False  # the tests run the Verilator harness (bitbyte_cpu)
     plant: bool = False    # the tests run two-core plants on the plant harness (plc_system)
+    wide: bool = False     # with harness: the wide build (BitEngine=1, make harness-wide)
     env: dict = field(default_factory=dict)
     equivalence: bool = True   # the miter is small enough (not the whole CPU)
     # else: the modules whose survivors are checked alone (their own module in the
@@ -126,6 +127,12 @@ CAMPAIGNS = [
              env={"BITBYTE_RANDOM_PROGRAMS": str(CPU_PROGRAMS),
                   "BITBYTE_MIXED_PROGRAMS": str(CPU_PROGRAMS)},
              equivalence=False, equiv_modules=("sync_ram",)),
+    # the wide bit engine's LUT execution (issue 18): the CPU with BitEngine=1 on a wide
+    # harness built once from the mutant netlist; random images and directed programs
+    # against the image interpreter, the adder's sums (the waves test needs a traced
+    # harness: left out). bit_proc's own cells are the cpu campaign's.
+    Campaign("wide", ["tests/test_wide_rtl.py"], ["lut_unit"], keyword="not waves",
+             harness=True, wide=True, equivalence=False, equiv_modules=("lut_unit",)),
     # the multi-core plant's own modules (a core: CPU, MW RAM, precycle / postcycle
     # sequencer; the system: cores, shared memory, semaphore, period timers) through
     # two-core plants on a plant harness built once from the mutant netlist of
@@ -149,7 +156,8 @@ def run_tests(c: Campaign, seed: int, count: int, work: Path, keep: Path | None 
     `keep`: an earlier run's results.json whose test kills stand (its survivors run)."""
     cfg = {"work": str(work), "modules": c.modules, "count": count, "seed": seed,
            "tests": c.tests,
-           "harness": c.harness, "plant": c.plant, "results": str(work / "results.json"),
+           "harness": c.harness, "plant": c.plant, "wide": c.wide,
+           "results": str(work / "results.json"),
            "keep": str(keep) if keep else None}
     (work / "config.json").write_text(json.dumps(cfg))
     env = dict(os.environ, BITBYTE_MUTATION=str(work / "config.json"), BITBYTE_SEED=str(seed),

@@ -66,7 +66,8 @@ def test_a_bit_stuck_at_its_own_constant_is_a_no_op(tmp_path):
     assert found == {"const1": "B[13] is the constant 1 already", "const0": None, "inv": None}
 
 
-@pytest.mark.parametrize("memories", [True, False], ids=["through_memories", "words"])
+@pytest.mark.parametrize("memories", [pytest.param(True, marks=pytest.mark.slow), False],
+                         ids=["through_memories", "words"])
 def test_a_mutation_no_output_reads_is_dead(memories, tmp_path):
     """mutlib.dead on shared_mem's read select `bank_rdata[(rbank * Cores + r) * 32 +: 32]`
     and clearing counter (3 cores, 16 words): bit 31 of the inner product, which the
@@ -226,6 +227,7 @@ def clearing_netlist(tmp_path):
     return netlist
 
 
+@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp_path):
     settle = mutlib.Settle("ready_o", 6, ("rdata_o",))
     assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "clearing_ram", 1,
@@ -242,6 +244,7 @@ def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp
                                       early, 300) == "different"
 
 
+@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path):
     """Settle.free: the counter's low bits differ for ever after mutant 3, so the
     copies are equal once settled only with them left free; leaving free a register the
@@ -308,6 +311,7 @@ endmodule
 """
 
 
+@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_a_read_register_is_compared_where_the_contract_reads_it(tmp_path):
     """Contract.valid / free: mutant 1 changes the read register only where no user
     reads it (equivalent under the contract, not without it); mutant 2 changes what a
@@ -333,6 +337,7 @@ def test_a_read_register_is_compared_where_the_contract_reads_it(tmp_path):
                                     mutlib.Contract(valid={"wd_i": "rd_o"}), 300)
 
 
+@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_registers_that_step_together_are_proved_then_assumed(tmp_path):
     """Contract.same: mutant 1 (ready from one of two twin counters) is equivalent once
     the twins are proved equal in the original, and not without that; a twin claim

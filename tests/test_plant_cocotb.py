@@ -31,7 +31,8 @@ EXAMPLE = ROOT / "examples" / "plant_6_1"
 UNTIL_US = "6000"
 WATCH = ("p1.MW20,p1.M10.0,p1.M10.1,p1.I0.0,p1.PI0.0,p1.C0,"
          "p2.MW0,p2.M0.0,p2.M0.1,p2.T0")
-COCOTB_SIMS = ["icarus", "cocotb-verilator"]
+# (the cocotb-Verilator plant models take 20 s a build: the slow tier)
+COCOTB_SIMS = ["icarus", pytest.param("cocotb-verilator", marks=pytest.mark.slow)]
 
 
 def _pulses() -> str:

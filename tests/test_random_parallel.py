@@ -121,7 +121,7 @@ def test_parallel_status_path_on_harness(cases, tmp_path, capsys):
     print(f"--tc-path status taken in {used} of {with_tc} programs with a timer or counter")
 
 
-@pytest.mark.parametrize("sim", ["icarus", "verilator"])
+@pytest.mark.parametrize("sim", ["icarus", pytest.param("verilator", marks=pytest.mark.slow)])
 def test_parallel_on_cocotb(cases, sim):
     """Handshake and queue alternate over the programs, one cocotb session (Icarus,
     about five times slower, the first half of them)."""

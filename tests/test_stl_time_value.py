@@ -91,7 +91,8 @@ def check(expected, got, timers=TIMERS) -> None:
     assert transition_difference(*rest) is None, transition_difference(*rest)
 
 
-@pytest.mark.parametrize("lang,seed", [("de", 0), ("en", 1), ("de", 2)])
+@pytest.mark.parametrize("lang,seed", [("de", 0), ("en", 1),
+                                       pytest.param("de", 2, marks=pytest.mark.slow)])
 def test_time_values_against_awlsim(tmp_path, lang, seed):
     """The five kinds, started, stopped, run out and reset: every time value word
     as awlsim's (reference interpreter, serial)."""
