@@ -329,6 +329,8 @@ def mutant_sample(mutations: list, which: str) -> list:
 
 
 FORMAL_MUTANTS = os.environ.get("BITBYTE_FORMAL_MUTANTS", "sample")
+if FORMAL_MUTANTS not in ("sample", "all"):
+    raise ValueError(f"BITBYTE_FORMAL_MUTANTS={FORMAL_MUTANTS!r}: sample or all")
 
 
 def test_the_mutant_sample_covers_every_proof():

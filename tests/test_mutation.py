@@ -227,7 +227,6 @@ def clearing_netlist(tmp_path):
     return netlist
 
 
-@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp_path):
     settle = mutlib.Settle("ready_o", 6, ("rdata_o",))
     assert mutlib.settled_equivalence(tmp_path / "a", clearing_netlist, "clearing_ram", 1,
@@ -244,7 +243,6 @@ def test_another_clearing_order_is_equivalent_once_settled(clearing_netlist, tmp
                                       early, 300) == "different"
 
 
-@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_a_free_register_must_be_unread_once_settled(clearing_netlist, tmp_path):
     """Settle.free: the counter's low bits differ for ever after mutant 3, so the
     copies are equal once settled only with them left free; leaving free a register the
@@ -311,7 +309,6 @@ endmodule
 """
 
 
-@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_a_read_register_is_compared_where_the_contract_reads_it(tmp_path):
     """Contract.valid / free: mutant 1 changes the read register only where no user
     reads it (equivalent under the contract, not without it); mutant 2 changes what a
@@ -337,7 +334,6 @@ def test_a_read_register_is_compared_where_the_contract_reads_it(tmp_path):
                                     mutlib.Contract(valid={"wd_i": "rd_o"}), 300)
 
 
-@pytest.mark.slow     # (the equivalence tools: make test-slow, make soak)
 def test_registers_that_step_together_are_proved_then_assumed(tmp_path):
     """Contract.same: mutant 1 (ready from one of two twin counters) is equivalent once
     the twins are proved equal in the original, and not without that; a twin claim

@@ -181,10 +181,11 @@ def test_scheduled_plant_programs_on_harness(tmp_path, capsys):
     # two fixed programs the compiler reschedules (seeds 901 and 904), the rest from
     # this run's seed: the check of rescheduled parts on the hardware is never luck
     cases = [(1, 0), (4, 0)] + [(k, BASE_SEED) for k in range(PLANT_PROGRAMS - 2)]
-    for index, base in cases:
+    for n, (index, base) in enumerate(cases):
         seed, il, stim, watch = _plant_case(tmp_path, index, base)
         part = partition(parse_file(str(il)))
         moved += part.schedule is not None
+        assert part.schedule is not None or n >= 2, f"fixed program {seed} not rescheduled"
         kw = dict(stimulus=str(stim), watch=watch, scans=SCANS, watchdog=WATCHDOG)
         program, columns, _, _ = prepare_run(str(il), **kw)
         _, records, fault = refsim_trace(program, stimulus=load_stimulus(

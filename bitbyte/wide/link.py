@@ -144,7 +144,6 @@ def listing(image: WideImage, config: Config = DEFAULT) -> str:
     if labels:
         out += ["", "labels:"] + [f"  {name:<16} {a:04X}" for name, a in labels.items()]
     out += ["", "addr  word      line: source"]
-    first_of = {u["addr"]: u for u in image.units}
     at: dict[int, list[str]] = {}
     for name, a in labels.items():
         at.setdefault(a, []).append(name)
@@ -160,15 +159,13 @@ def listing(image: WideImage, config: Config = DEFAULT) -> str:
                 line = f"{line:<60} ; -> {jump_target(word):04X}"
             out.append(line)
             continue
-        unit = first_of.get(a) or next(u for u in image.units
-                                       if u["addr"] <= a < u["addr"] + u["words"])
-        i = a - unit["addr"]
+        unit, k = unit_of(image, a)
         lo, hi = unit["lines"]
         ins, _, _ = decode(word, image.ext[a])
         used = [x for x in ins.inputs if x != ZERO]
         what = "; ".join(f"{d} := {t & (1 << (1 << len(used))) - 1:0{max(1, (1 << len(used)) // 4)}X}"
                          f"({', '.join(used)})" for d, t in ins.outs)
-        line = f"{a:04X}  {word:08X}  {lo:>4}: LUT word {i + 1}/{unit['words']} of lines {lo}-{hi}"
+        line = f"{a:04X}  {word:08X}  {lo:>4}: LUT word {k}/{unit['words']} of lines {lo}-{hi}"
         out.append(f"{line:<60} ; {what}")
     return "\n".join(out) + "\n"
 
@@ -208,22 +205,27 @@ def source_counts(image: WideImage, counts: dict[int, int]) -> dict[int, int | s
 
 
 
+def unit_of(image: WideImage, a: int) -> tuple[dict, int]:
+    """The unit the LUT word at wide address `a` belongs to, and its place in it (1..n)."""
+    unit = next(u for u in image.units if u["addr"] <= a < u["addr"] + u["words"])
+    return unit, a - unit["addr"] + 1
+
+
 def wave_listing(image: WideImage) -> list:
     """What the waveform's `executing` row shows at each wide address (`--waves`): a
     scalar word's source instruction (gtkw shows `line: source`); a LUT word as the
-    lines its unit runs and its place in the unit, `12-25: LUT word 2/3 (LD I0.0 ..)`:
-    a unit has no single source instruction, it runs all of them in its words."""
+    lines its unit runs, its place in the unit and the unit's first instruction that is
+    not a NOP, `12-25: LUT word 2/3 (LD I0.0 ..)` (a unit of one line: `12: ...`): a
+    unit has no single source instruction, it runs all of them in its words."""
     out: list = []
-    first = {u["addr"]: u for u in image.units}
-    unit, k = None, 0
     for a, src in enumerate(image.src):
         if isinstance(src, int):
             out.append(image.program.instrs[src])
             continue
-        if a in first:
-            unit, k = first[a], 0
-        k += 1
+        unit, k = unit_of(image, a)
         lo, hi = unit["lines"]
-        head = image.program.instrs[unit["src"][0]]
-        out.append(f"{lo}-{hi}: LUT word {k}/{unit['words']} ({display_text(head)} ..)")
+        instrs = image.program.instrs[slice(*unit["src"])]
+        head = next((i for i in instrs if i.mnemonic != "NOP"), instrs[0])
+        lines = f"{lo}" if lo == hi else f"{lo}-{hi}"
+        out.append(f"{lines}: LUT word {k}/{unit['words']} ({display_text(head)} ..)")
     return out
