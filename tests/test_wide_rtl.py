@@ -40,6 +40,7 @@ from bitbyte.lang.errors import SimError
 from bitbyte.run.prepare import prepare
 from bitbyte.sim.verilator import ensure_harness, run_harness
 from bitbyte.wide import iss, link, model
+from bitbyte.wide.encode import decode
 from test_wide_image import dense_stimulus
 from test_wide_model import _adder_stimulus, _operands, adder_il, with_label_nops
 
@@ -381,14 +382,18 @@ def test_waves_of_the_wide_build_name_its_words(tmp_path):
 
 
 def _every_bit_program(area: str, bits: int) -> str:
-    """Each byte of `area`'s first `bits` bits as two 8-input parities (the bits in both
-    orders, so that each is read by a unit's first word and by a later one: a 5-input
-    LUT word holds at most five), on Q byte k bits 0 and 1."""
+    """Each byte of `area`'s first `bits` bits as eight 8-input parities, the bits
+    rotated one place from one to the next: each bit at each place of the chain, so
+    read through each operand port, by a unit's first word and by a later one (a LUT
+    word reads at most five); parity r of byte k on Q k.r."""
     rungs = []
     for byte in range(bits // 8):
-        for order, q in ((range(8), 0), (range(7, -1, -1), 1)):
-            ops = [f"{area}{byte}.{n}" for n in order]
-            rungs += [f"LD {ops[0]}"] + [f"X {o}" for o in ops[1:]] + [f"= Q{byte}.{q}"]
+        for r in range(8):
+            ops = [f"{area}{byte}.{(r + n) % 8}" for n in range(8)]
+            # (the label cuts the units: one a rung, its first word reading its first
+            # operands)
+            rungs += [f"r{byte}_{r}: LD {ops[0]}"] + [f"X {o}" for o in ops[1:]] \
+                + [f"= Q{byte}.{r}"]
     return "\n".join(rungs) + "\nEND\n"
 
 
@@ -401,20 +406,33 @@ def test_every_input_bit_through_lut_words(tmp_path, area):
     invisible (the wide mutation campaign's survivors, docs/verification.md)."""
     rng = random.Random(BASE_SEED)
     bits, scans = 128, 8                    # InBytes = 16 in the default build
-    # PI: new pins every clock; the latched areas every 37 clocks (a scan is 52: with
+    # PI: new pins every clock; the latched areas every 150 clocks (a scan is 259: with
     # pins changing every clock every bit would have risen and fallen, IR = IF = 1)
-    every = 1 if area == "PI" else 37
+    every = 1 if area == "PI" else 150
     cols = [f"I{b}.{n}" for b in range(bits // 8) for n in range(8)]
     stim = "t_us," + ",".join(cols) + "\n" + "".join(
         f"{c / 100:.2f}," + ",".join(str(rng.randrange(2)) for _ in cols) + "\n"
-        for c in range(0, 600, every))
-    watch = [f"Q{b}.{q}" for b in range(bits // 8) for q in (0, 1)]
+        for c in range(0, 2100, every))
+    watch = [f"Q{b}.{r}" for b in range(bits // 8) for r in range(8)]
     prep = _prepared(tmp_path, area, _every_bit_program(area, bits), stim, watch, scans)
     image = link.link(prep.program, model.compile_program(prep.program))
     got, fault = _run_image(prep, image)
     want, sim = _image_rows(prep, image, scans)
     assert (fault, got) == (sim.watchdog_fault, want)
-    assert not fault and sim.lut_clocks >= scans * 2 * (bits // 8)
+    assert not fault and sim.lut_clocks >= scans * 8 * (bits // 8)
+    # read from the image itself: each bit by a first word and by a later one (PI: the
+    # pins and the snapshot), and all but a few through every operand port (measured:
+    # 124 of 128; the compiler picks the ports)
+    seen = set()
+    for u in image.units:
+        for k in range(u["words"]):
+            ins, _, _ = decode(image.base[u["addr"] + k], image.ext[u["addr"] + k])
+            seen |= {(x, j, k > 0) for j, x in enumerate(ins.inputs) if x.startswith(area)}
+    names = [f"{area}{b}.{n}" for b in range(bits // 8) for n in range(8)]
+    for later in (False, True):
+        assert all(any((x, j, later) in seen for j in range(5)) for x in names)
+    assert sum(all(any((x, j, later) in seen for later in (False, True)) for j in range(5))
+               for x in names) >= 120
     q = [k for k, c in enumerate(prep.columns) if c.header in watch]
     ones = sum(r[2][k] for r in got for k in q)     # the parities are seen to change
     assert 0.25 < ones / (len(got) * len(q)) < 0.75, ones
