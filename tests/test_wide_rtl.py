@@ -302,24 +302,6 @@ def test_a_held_first_word_keeps_its_marker_bits(tmp_path):
     assert [r[::2] for r in got] == [r[::2] for r in _rows(scalar, prep.columns)]
 
 
-def _vcd_values(path, name: str, width: int) -> list[tuple[int, int]]:
-    """(time, value) of every change of the first VCD variable `name` of `width` bits,
-    read here with a parser of its own."""
-    ident, out, t = None, [], 0
-    for line in path.read_text().splitlines():
-        parts = line.split()
-        if ident is None and line.startswith("$var") and parts[4] == name \
-                and int(parts[2]) == width:
-            ident = parts[3]
-        elif line.startswith("#"):
-            t = int(line[1:])
-        elif ident is not None and line.startswith("b") and parts[1] == ident:
-            out.append((t, int(parts[0][1:].replace("x", "0"), 2)))
-        elif ident is not None and width == 1 and line[1:] == ident:
-            out.append((t, int(line[0] == "1")))
-    return out
-
-
 def test_waves_of_the_wide_build_name_its_words(tmp_path):
     """`run --bit-engine wide --waves`: the `executing` row names every word of the
     image (a scalar word as `line: source`, a LUT word as its unit's lines and its place
@@ -327,6 +309,7 @@ def test_waves_of_the_wide_build_name_its_words(tmp_path):
     address order, each once a scan (hand-worked: no jump, no byte instruction but
     none); GTKWave displays every signal the layout names."""
     from bitbyte import cli
+    from test_response_bound import _vcd_changes
     from test_waves_layout import gtkwave_displays
     ops = _operands(BASE_SEED, 3)
     il, st, waves = tmp_path / "adder.il", tmp_path / "adder.csv", tmp_path / "adder.vcd"
@@ -370,7 +353,7 @@ def test_waves_of_the_wide_build_name_its_words(tmp_path):
         assert [rows[str(u["addr"] + k)].split("LUT word ")[1].split(" ")[0]
                 for k in range(u["words"])] == [f"{k}/{u['words']}" for k in
                                                  range(1, u["words"] + 1)]
-    pcs = [v for _, v in _vcd_values(waves, "exec_pc", 12)]
+    pcs = [v for _, v in _vcd_changes(waves, {"exec_pc": 12})[1]["exec_pc"]]
     run = pcs[pcs.index(0):]
     n = len(image.base)
     assert len(run) >= 2 * n and run[:2 * n] == list(range(n)) * 2, run[:2 * n]
